@@ -1,0 +1,204 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "psLocalFit.h"
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <limits>
+
+namespace pointsurfaces
+{
+const char* FitStatusName(FitStatus status)
+{
+  switch (status)
+  {
+    case FitStatus::Ok:
+      return "ok";
+    case FitStatus::ReducedDegree:
+      return "fitted at a lower degree";
+    case FitStatus::TooFewPoints:
+      return "too few neighbours";
+    case FitStatus::Degenerate:
+      return "coincident or collinear neighbours";
+    case FitStatus::NonFinite:
+      return "NaN or infinite coordinates";
+  }
+  return "unknown";
+}
+
+namespace
+{
+bool AllFinite(const double* p, int n)
+{
+  for (int i = 0; i < 3 * n; ++i)
+  {
+    if (!std::isfinite(p[i]))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
+FitStatus FitReferencePlane(
+  const double* points, const double* w, int n, LocalFrame& frame, const double* orientation)
+{
+  if (n < 3)
+  {
+    return FitStatus::TooFewPoints;
+  }
+  if (!AllFinite(points, n))
+  {
+    return FitStatus::NonFinite;
+  }
+  // Two passes: the centroid first, then the covariance of the centred points,
+  // so that offsets of 1e7 cost no digits.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double wsum = 0.0;
+  for (int i = 0; i < n; ++i)
+  {
+    const double wi = w ? w[i] : 1.0;
+    centroid += wi * Eigen::Vector3d(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
+    wsum += wi;
+  }
+  if (!(wsum > 0.0))
+  {
+    return FitStatus::TooFewPoints;
+  }
+  centroid /= wsum;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < n; ++i)
+  {
+    const double wi = w ? w[i] : 1.0;
+    const Eigen::Vector3d d =
+      Eigen::Vector3d(points[3 * i], points[3 * i + 1], points[3 * i + 2]) - centroid;
+    cov.noalias() += wi * d * d.transpose();
+  }
+  cov /= wsum;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const Eigen::Vector3d lambda = eig.eigenvalues(); // ascending
+  // The middle eigenvalue measures the second direction of spread: when it is
+  // negligible next to the largest, the points lie on a line (or a point).
+  if (!(lambda(2) > 0.0) || lambda(1) <= 1e-12 * lambda(2))
+  {
+    return FitStatus::Degenerate;
+  }
+  Eigen::Vector3d normal = eig.eigenvectors().col(0);
+  Eigen::Vector3d tangent = eig.eigenvectors().col(2);
+  if (orientation)
+  {
+    if (normal.dot(Eigen::Vector3d(orientation[0], orientation[1], orientation[2])) < 0.0)
+    {
+      normal = -normal;
+    }
+  }
+  else
+  {
+    Eigen::Index k;
+    normal.cwiseAbs().maxCoeff(&k);
+    if (normal(k) < 0.0)
+    {
+      normal = -normal;
+    }
+  }
+  Eigen::Index k;
+  tangent.cwiseAbs().maxCoeff(&k);
+  if (tangent(k) < 0.0)
+  {
+    tangent = -tangent;
+  }
+  tangent = (tangent - tangent.dot(normal) * normal).normalized();
+  const Eigen::Vector3d bitangent = normal.cross(tangent);
+  for (int c = 0; c < 3; ++c)
+  {
+    frame.Origin[c] = centroid(c);
+    frame.Normal[c] = normal(c);
+    frame.Tangent[c] = tangent(c);
+    frame.Bitangent[c] = bitangent(c);
+  }
+  return FitStatus::Ok;
+}
+
+PolynomialFit FitPolynomial(
+  const double* points, const double* w, int n, const LocalFrame& frame, int degree)
+{
+  PolynomialFit fit;
+  if (degree < 1 || degree > MaximumDegree || !(frame.Scale > 0.0) ||
+    !std::isfinite(frame.Scale))
+  {
+    fit.Status = FitStatus::Degenerate;
+    return fit;
+  }
+  if (!AllFinite(points, n))
+  {
+    fit.Status = FitStatus::NonFinite;
+    return fit;
+  }
+  const Eigen::Vector3d o(frame.Origin[0], frame.Origin[1], frame.Origin[2]);
+  const Eigen::Vector3d nrm(frame.Normal[0], frame.Normal[1], frame.Normal[2]);
+  const Eigen::Vector3d t(frame.Tangent[0], frame.Tangent[1], frame.Tangent[2]);
+  const Eigen::Vector3d b(frame.Bitangent[0], frame.Bitangent[1], frame.Bitangent[2]);
+  const double inv = 1.0 / frame.Scale;
+
+  // Local coordinates and square-root weights, once for all degrees tried.
+  Eigen::MatrixXd uvh(n, 3);
+  Eigen::VectorXd sw(n);
+  int active = 0;
+  for (int i = 0; i < n; ++i)
+  {
+    const Eigen::Vector3d d =
+      Eigen::Vector3d(points[3 * i], points[3 * i + 1], points[3 * i + 2]) - o;
+    uvh(i, 0) = d.dot(t) * inv;
+    uvh(i, 1) = d.dot(b) * inv;
+    uvh(i, 2) = d.dot(nrm) * inv;
+    const double wi = w ? w[i] : 1.0;
+    sw(i) = wi > 0.0 ? std::sqrt(wi) : 0.0;
+    active += wi > 0.0 ? 1 : 0;
+  }
+
+  for (int d = degree; d >= 1; --d)
+  {
+    const int m = MonomialCount(d);
+    if (active < m)
+    {
+      continue;
+    }
+    Eigen::MatrixXd A(n, m);
+    Eigen::VectorXd rhs(n);
+    double row[MonomialCount(MaximumDegree)];
+    for (int i = 0; i < n; ++i)
+    {
+      Monomials(uvh(i, 0), uvh(i, 1), d, row);
+      for (int j = 0; j < m; ++j)
+      {
+        A(i, j) = sw(i) * row[j];
+      }
+      rhs(i) = sw(i) * uvh(i, 2);
+    }
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+    qr.setThreshold(1e-10);
+    if (qr.rank() < m)
+    {
+      continue; // e.g. points on a line in (u, v): no well-posed fit of this degree
+    }
+    const Eigen::VectorXd c = qr.solve(rhs);
+    if (!c.allFinite())
+    {
+      continue;
+    }
+    fit.Degree = d;
+    for (int j = 0; j < m; ++j)
+    {
+      fit.Coefficients[j] = c(j);
+    }
+    const double wsum = sw.squaredNorm();
+    fit.WeightedRMS = wsum > 0.0 ? std::sqrt((A * c - rhs).squaredNorm() / wsum) : 0.0;
+    fit.Status = d == degree ? FitStatus::Ok : FitStatus::ReducedDegree;
+    return fit;
+  }
+  fit.Status = active < MonomialCount(1) ? FitStatus::TooFewPoints : FitStatus::Degenerate;
+  return fit;
+}
+} // namespace pointsurfaces

@@ -1,0 +1,82 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "psPolynomial.h"
+
+namespace pointsurfaces
+{
+int DegreeFromMonomialCount(int count)
+{
+  for (int d = 1; d <= MaximumDegree; ++d)
+  {
+    if (MonomialCount(d) == count)
+    {
+      return d;
+    }
+  }
+  return -1;
+}
+
+void Monomials(double u, double v, int degree, double* out)
+{
+  double upow[MaximumDegree + 1];
+  double vpow[MaximumDegree + 1];
+  upow[0] = vpow[0] = 1.0;
+  for (int k = 1; k <= degree; ++k)
+  {
+    upow[k] = upow[k - 1] * u;
+    vpow[k] = vpow[k - 1] * v;
+  }
+  int i = 0;
+  for (int total = 0; total <= degree; ++total)
+  {
+    for (int pu = total; pu >= 0; --pu)
+    {
+      out[i++] = upow[pu] * vpow[total - pu];
+    }
+  }
+}
+
+double Evaluate(const double* c, int degree, double u, double v)
+{
+  double m[MonomialCount(MaximumDegree)];
+  Monomials(u, v, degree, m);
+  double sum = 0.0;
+  for (int i = 0; i < MonomialCount(degree); ++i)
+  {
+    sum += c[i] * m[i];
+  }
+  return sum;
+}
+
+double EvaluateWithGradient(const double* c, int degree, double u, double v, double& du, double& dv)
+{
+  double upow[MaximumDegree + 1];
+  double vpow[MaximumDegree + 1];
+  upow[0] = vpow[0] = 1.0;
+  for (int k = 1; k <= degree; ++k)
+  {
+    upow[k] = upow[k - 1] * u;
+    vpow[k] = vpow[k - 1] * v;
+  }
+  double g = 0.0;
+  du = dv = 0.0;
+  int i = 0;
+  for (int total = 0; total <= degree; ++total)
+  {
+    for (int pu = total; pu >= 0; --pu, ++i)
+    {
+      const int pv = total - pu;
+      g += c[i] * upow[pu] * vpow[pv];
+      if (pu > 0)
+      {
+        du += c[i] * pu * upow[pu - 1] * vpow[pv];
+      }
+      if (pv > 0)
+      {
+        dv += c[i] * pv * upow[pu] * vpow[pv - 1];
+      }
+    }
+  }
+  return g;
+}
+} // namespace pointsurfaces

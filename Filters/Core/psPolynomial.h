@@ -1,0 +1,42 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file psPolynomial.h
+ * @brief Bivariate polynomials g(u,v) of degree 1 to 4 in the monomial order of the splat data model.
+ *
+ * Plain functions, no VTK: the fitter builds its least-squares systems from
+ * Monomials(), the error metrics and the CPU reference ray caster evaluate
+ * Evaluate() and Gradient(). Monomials are ordered by total degree, then by
+ * descending power of u (DESIGN.md section 3):
+ * 1, u, v, u², uv, v², u³, u²v, uv², v³, u⁴, u³v, u²v², uv³, v⁴.
+ */
+#ifndef psPolynomial_h
+#define psPolynomial_h
+
+#include "PointSurfacesFiltersModule.h" // For export macro
+
+namespace pointsurfaces
+{
+constexpr int MaximumDegree = 4;
+
+/** Number of monomials of total degree <= degree: 3, 6, 10, 15 for degrees 1 to 4. */
+constexpr int MonomialCount(int degree)
+{
+  return (degree + 1) * (degree + 2) / 2;
+}
+
+/** The degree whose monomial count is `count`, or -1 when no degree 1..4 has it. */
+POINTSURFACESFILTERS_EXPORT int DegreeFromMonomialCount(int count);
+
+/** Write the MonomialCount(degree) monomials at (u, v) to `out`. */
+POINTSURFACESFILTERS_EXPORT void Monomials(double u, double v, int degree, double* out);
+
+/** g(u, v) for coefficients `c` in monomial order. */
+POINTSURFACESFILTERS_EXPORT double Evaluate(const double* c, int degree, double u, double v);
+
+/** g(u, v) and its partial derivatives. */
+POINTSURFACESFILTERS_EXPORT double EvaluateWithGradient(
+  const double* c, int degree, double u, double v, double& du, double& dv);
+} // namespace pointsurfaces
+
+#endif

@@ -1,0 +1,202 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPointSurfacesRenderWindowFactory.h"
+
+#include "vtkAutoInit.h"
+#include "vtkEGLHeadlessRenderWindow.h"
+#include "vtkVersion.h"
+#include "vtkXOpenGLRenderWindow.h"
+
+#include <X11/Xlib.h>
+
+#include <cstdlib>
+#include <mutex>
+#include <string>
+
+// VTK's own OpenGL factory must be registered before ours is, so that the
+// enable flags set below apply to its vtkRenderWindow override too.
+VTK_MODULE_INIT(vtkRenderingOpenGL2);
+
+vtkStandardNewMacro(vtkPointSurfacesRenderWindowFactory);
+
+namespace
+{
+int CurrentMode = -1;
+vtkPointSurfacesRenderWindowFactory* Installed = nullptr;
+
+int X11ErrorIgnorer(Display*, XErrorEvent*)
+{
+  return 0;
+}
+
+bool ProbeXDisplay()
+{
+  const char* name = std::getenv("DISPLAY");
+  if (!name || !*name)
+  {
+    return false;
+  }
+  // XOpenDisplay itself never aborts; it returns null when nothing answers.
+  auto previous = XSetErrorHandler(X11ErrorIgnorer);
+  Display* dpy = XOpenDisplay(name);
+  XSetErrorHandler(previous);
+  if (!dpy)
+  {
+    return false;
+  }
+  XCloseDisplay(dpy);
+  return true;
+}
+
+bool UseX11()
+{
+  switch (CurrentMode)
+  {
+    case vtkPointSurfacesRenderWindowFactory::EGL:
+      return false;
+    case vtkPointSurfacesRenderWindowFactory::X11:
+      if (!vtkPointSurfacesRenderWindowFactory::IsXDisplayUsable())
+      {
+        static std::once_flag warned;
+        std::call_once(warned, [] {
+          vtkGenericWarningMacro(<< "POINTSURFACES_RENDER_WINDOW=x11, but no X display can be "
+                                    "opened (DISPLAY='"
+                                 << (std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "")
+                                 << "'): using the EGL window instead.");
+        });
+        return false;
+      }
+      return true;
+    default:
+      return vtkPointSurfacesRenderWindowFactory::IsXDisplayUsable();
+  }
+}
+
+vtkObject* CreateRenderWindow()
+{
+  if (UseX11())
+  {
+    return vtkXOpenGLRenderWindow::New();
+  }
+  return vtkEGLHeadlessRenderWindow::New();
+}
+
+// Applies the environment switch when the library is loaded.
+struct EnvironmentSwitch
+{
+  EnvironmentSwitch() { vtkPointSurfacesRenderWindowFactory::ConfigureFromEnvironment(); }
+} TheEnvironmentSwitch;
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkPointSurfacesRenderWindowFactory::vtkPointSurfacesRenderWindowFactory()
+{
+  this->RegisterOverride("vtkRenderWindow", "vtkEGLHeadlessRenderWindow",
+    "PointSurfaces render window (EGL when no X display)", 1, CreateRenderWindow);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPointSurfacesRenderWindowFactory::SetMode(int mode)
+{
+  if (mode != Auto && mode != EGL && mode != X11)
+  {
+    vtkGenericWarningMacro(<< "Unknown render window mode " << mode);
+    return false;
+  }
+  if (!Installed)
+  {
+    // The registry owns the factory; VTK frees it with the other factories at exit.
+    Installed = vtkPointSurfacesRenderWindowFactory::New();
+    vtkObjectFactory::RegisterFactory(Installed);
+    Installed->Delete();
+  }
+  // Factories are asked in registration order: turn every other
+  // vtkRenderWindow override off so that ours answers wherever it sits.
+  vtkObjectFactory::SetAllEnableFlags(0, "vtkRenderWindow");
+  vtkObjectFactory::SetAllEnableFlags(1, "vtkRenderWindow", "vtkEGLHeadlessRenderWindow");
+  CurrentMode = mode;
+  return true;
+}
+
+//------------------------------------------------------------------------------
+int vtkPointSurfacesRenderWindowFactory::GetMode()
+{
+  return CurrentMode;
+}
+
+//------------------------------------------------------------------------------
+void vtkPointSurfacesRenderWindowFactory::Uninstall()
+{
+  if (!Installed)
+  {
+    return;
+  }
+  vtkObjectFactory::UnRegisterFactory(Installed);
+  Installed = nullptr;
+  CurrentMode = -1;
+  vtkObjectFactory::SetAllEnableFlags(1, "vtkRenderWindow");
+}
+
+//------------------------------------------------------------------------------
+void vtkPointSurfacesRenderWindowFactory::ConfigureFromEnvironment()
+{
+  const char* value = std::getenv("POINTSURFACES_RENDER_WINDOW");
+  const std::string mode = value ? value : "";
+  if (mode == "vtk")
+  {
+    Uninstall();
+  }
+  else if (mode == "egl")
+  {
+    SetMode(EGL);
+  }
+  else if (mode == "x11" || mode == "x")
+  {
+    SetMode(X11);
+  }
+  else
+  {
+    if (!mode.empty() && mode != "auto")
+    {
+      vtkGenericWarningMacro(<< "POINTSURFACES_RENDER_WINDOW='" << mode
+                             << "' is not one of auto, egl, x11, vtk: using auto.");
+    }
+    SetMode(Auto);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkPointSurfacesRenderWindowFactory::IsXDisplayUsable()
+{
+  static const bool usable = ProbeXDisplay();
+  return usable;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkPointSurfacesRenderWindowFactory::GetSelectedWindowClassName()
+{
+  if (CurrentMode < 0)
+  {
+    return "vtkXOpenGLRenderWindow";
+  }
+  return UseX11() ? "vtkXOpenGLRenderWindow" : "vtkEGLHeadlessRenderWindow";
+}
+
+//------------------------------------------------------------------------------
+const char* vtkPointSurfacesRenderWindowFactory::GetVTKSourceVersion()
+{
+  return VTK_SOURCE_VERSION;
+}
+
+//------------------------------------------------------------------------------
+const char* vtkPointSurfacesRenderWindowFactory::GetDescription()
+{
+  return "PointSurfaces headless render window factory";
+}
+
+//------------------------------------------------------------------------------
+void vtkPointSurfacesRenderWindowFactory::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mode: " << CurrentMode << "\n";
+}

@@ -1,0 +1,13 @@
+# Run a benchmark command, save its CSV, then plot it: cmake -DCOMMAND=... -DCSV=... -DPLOT=... -P
+execute_process(COMMAND ${COMMAND} OUTPUT_FILE "${CSV}" RESULT_VARIABLE rc)
+file(READ "${CSV}" csv)
+message("${csv}")
+if (NOT rc EQUAL 0)
+  message(FATAL_ERROR "benchmark failed (${rc})")
+endif ()
+if (PLOT)
+  execute_process(COMMAND ${PLOT} RESULT_VARIABLE rc)
+  if (NOT rc EQUAL 0)
+    message(FATAL_ERROR "plotting failed (${rc})")
+  endif ()
+endif ()

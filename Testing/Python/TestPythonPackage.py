@@ -1,0 +1,42 @@
+# SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+# SPDX-License-Identifier: BSD-3-Clause
+"""`import pointsurfaces` with Debian's python3: the wrapped classes, the
+render-window switch, and the headless window's state."""
+import os
+
+import pointsurfaces
+from pstesting import fail
+from vtkmodules.vtkRenderingCore import vtkRenderWindow
+
+for name in ("vtkEGLHeadlessRenderWindow", "vtkPointSurfacesRenderWindowFactory",
+             "vtkComputeShaderProgram", "vtkShaderStorageBuffer"):
+    if not hasattr(pointsurfaces, name):
+        fail("pointsurfaces has no " + name)
+
+if not pointsurfaces.use_egl():
+    fail("use_egl() returned False")
+window = vtkRenderWindow()
+if window.GetClassName() != "vtkEGLHeadlessRenderWindow":
+    fail("after use_egl(), vtkRenderWindow() is a " + window.GetClassName())
+if pointsurfaces.render_window_class() != "vtkEGLHeadlessRenderWindow":
+    fail("render_window_class() disagrees with use_egl()")
+
+try:
+    pointsurfaces.set_render_window_mode("wayland")
+    fail("an unknown mode was accepted")
+except ValueError:
+    pass
+
+# 'vtk' hands window creation back to VTK itself.
+pointsurfaces.set_render_window_mode("vtk")
+if vtkRenderWindow().GetClassName() == "vtkEGLHeadlessRenderWindow":
+    fail("mode 'vtk' still creates the EGL window")
+pointsurfaces.set_render_window_mode("auto")
+expected = "vtkXOpenGLRenderWindow" if os.environ.get("DISPLAY") else "vtkEGLHeadlessRenderWindow"
+if not os.environ.get("DISPLAY") and vtkRenderWindow().GetClassName() != expected:
+    fail("auto without DISPLAY should give the EGL window")
+
+egl = pointsurfaces.vtkEGLHeadlessRenderWindow()
+if egl.IsInitialized() or egl.GetPlatformName() != "none":
+    fail("a new EGL window must not hold a context before its first render")
+print("TestPythonPackage: passed")

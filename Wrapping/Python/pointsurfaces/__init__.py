@@ -1,0 +1,48 @@
+# SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+# SPDX-License-Identifier: BSD-3-Clause
+"""PointSurfaces: algebraic splats and metaballs for VTK.
+
+Import it with Debian's ``/usr/bin/python3`` next to ``vtkmodules``::
+
+    import pointsurfaces
+    pointsurfaces.use_egl()          # optional: render headless through EGL
+
+Every class of the PointSurfaces modules is available here, for example
+``pointsurfaces.vtkEGLHeadlessRenderWindow``.
+
+Which window ``vtkRenderWindow()`` returns is decided by the environment
+variable ``POINTSURFACES_RENDER_WINDOW`` (``auto``, ``egl``, ``x11`` or
+``vtk``), read at import; ``use_egl()`` and ``set_render_window_mode()``
+change it from code.
+"""
+
+# VTK's own OpenGL factory first, so that ours takes precedence over it.
+from vtkmodules import vtkRenderingOpenGL2 as _vtkRenderingOpenGL2  # noqa: F401
+
+from .PointSurfacesFilters import *  # noqa: F401,F403
+from .PointSurfacesRendering import *  # noqa: F401,F403
+from .PointSurfacesRendering import vtkPointSurfacesRenderWindowFactory as _Factory
+
+__version__ = "0.1.0"
+
+_MODES = {"auto": _Factory.Auto, "egl": _Factory.EGL, "x11": _Factory.X11}
+
+
+def use_egl():
+    """Make every new vtkRenderWindow a headless vtkEGLHeadlessRenderWindow."""
+    return bool(_Factory.InstallAsDefault())
+
+
+def set_render_window_mode(mode):
+    """Select 'auto', 'egl' or 'x11' windows, or 'vtk' for VTK's own factory."""
+    if mode == "vtk":
+        _Factory.Uninstall()
+        return True
+    if mode not in _MODES:
+        raise ValueError("mode must be one of auto, egl, x11, vtk, not %r" % (mode,))
+    return bool(_Factory.SetMode(_MODES[mode]))
+
+
+def render_window_class():
+    """The class name that vtkRenderWindow() returns in the current mode."""
+    return _Factory.GetSelectedWindowClassName()

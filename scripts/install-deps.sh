@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Install every Debian 12 package that the `vtk` preset, its tests, benchmarks and
+# examples need. Idempotent: one `apt-get update`, and a no-op when all is present.
+# Runs as root, or through sudo otherwise. Never installs python3-paraview, which
+# conflicts with python3-vtk9 (see DESIGN.md section 5).
+#
+# Usage: scripts/install-deps.sh [--paraview] [--dry-run]
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config git clang-format
+  # VTK 9.1 (X11 build, system GLEW) and its Python bindings
+  libvtk9-dev python3-vtk9 vtk9 python3-numpy
+  # numerics
+  libeigen3-dev
+  # headless GL: Mesa llvmpipe through EGL (surfaceless) or GLX under Xvfb
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev xvfb xauth
+  # benchmark plots
+  python3-matplotlib
+)
+paraview=0
+dryrun=0
+for arg in "$@"; do
+  case "$arg" in
+    --paraview) paraview=1 ;;
+    --dry-run) dryrun=1 ;;
+    -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
+    *) echo "install-deps.sh: unknown argument '$arg'" >&2; exit 2 ;;
+  esac
+done
+if [ "$paraview" = 1 ]; then
+  packages+=(paraview paraview-dev)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ "${#missing[@]}" -eq 0 ]; then
+  echo "install-deps.sh: all ${#packages[@]} packages present"
+  exit 0
+fi
+echo "install-deps.sh: installing ${missing[*]}"
+[ "$dryrun" = 1 ] && exit 0
+
+SUDO=""
+if [ "$(id -u)" != 0 ]; then
+  command -v sudo >/dev/null || { echo "install-deps.sh: not root and no sudo" >&2; exit 1; }
+  SUDO=sudo
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if dpkg-query -W -f='${Status}' python3-paraview 2>/dev/null | grep -q "install ok installed"; then
+  echo "install-deps.sh: warning: python3-paraview is installed and conflicts with python3-vtk9" >&2
+fi
