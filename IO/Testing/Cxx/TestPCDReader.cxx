@@ -1,0 +1,114 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkPCDReader on a real binary_compressed Kinect subset, on an ASCII file
+// with normals, colours and a NaN point, and on missing, truncated and
+// garbage files (clear error, empty output, no crash).
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkExecutive.h"
+#include "vtkNew.h"
+#include "vtkPCDReader.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkTestErrorObserver.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+namespace
+{
+int Failures = 0;
+void Check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::cerr << "FAILED: " << what << "\n";
+    ++Failures;
+  }
+}
+
+// Read `file` expecting an error that mentions `expected`; the output must be empty.
+void ExpectError(const std::string& file, const std::string& expected)
+{
+  vtkNew<vtkPCDReader> reader;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  reader->AddObserver(vtkCommand::ErrorEvent, errors);
+  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  Check(errors->GetError() && errors->GetErrorMessage().find(expected) != std::string::npos,
+    "an error mentioning '" + expected + "' for " + file);
+  Check(reader->GetOutput()->GetNumberOfPoints() == 0, "empty output for " + file);
+}
+} // namespace
+
+int TestPCDReader(int, char*[])
+{
+  const std::string data = std::getenv("POINTSURFACES_IO_DATA");
+  const std::string temp = std::getenv("POINTSURFACES_TEMP_DIR");
+
+  vtkNew<vtkPCDReader> milk;
+  milk->SetFileName((data + "/milk_subset.pcd").c_str());
+  milk->Update();
+  vtkPolyData* m = milk->GetOutput();
+  Check(m->GetNumberOfPoints() == 686, "686 points in the compressed Kinect subset");
+  Check(m->GetNumberOfVerts() == 686, "one vertex cell per point");
+  Check(m->GetPointData()->GetScalars() && m->GetPointData()->GetScalars()->GetNumberOfComponents() == 4,
+    "rgba becomes 4-component scalars");
+  double bounds[6];
+  m->GetBounds(bounds);
+  Check(bounds[5] > bounds[4] && bounds[5] < 10.0, "Kinect depths in metres");
+
+  vtkNew<vtkPCDReader> ascii;
+  vtkNew<vtkTest::ErrorObserver> warnings;
+  ascii->AddObserver(vtkCommand::WarningEvent, warnings);
+  ascii->SetFileName((data + "/small_ascii.pcd").c_str());
+  ascii->Update();
+  vtkPolyData* a = ascii->GetOutput();
+  Check(a->GetNumberOfPoints() == 4 && ascii->GetNumberOfDroppedPoints() == 1,
+    "the NaN point is dropped and counted");
+  Check(warnings->GetWarning() && warnings->GetWarningMessage().find("Dropped 1 of 5") != std::string::npos,
+    "the dropped point is reported");
+  double p[3];
+  a->GetPoint(3, p);
+  Check(p[0] == 4 && p[1] == 8 && p[2] == -4, "points after the dropped one keep their values");
+  vtkDataArray* normals = a->GetPointData()->GetNormals();
+  Check(normals && normals->GetComponent(2, 2) == 1.0, "normals");
+  auto* rgb = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars());
+  Check(rgb && rgb->GetNumberOfComponents() == 3 && rgb->GetValue(3) == 10 && rgb->GetValue(4) == 21 &&
+      rgb->GetValue(5) == 200,
+    "packed rgb unpacked to (10, 21, 200) for point 1");
+  vtkDataArray* curvature = a->GetPointData()->GetArray("curvature");
+  Check(curvature && curvature->GetComponent(3, 0) == 2.0, "extra fields become arrays");
+
+  ExpectError(data + "/does_not_exist.pcd", "missing or is not a PCD file");
+
+  // Truncate the compressed file in the middle of its data.
+  std::ifstream in(data + "/milk_subset.pcd", std::ios::binary);
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string truncated = temp + "/truncated.pcd";
+  std::ofstream(truncated, std::ios::binary).write(bytes.data(), bytes.size() / 2);
+  ExpectError(truncated, "corrupt or truncated");
+
+  // A header that promises more ASCII points than the file holds.
+  const std::string shortAscii = temp + "/short_ascii.pcd";
+  std::ofstream(shortAscii) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                               "WIDTH 10\nHEIGHT 1\nPOINTS 10\nDATA ascii\n1 2 3\n";
+  ExpectError(shortAscii, "corrupt or truncated");
+
+  const std::string garbage = temp + "/garbage.pcd";
+  std::ofstream(garbage) << "# .PCD v0.7\nthis is not a header\n\x01\x02\x03";
+  ExpectError(garbage, "Cannot read");
+
+  if (Failures)
+  {
+    return EXIT_FAILURE;
+  }
+  std::cout << "TestPCDReader: passed\n";
+  return EXIT_SUCCESS;
+}

@@ -1,0 +1,351 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkPCDReader.h"
+
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/console/print.h>
+#include <pcl/io/pcd_io.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <fstream>
+#include <vector>
+
+vtkStandardNewMacro(vtkPCDReader);
+
+namespace
+{
+int VTKType(std::uint8_t pclType)
+{
+  switch (pclType)
+  {
+    case pcl::PCLPointField::INT8:
+      return VTK_SIGNED_CHAR;
+    case pcl::PCLPointField::UINT8:
+      return VTK_UNSIGNED_CHAR;
+    case pcl::PCLPointField::INT16:
+      return VTK_SHORT;
+    case pcl::PCLPointField::UINT16:
+      return VTK_UNSIGNED_SHORT;
+    case pcl::PCLPointField::INT32:
+      return VTK_INT;
+    case pcl::PCLPointField::UINT32:
+      return VTK_UNSIGNED_INT;
+    case pcl::PCLPointField::FLOAT32:
+      return VTK_FLOAT;
+    case pcl::PCLPointField::FLOAT64:
+      return VTK_DOUBLE;
+    default:
+      return VTK_VOID;
+  }
+}
+
+int TypeSize(std::uint8_t pclType)
+{
+  return static_cast<int>(pcl::getFieldSize(pclType));
+}
+
+double ReadScalar(const std::uint8_t* p, std::uint8_t type)
+{
+  switch (type)
+  {
+    case pcl::PCLPointField::FLOAT32:
+    {
+      float v;
+      std::memcpy(&v, p, sizeof v);
+      return v;
+    }
+    case pcl::PCLPointField::FLOAT64:
+    {
+      double v;
+      std::memcpy(&v, p, sizeof v);
+      return v;
+    }
+    default:
+      return std::nan("");
+  }
+}
+
+// PCL 1.13 trusts the sizes in a binary file and crashes on a truncated one:
+// check them against the file size before the data is read.
+std::string CheckDataSize(const std::string& fileName)
+{
+  pcl::PCLPointCloud2 header;
+  Eigen::Vector4f origin;
+  Eigen::Quaternionf orientation;
+  int version = 0, dataType = 0;
+  unsigned int dataIndex = 0;
+  pcl::PCDReader reader;
+  if (reader.readHeader(fileName, header, origin, orientation, version, dataType, dataIndex) < 0)
+  {
+    return "its header cannot be parsed";
+  }
+  if (header.fields.empty() || header.point_step == 0)
+  {
+    return "its header declares no FIELDS";
+  }
+  if (dataType < 0 || dataType > 2)
+  {
+    return "its DATA line is not ascii, binary or binary_compressed";
+  }
+  std::ifstream in(fileName, std::ios::binary | std::ios::ate);
+  const std::uint64_t fileSize = static_cast<std::uint64_t>(in.tellg());
+  const std::uint64_t expected =
+    static_cast<std::uint64_t>(header.width) * header.height * header.point_step;
+  if (dataType == 1 && fileSize < dataIndex + expected)
+  {
+    return "the binary data holds " + std::to_string(fileSize - std::min<std::uint64_t>(fileSize, dataIndex)) +
+      " bytes of the " + std::to_string(expected) + " its header announces";
+  }
+  if (dataType == 2)
+  {
+    std::uint32_t sizes[2] = { 0, 0 }; // compressed, uncompressed
+    in.seekg(dataIndex);
+    if (fileSize < dataIndex + 8 || !in.read(reinterpret_cast<char*>(sizes), 8))
+    {
+      return "the compressed data block is missing";
+    }
+    if (fileSize < dataIndex + 8 + std::uint64_t(sizes[0]))
+    {
+      return "the compressed data is cut short (" + std::to_string(fileSize - dataIndex - 8) +
+        " of " + std::to_string(sizes[0]) + " bytes)";
+    }
+    if (sizes[1] != expected)
+    {
+      return "the compressed data would expand to " + std::to_string(sizes[1]) +
+        " bytes instead of " + std::to_string(expected);
+    }
+  }
+  return std::string();
+}
+
+const pcl::PCLPointField* Find(const pcl::PCLPointCloud2& cloud, const char* name)
+{
+  for (const auto& f : cloud.fields)
+  {
+    if (f.name == name)
+    {
+      return &f;
+    }
+  }
+  return nullptr;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkPCDReader::vtkPCDReader()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPCDReader::CanReadFile(const char* fileName)
+{
+  std::ifstream in(fileName ? fileName : "");
+  std::string line;
+  return in && std::getline(in, line) &&
+    (line.rfind("# .PCD", 0) == 0 || line.rfind("VERSION", 0) == 0);
+}
+
+//------------------------------------------------------------------------------
+int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector* out)
+{
+  vtkPolyData* output = vtkPolyData::GetData(out);
+  this->NumberOfDroppedPoints = 0;
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro(<< "No FileName to read.");
+    return 1;
+  }
+  if (!CanReadFile(this->FileName.c_str()))
+  {
+    vtkErrorMacro(<< "'" << this->FileName << "' is missing or is not a PCD file.");
+    return 1;
+  }
+
+  // PCL prints its own diagnostics; ours below are the ones to act on.
+  struct QuietPCL
+  {
+    pcl::console::VERBOSITY_LEVEL Saved = pcl::console::getVerbosityLevel();
+    QuietPCL() { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
+    ~QuietPCL() { pcl::console::setVerbosityLevel(this->Saved); }
+  } quiet;
+  pcl::PCLPointCloud2 cloud;
+  int status = -1;
+  try
+  {
+    const std::string problem = CheckDataSize(this->FileName);
+    if (!problem.empty())
+    {
+      vtkErrorMacro(<< "Cannot read '" << this->FileName << "': the file is corrupt or truncated: "
+                    << problem << ".");
+      return 1;
+    }
+    pcl::PCDReader reader;
+    status = reader.read(this->FileName, cloud);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Cannot read '" << this->FileName << "': " << e.what());
+    return 1;
+  }
+  const size_t n = static_cast<size_t>(cloud.width) * cloud.height;
+  if (status < 0 || cloud.data.size() < n * cloud.point_step)
+  {
+    vtkErrorMacro(<< "Cannot read '" << this->FileName
+                  << "': the file is corrupt or truncated (PCL status " << status << ").");
+    return 1;
+  }
+  const pcl::PCLPointField* fx = Find(cloud, "x");
+  const pcl::PCLPointField* fy = Find(cloud, "y");
+  const pcl::PCLPointField* fz = Find(cloud, "z");
+  if (!fx || !fy || !fz || VTKType(fx->datatype) != VTK_FLOAT && VTKType(fx->datatype) != VTK_DOUBLE)
+  {
+    vtkErrorMacro(<< "'" << this->FileName << "' has no floating-point x, y and z fields.");
+    return 1;
+  }
+
+  // Keep the points with finite coordinates.
+  std::vector<size_t> keep;
+  keep.reserve(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    const std::uint8_t* p = cloud.data.data() + i * cloud.point_step;
+    const double x = ReadScalar(p + fx->offset, fx->datatype);
+    const double y = ReadScalar(p + fy->offset, fy->datatype);
+    const double z = ReadScalar(p + fz->offset, fz->datatype);
+    if (std::isfinite(x) && std::isfinite(y) && std::isfinite(z))
+    {
+      keep.push_back(i);
+    }
+  }
+  this->NumberOfDroppedPoints = static_cast<vtkIdType>(n - keep.size());
+  if (this->NumberOfDroppedPoints > 0)
+  {
+    vtkWarningMacro(<< "Dropped " << this->NumberOfDroppedPoints << " of " << n
+                    << " points of '" << this->FileName << "' with NaN or infinite coordinates.");
+  }
+  const vtkIdType m = static_cast<vtkIdType>(keep.size());
+
+  const bool useDouble = fx->datatype == pcl::PCLPointField::FLOAT64 ||
+    fy->datatype == pcl::PCLPointField::FLOAT64 || fz->datatype == pcl::PCLPointField::FLOAT64;
+  vtkNew<vtkPoints> points;
+  points->SetDataType(useDouble ? VTK_DOUBLE : VTK_FLOAT);
+  points->SetNumberOfPoints(m);
+  for (vtkIdType j = 0; j < m; ++j)
+  {
+    const std::uint8_t* p = cloud.data.data() + keep[j] * cloud.point_step;
+    points->SetPoint(j, ReadScalar(p + fx->offset, fx->datatype),
+      ReadScalar(p + fy->offset, fy->datatype), ReadScalar(p + fz->offset, fz->datatype));
+  }
+  output->SetPoints(points);
+
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> connectivity;
+  offsets->SetNumberOfValues(m + 1);
+  connectivity->SetNumberOfValues(m);
+  for (vtkIdType j = 0; j <= m; ++j)
+  {
+    offsets->SetValue(j, j);
+    if (j < m)
+    {
+      connectivity->SetValue(j, j);
+    }
+  }
+  vtkNew<vtkCellArray> verts;
+  verts->SetData(offsets, connectivity);
+  output->SetVerts(verts);
+
+  // Normals: the three normal_* fields together.
+  const pcl::PCLPointField* fn[3] = { Find(cloud, "normal_x"), Find(cloud, "normal_y"),
+    Find(cloud, "normal_z") };
+  const bool hasNormals = fn[0] && fn[1] && fn[2];
+  if (hasNormals)
+  {
+    auto normals = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_FLOAT));
+    normals->SetName("Normals");
+    normals->SetNumberOfComponents(3);
+    normals->SetNumberOfTuples(m);
+    for (vtkIdType j = 0; j < m; ++j)
+    {
+      const std::uint8_t* p = cloud.data.data() + keep[j] * cloud.point_step;
+      for (int c = 0; c < 3; ++c)
+      {
+        normals->SetComponent(j, c, ReadScalar(p + fn[c]->offset, fn[c]->datatype));
+      }
+    }
+    output->GetPointData()->SetNormals(normals);
+  }
+
+  for (const auto& f : cloud.fields)
+  {
+    if (f.name == "x" || f.name == "y" || f.name == "z" || f.name == "_" ||
+      (hasNormals && f.name.rfind("normal_", 0) == 0))
+    {
+      continue;
+    }
+    if (f.name == "rgb" || f.name == "rgba")
+    {
+      // Packed 0xAARRGGBB in 4 bytes, whatever the declared type.
+      const bool alpha = f.name == "rgba";
+      vtkNew<vtkUnsignedCharArray> colors;
+      colors->SetName(alpha ? "RGBA" : "RGB");
+      colors->SetNumberOfComponents(alpha ? 4 : 3);
+      colors->SetNumberOfTuples(m);
+      for (vtkIdType j = 0; j < m; ++j)
+      {
+        std::uint32_t packed;
+        std::memcpy(&packed, cloud.data.data() + keep[j] * cloud.point_step + f.offset, 4);
+        const unsigned char rgba[4] = { static_cast<unsigned char>((packed >> 16) & 0xff),
+          static_cast<unsigned char>((packed >> 8) & 0xff), static_cast<unsigned char>(packed & 0xff),
+          static_cast<unsigned char>((packed >> 24) & 0xff) };
+        colors->SetTypedTuple(j, rgba);
+      }
+      output->GetPointData()->SetScalars(colors);
+      continue;
+    }
+    const int type = VTKType(f.datatype);
+    if (type == VTK_VOID || f.count == 0)
+    {
+      vtkWarningMacro(<< "Skipping field '" << f.name << "' of unknown type.");
+      continue;
+    }
+    auto array = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(type));
+    array->SetName(f.name.c_str());
+    array->SetNumberOfComponents(static_cast<int>(f.count));
+    array->SetNumberOfTuples(m);
+    const int size = TypeSize(f.datatype);
+    auto* dst = static_cast<std::uint8_t*>(array->GetVoidPointer(0));
+    for (vtkIdType j = 0; j < m; ++j)
+    {
+      std::memcpy(dst + static_cast<size_t>(j) * f.count * size,
+        cloud.data.data() + keep[j] * cloud.point_step + f.offset, f.count * size);
+    }
+    output->GetPointData()->AddArray(array);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkPCDReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "NumberOfDroppedPoints: " << this->NumberOfDroppedPoints << "\n";
+}
