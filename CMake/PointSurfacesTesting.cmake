@@ -46,7 +46,7 @@ function (pointsurfaces_add_render_tests exe varname)
     # vtk_add_test_cxx puts _vtk_test_cxx_pre_args in front of the test
     # command (VTK uses it for mpiexec); here it starts a private X server.
     set(_vtk_test_cxx_pre_args
-      "${POINTSURFACES_XVFB_RUN}" -a -s "-screen 0 1280x1024x24 +extension GLX")
+      "${POINTSURFACES_XVFB_RUN}" -a -s "-screen 0 1280x1024x24 +extension GLX -noreset")
     set(vtk_test_prefix "x11-")
     # Both variants write <TestX>.png: keep the X images apart.
     set(_vtk_build_TEST_OUTPUT_DIRECTORY "${_vtk_build_TEST_OUTPUT_DIRECTORY}/x11")
