@@ -110,8 +110,9 @@ std::string CheckDataSize(const std::string& fileName)
     static_cast<std::uint64_t>(header.width) * header.height * header.point_step;
   if (dataType == 1 && fileSize < dataIndex + expected)
   {
-    return "the binary data holds " + std::to_string(fileSize - std::min<std::uint64_t>(fileSize, dataIndex)) +
-      " bytes of the " + std::to_string(expected) + " its header announces";
+    return "the binary data holds " +
+      std::to_string(fileSize - std::min<std::uint64_t>(fileSize, dataIndex)) + " bytes of the " +
+      std::to_string(expected) + " its header announces";
   }
   if (dataType == 2)
   {
@@ -193,8 +194,8 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
     const std::string problem = CheckDataSize(this->FileName);
     if (!problem.empty())
     {
-      vtkErrorMacro(<< "Cannot read '" << this->FileName << "': the file is corrupt or truncated: "
-                    << problem << ".");
+      vtkErrorMacro(<< "Cannot read '" << this->FileName
+                    << "': the file is corrupt or truncated: " << problem << ".");
       return 1;
     }
     pcl::PCDReader reader;
@@ -215,7 +216,8 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
   const pcl::PCLPointField* fx = Find(cloud, "x");
   const pcl::PCLPointField* fy = Find(cloud, "y");
   const pcl::PCLPointField* fz = Find(cloud, "z");
-  if (!fx || !fy || !fz || VTKType(fx->datatype) != VTK_FLOAT && VTKType(fx->datatype) != VTK_DOUBLE)
+  if (!fx || !fy || !fz ||
+    VTKType(fx->datatype) != VTK_FLOAT && VTKType(fx->datatype) != VTK_DOUBLE)
   {
     vtkErrorMacro(<< "'" << this->FileName << "' has no floating-point x, y and z fields.");
     return 1;
@@ -238,8 +240,8 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
   this->NumberOfDroppedPoints = static_cast<vtkIdType>(n - keep.size());
   if (this->NumberOfDroppedPoints > 0)
   {
-    vtkWarningMacro(<< "Dropped " << this->NumberOfDroppedPoints << " of " << n
-                    << " points of '" << this->FileName << "' with NaN or infinite coordinates.");
+    vtkWarningMacro(<< "Dropped " << this->NumberOfDroppedPoints << " of " << n << " points of '"
+                    << this->FileName << "' with NaN or infinite coordinates.");
   }
   const vtkIdType m = static_cast<vtkIdType>(keep.size());
 
@@ -251,8 +253,10 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
   for (vtkIdType j = 0; j < m; ++j)
   {
     const std::uint8_t* p = cloud.data.data() + keep[j] * cloud.point_step;
-    points->SetPoint(j, ReadScalar(p + fx->offset, fx->datatype),
-      ReadScalar(p + fy->offset, fy->datatype), ReadScalar(p + fz->offset, fz->datatype));
+    points->SetPoint(j,
+      ReadScalar(p + fx->offset, fx->datatype),
+      ReadScalar(p + fy->offset, fy->datatype),
+      ReadScalar(p + fz->offset, fz->datatype));
   }
   output->SetPoints(points);
 
@@ -273,8 +277,9 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
   output->SetVerts(verts);
 
   // Normals: the three normal_* fields together.
-  const pcl::PCLPointField* fn[3] = { Find(cloud, "normal_x"), Find(cloud, "normal_y"),
-    Find(cloud, "normal_z") };
+  const pcl::PCLPointField* fn[3] = {
+    Find(cloud, "normal_x"), Find(cloud, "normal_y"), Find(cloud, "normal_z")
+  };
   const bool hasNormals = fn[0] && fn[1] && fn[2];
   if (hasNormals)
   {
@@ -313,7 +318,8 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
         std::uint32_t packed;
         std::memcpy(&packed, cloud.data.data() + keep[j] * cloud.point_step + f.offset, 4);
         const unsigned char rgba[4] = { static_cast<unsigned char>((packed >> 16) & 0xff),
-          static_cast<unsigned char>((packed >> 8) & 0xff), static_cast<unsigned char>(packed & 0xff),
+          static_cast<unsigned char>((packed >> 8) & 0xff),
+          static_cast<unsigned char>(packed & 0xff),
           static_cast<unsigned char>((packed >> 24) & 0xff) };
         colors->SetTypedTuple(j, rgba);
       }
@@ -335,7 +341,8 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
     for (vtkIdType j = 0; j < m; ++j)
     {
       std::memcpy(dst + static_cast<size_t>(j) * f.count * size,
-        cloud.data.data() + keep[j] * cloud.point_step + f.offset, f.count * size);
+        cloud.data.data() + keep[j] * cloud.point_step + f.offset,
+        f.count * size);
     }
     output->GetPointData()->AddArray(array);
   }

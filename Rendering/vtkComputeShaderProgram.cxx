@@ -221,12 +221,14 @@ void vtkComputeShaderProgram::SetUniformMatrix4x4(const char* name, const float 
 //------------------------------------------------------------------------------
 bool vtkComputeShaderProgram::Dispatch(unsigned int x, unsigned int y, unsigned int z)
 {
-  return this->Dispatch(x, y, z,
-    GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  return this->Dispatch(
+    x, y, z, GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
-bool vtkComputeShaderProgram::Dispatch(
-  unsigned int x, unsigned int y, unsigned int z, unsigned int barrierBits)
+bool vtkComputeShaderProgram::Dispatch(unsigned int x,
+  unsigned int y,
+  unsigned int z,
+  unsigned int barrierBits)
 {
   GLint limits[3];
   for (GLuint axis = 0; axis < 3; ++axis)

@@ -132,8 +132,17 @@ struct vtkEGLHeadlessRenderWindow::Internals
       ReleaseDisplay(dpy);
       return false;
     }
-    const EGLint configAttribs[] = { EGL_SURFACE_TYPE, 0, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-      EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE };
+    const EGLint configAttribs[] = { EGL_SURFACE_TYPE,
+      0,
+      EGL_RENDERABLE_TYPE,
+      EGL_OPENGL_BIT,
+      EGL_RED_SIZE,
+      8,
+      EGL_GREEN_SIZE,
+      8,
+      EGL_BLUE_SIZE,
+      8,
+      EGL_NONE };
     EGLConfig config = nullptr;
     EGLint numConfigs = 0;
     if (!eglChooseConfig(dpy, configAttribs, &config, 1, &numConfigs) || numConfigs < 1)
@@ -146,8 +155,13 @@ struct vtkEGLHeadlessRenderWindow::Internals
     const EGLint versions[][2] = { { 4, 5 }, { 4, 3 }, { 3, 2 } };
     for (const auto& v : versions)
     {
-      const EGLint ctxAttribs[] = { EGL_CONTEXT_MAJOR_VERSION, v[0], EGL_CONTEXT_MINOR_VERSION,
-        v[1], EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE };
+      const EGLint ctxAttribs[] = { EGL_CONTEXT_MAJOR_VERSION,
+        v[0],
+        EGL_CONTEXT_MINOR_VERSION,
+        v[1],
+        EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+        EGL_NONE };
       this->Context = eglCreateContext(dpy, config, EGL_NO_CONTEXT, ctxAttribs);
       if (this->Context != EGL_NO_CONTEXT)
       {
@@ -156,8 +170,8 @@ struct vtkEGLHeadlessRenderWindow::Internals
     }
     if (this->Context == EGL_NO_CONTEXT)
     {
-      this->Error += std::string(platform) + ": eglCreateContext failed (" +
-        EGLErrorName(eglGetError()) + "); ";
+      this->Error +=
+        std::string(platform) + ": eglCreateContext failed (" + EGLErrorName(eglGetError()) + "); ";
       ReleaseDisplay(dpy);
       return false;
     }
@@ -168,8 +182,8 @@ struct vtkEGLHeadlessRenderWindow::Internals
     }
     if (!eglMakeCurrent(dpy, this->Surface, this->Surface, this->Context))
     {
-      this->Error += std::string(platform) + ": eglMakeCurrent failed (" +
-        EGLErrorName(eglGetError()) + "); ";
+      this->Error +=
+        std::string(platform) + ": eglMakeCurrent failed (" + EGLErrorName(eglGetError()) + "); ";
       this->DestroyContext(dpy);
       ReleaseDisplay(dpy);
       return false;
@@ -474,15 +488,20 @@ void* vtkEGLHeadlessRenderWindow::GetGenericDisplayId()
 }
 
 //------------------------------------------------------------------------------
-int vtkEGLHeadlessRenderWindow::ReadPixels(
-  const vtkRecti& rect, int front, int glFormat, int glType, void* data, int right)
+int vtkEGLHeadlessRenderWindow::ReadPixels(const vtkRecti& rect,
+  int front,
+  int glFormat,
+  int glType,
+  void* data,
+  int right)
 {
   if (!this->Initialized)
   {
     // Never hand back uninitialised memory after a failed render.
     const size_t components = glFormat == GL_RGBA ? 4 : (glFormat == GL_RGB ? 3 : 1);
     const size_t bytes = glType == GL_FLOAT ? sizeof(float) : 1;
-    std::memset(data, 0,
+    std::memset(data,
+      0,
       static_cast<size_t>(rect.GetWidth()) * static_cast<size_t>(rect.GetHeight()) * components *
         bytes);
     return VTK_ERROR;

@@ -86,8 +86,8 @@ protected:
   void CreateAWindow() override;
   void DestroyWindow() override;
   void OpenGLInitContext() override;
-  int ReadPixels(
-    const vtkRecti& rect, int front, int glFormat, int glType, void* data, int right) override;
+  int ReadPixels(const vtkRecti& rect, int front, int glFormat, int glType, void* data, int right)
+    override;
 
 private:
   vtkEGLHeadlessRenderWindow(const vtkEGLHeadlessRenderWindow&) = delete;

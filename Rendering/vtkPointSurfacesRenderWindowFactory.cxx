@@ -56,12 +56,14 @@ bool UseX11()
       if (!vtkPointSurfacesRenderWindowFactory::IsXDisplayUsable())
       {
         static std::once_flag warned;
-        std::call_once(warned, [] {
-          vtkGenericWarningMacro(<< "POINTSURFACES_RENDER_WINDOW=x11, but no X display can be "
-                                    "opened (DISPLAY='"
-                                 << (std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "")
-                                 << "'): using the EGL window instead.");
-        });
+        std::call_once(warned,
+          []
+          {
+            vtkGenericWarningMacro(<< "POINTSURFACES_RENDER_WINDOW=x11, but no X display can be "
+                                      "opened (DISPLAY='"
+                                   << (std::getenv("DISPLAY") ? std::getenv("DISPLAY") : "")
+                                   << "'): using the EGL window instead.");
+          });
         return false;
       }
       return true;
@@ -89,8 +91,11 @@ struct EnvironmentSwitch
 //------------------------------------------------------------------------------
 vtkPointSurfacesRenderWindowFactory::vtkPointSurfacesRenderWindowFactory()
 {
-  this->RegisterOverride("vtkRenderWindow", "vtkEGLHeadlessRenderWindow",
-    "PointSurfaces render window (EGL when no X display)", 1, CreateRenderWindow);
+  this->RegisterOverride("vtkRenderWindow",
+    "vtkEGLHeadlessRenderWindow",
+    "PointSurfaces render window (EGL when no X display)",
+    1,
+    CreateRenderWindow);
 }
 
 //------------------------------------------------------------------------------

@@ -16,8 +16,8 @@ vtkShaderStorageBuffer::~vtkShaderStorageBuffer()
 {
   if (this->Handle)
   {
-    vtkWarningMacro(<< "Storage buffer destroyed without ReleaseGraphicsResources(): "
-                    << this->Size << " bytes of GPU memory leak.");
+    vtkWarningMacro(<< "Storage buffer destroyed without ReleaseGraphicsResources(): " << this->Size
+                    << " bytes of GPU memory leak.");
   }
 }
 
@@ -89,8 +89,8 @@ bool vtkShaderStorageBuffer::Download(void* data, size_t bytes, size_t offset) c
     return false;
   }
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, this->Handle);
-  glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, static_cast<GLintptr>(offset),
-    static_cast<GLsizeiptr>(bytes), data);
+  glGetBufferSubData(
+    GL_SHADER_STORAGE_BUFFER, static_cast<GLintptr>(offset), static_cast<GLsizeiptr>(bytes), data);
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
   return true;
 }
@@ -104,8 +104,13 @@ void vtkShaderStorageBuffer::Fill(unsigned int value, size_t bytes)
   }
   const size_t n = (bytes == 0 || bytes > this->Size) ? this->Size : bytes;
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, this->Handle);
-  glClearBufferSubData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, 0, static_cast<GLsizeiptr>(n & ~size_t(3)),
-    GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
+  glClearBufferSubData(GL_SHADER_STORAGE_BUFFER,
+    GL_R32UI,
+    0,
+    static_cast<GLsizeiptr>(n & ~size_t(3)),
+    GL_RED_INTEGER,
+    GL_UNSIGNED_INT,
+    &value);
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
 }
 

@@ -42,8 +42,11 @@ bool AllFinite(const double* p, int n)
 }
 } // namespace
 
-FitStatus FitReferencePlane(
-  const double* points, const double* w, int n, LocalFrame& frame, const double* orientation)
+FitStatus FitReferencePlane(const double* points,
+  const double* w,
+  int n,
+  LocalFrame& frame,
+  const double* orientation)
 {
   if (n < 3)
   {
@@ -121,12 +124,14 @@ FitStatus FitReferencePlane(
   return FitStatus::Ok;
 }
 
-PolynomialFit FitPolynomial(
-  const double* points, const double* w, int n, const LocalFrame& frame, int degree)
+PolynomialFit FitPolynomial(const double* points,
+  const double* w,
+  int n,
+  const LocalFrame& frame,
+  int degree)
 {
   PolynomialFit fit;
-  if (degree < 1 || degree > MaximumDegree || !(frame.Scale > 0.0) ||
-    !std::isfinite(frame.Scale))
+  if (degree < 1 || degree > MaximumDegree || !(frame.Scale > 0.0) || !std::isfinite(frame.Scale))
   {
     fit.Status = FitStatus::Degenerate;
     return fit;

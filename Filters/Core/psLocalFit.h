@@ -34,10 +34,10 @@ struct LocalFrame
 enum class FitStatus
 {
   Ok = 0,
-  ReducedDegree,  ///< the fit succeeded at a lower degree than asked
-  TooFewPoints,   ///< fewer weighted points than unknowns, even at degree 1
-  Degenerate,     ///< coincident or collinear points: no plane or no fit
-  NonFinite       ///< NaN or Inf in the input
+  ReducedDegree, ///< the fit succeeded at a lower degree than asked
+  TooFewPoints,  ///< fewer weighted points than unknowns, even at degree 1
+  Degenerate,    ///< coincident or collinear points: no plane or no fit
+  NonFinite      ///< NaN or Inf in the input
 };
 
 /** A short English description of a status, for warnings. */
@@ -51,8 +51,11 @@ POINTSURFACESFILTERS_EXPORT const char* FitStatusName(FitStatus status);
  * agrees with `orientation` when it is given, and the tangent's largest
  * component is positive. frame.Scale is left untouched.
  */
-POINTSURFACESFILTERS_EXPORT FitStatus FitReferencePlane(const double* points, const double* w,
-  int n, LocalFrame& frame, const double* orientation = nullptr);
+POINTSURFACESFILTERS_EXPORT FitStatus FitReferencePlane(const double* points,
+  const double* w,
+  int n,
+  LocalFrame& frame,
+  const double* orientation = nullptr);
 
 /** Result of a local polynomial fit. */
 struct PolynomialFit
@@ -70,8 +73,8 @@ struct PolynomialFit
  * A rank-deficient system falls back to the highest degree that is well
  * posed (status ReducedDegree); coefficients are always finite.
  */
-POINTSURFACESFILTERS_EXPORT PolynomialFit FitPolynomial(
-  const double* points, const double* w, int n, const LocalFrame& frame, int degree);
+POINTSURFACESFILTERS_EXPORT PolynomialFit
+FitPolynomial(const double* points, const double* w, int n, const LocalFrame& frame, int degree);
 
 /** The Gaussian weight exp(-d^2 / h^2) of the thesis. */
 inline double GaussianWeight(double distanceSquared, double hSquared)

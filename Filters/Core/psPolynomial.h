@@ -35,8 +35,12 @@ POINTSURFACESFILTERS_EXPORT void Monomials(double u, double v, int degree, doubl
 POINTSURFACESFILTERS_EXPORT double Evaluate(const double* c, int degree, double u, double v);
 
 /** g(u, v) and its partial derivatives. */
-POINTSURFACESFILTERS_EXPORT double EvaluateWithGradient(
-  const double* c, int degree, double u, double v, double& du, double& dv);
+POINTSURFACESFILTERS_EXPORT double EvaluateWithGradient(const double* c,
+  int degree,
+  double u,
+  double v,
+  double& du,
+  double& dv);
 } // namespace pointsurfaces
 
 #endif

@@ -35,36 +35,45 @@ double Milliseconds(std::chrono::steady_clock::time_point t0)
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void CpuCount(const std::vector<float>& pts, const double m[16], int w, int h, int tile, int tx,
-  int ty, std::vector<unsigned int>& counts)
+void CpuCount(const std::vector<float>& pts,
+  const double m[16],
+  int w,
+  int h,
+  int tile,
+  int tx,
+  int ty,
+  std::vector<unsigned int>& counts)
 {
   vtkSMPThreadLocal<std::vector<unsigned int>> local;
   const vtkIdType n = static_cast<vtkIdType>(pts.size() / 4);
-  vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-    auto& c = local.Local();
-    c.resize(counts.size(), 0);
-    for (vtkIdType i = begin; i < end; ++i)
+  vtkSMPTools::For(0,
+    n,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const float* p = &pts[4 * i];
-      double clip[4];
-      for (int r = 0; r < 4; ++r)
+      auto& c = local.Local();
+      c.resize(counts.size(), 0);
+      for (vtkIdType i = begin; i < end; ++i)
       {
-        clip[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+        const float* p = &pts[4 * i];
+        double clip[4];
+        for (int r = 0; r < 4; ++r)
+        {
+          clip[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
+        }
+        if (clip[3] <= 0)
+        {
+          continue;
+        }
+        const double x = clip[0] / clip[3], y = clip[1] / clip[3], z = clip[2] / clip[3];
+        if (x < -1 || y < -1 || z < -1 || x >= 1 || y >= 1 || z >= 1)
+        {
+          continue;
+        }
+        const int px = std::min(static_cast<int>((x * 0.5 + 0.5) * w) / tile, tx - 1);
+        const int py = std::min(static_cast<int>((y * 0.5 + 0.5) * h) / tile, ty - 1);
+        ++c[py * tx + px];
       }
-      if (clip[3] <= 0)
-      {
-        continue;
-      }
-      const double x = clip[0] / clip[3], y = clip[1] / clip[3], z = clip[2] / clip[3];
-      if (x < -1 || y < -1 || z < -1 || x >= 1 || y >= 1 || z >= 1)
-      {
-        continue;
-      }
-      const int px = std::min(static_cast<int>((x * 0.5 + 0.5) * w) / tile, tx - 1);
-      const int py = std::min(static_cast<int>((y * 0.5 + 0.5) * h) / tile, ty - 1);
-      ++c[py * tx + px];
-    }
-  });
+    });
   std::fill(counts.begin(), counts.end(), 0u);
   for (auto& c : local)
   {
@@ -189,12 +198,12 @@ int main(int argc, char* argv[])
     // Float rounding may move a handful of boundary points; more is a bug.
     if (diff > 1 + total / 1000)
     {
-      std::fprintf(stderr, "BenchComputeTiles: GPU and CPU counts differ by %lu of %lu\n", diff,
-        total);
+      std::fprintf(
+        stderr, "BenchComputeTiles: GPU and CPU counts differ by %lu of %lu\n", diff, total);
       status = 1;
     }
-    std::printf("%zu,%d,%d,%.3f,%.3f,%.2f,%.3f\n", n, width, height, gpuMs, cpuMs, cpuMs / gpuMs,
-      uploadMs);
+    std::printf(
+      "%zu,%d,%d,%.3f,%.3f,%.2f,%.3f\n", n, width, height, gpuMs, cpuMs, cpuMs / gpuMs, uploadMs);
   }
   program->ReleaseGraphicsResources(gl);
   points->ReleaseGraphicsResources(gl);

@@ -39,8 +39,8 @@ std::vector<double> Sample(const LocalFrame& f, const double* c, int degree, int
     const double w = Evaluate(c, degree, u, v);
     for (int k = 0; k < 3; ++k)
     {
-      pts[3 * i + k] = f.Origin[k] +
-        f.Scale * (u * f.Tangent[k] + v * f.Bitangent[k] + w * f.Normal[k]);
+      pts[3 * i + k] =
+        f.Origin[k] + f.Scale * (u * f.Tangent[k] + v * f.Bitangent[k] + w * f.Normal[k]);
     }
   }
   return pts;
@@ -103,8 +103,9 @@ void TestMonomialOrder()
   Check(DegreeFromMonomialCount(7) == -1, "no degree has 7 monomials");
 
   // Gradient against central differences.
-  const double c[15] = { 0.1, -0.2, 0.3, 0.5, -0.7, 0.2, 0.05, -0.03, 0.08, 0.01, 0.02, -0.01,
-    0.03, 0.04, -0.02 };
+  const double c[15] = {
+    0.1, -0.2, 0.3, 0.5, -0.7, 0.2, 0.05, -0.03, 0.08, 0.01, 0.02, -0.01, 0.03, 0.04, -0.02
+  };
   double du, dv;
   EvaluateWithGradient(c, 4, 0.7, -0.4, du, dv);
   const double e = 1e-6;
@@ -115,8 +116,9 @@ void TestMonomialOrder()
 
 void TestExactRecovery()
 {
-  const double c[15] = { 0.02, 0.1, -0.05, 0.3, -0.2, 0.15, 0.04, -0.03, 0.05, 0.02, -0.01,
-    0.015, 0.01, -0.02, 0.012 };
+  const double c[15] = {
+    0.02, 0.1, -0.05, 0.3, -0.2, 0.15, 0.04, -0.03, 0.05, 0.02, -0.01, 0.015, 0.01, -0.02, 0.012
+  };
   // (offset, scale): translated by 1e7, or scaled by 1e-6 and 1e6.
   const double cases[][2] = { { 0.0, 1.0 }, { 1e7, 1.0 }, { 0.0, 1e-6 }, { 0.0, 1e6 } };
   for (int degree = 1; degree <= 4; ++degree)
@@ -219,11 +221,11 @@ void TestDegenerate()
   const PolynomialFit reduced = FitPolynomial(few.data(), nullptr, 5, TiltedFrame(0, 1), 2);
   Check(reduced.Status == FitStatus::ReducedDegree && reduced.Degree == 1,
     "k < unknowns falls back to a lower degree");
-  Check(FitPolynomial(few.data(), nullptr, 2, TiltedFrame(0, 1), 1).Status ==
-      FitStatus::TooFewPoints,
+  Check(
+    FitPolynomial(few.data(), nullptr, 2, TiltedFrame(0, 1), 1).Status == FitStatus::TooFewPoints,
     "N < 3 is too few");
-  Check(FitPolynomial(few.data(), nullptr, 0, TiltedFrame(0, 1), 1).Status ==
-      FitStatus::TooFewPoints,
+  Check(
+    FitPolynomial(few.data(), nullptr, 0, TiltedFrame(0, 1), 1).Status == FitStatus::TooFewPoints,
     "empty input is too few");
   LocalFrame zero = TiltedFrame(0, 1);
   zero.Scale = 0.0;

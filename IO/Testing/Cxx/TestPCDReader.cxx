@@ -58,7 +58,8 @@ int TestPCDReader(int, char*[])
   vtkPolyData* m = milk->GetOutput();
   Check(m->GetNumberOfPoints() == 686, "686 points in the compressed Kinect subset");
   Check(m->GetNumberOfVerts() == 686, "one vertex cell per point");
-  Check(m->GetPointData()->GetScalars() && m->GetPointData()->GetScalars()->GetNumberOfComponents() == 4,
+  Check(m->GetPointData()->GetScalars() &&
+      m->GetPointData()->GetScalars()->GetNumberOfComponents() == 4,
     "rgba becomes 4-component scalars");
   double bounds[6];
   m->GetBounds(bounds);
@@ -72,7 +73,8 @@ int TestPCDReader(int, char*[])
   vtkPolyData* a = ascii->GetOutput();
   Check(a->GetNumberOfPoints() == 4 && ascii->GetNumberOfDroppedPoints() == 1,
     "the NaN point is dropped and counted");
-  Check(warnings->GetWarning() && warnings->GetWarningMessage().find("Dropped 1 of 5") != std::string::npos,
+  Check(warnings->GetWarning() &&
+      warnings->GetWarningMessage().find("Dropped 1 of 5") != std::string::npos,
     "the dropped point is reported");
   double p[3];
   a->GetPoint(3, p);
@@ -80,8 +82,8 @@ int TestPCDReader(int, char*[])
   vtkDataArray* normals = a->GetPointData()->GetNormals();
   Check(normals && normals->GetComponent(2, 2) == 1.0, "normals");
   auto* rgb = vtkUnsignedCharArray::SafeDownCast(a->GetPointData()->GetScalars());
-  Check(rgb && rgb->GetNumberOfComponents() == 3 && rgb->GetValue(3) == 10 && rgb->GetValue(4) == 21 &&
-      rgb->GetValue(5) == 200,
+  Check(rgb && rgb->GetNumberOfComponents() == 3 && rgb->GetValue(3) == 10 &&
+      rgb->GetValue(4) == 21 && rgb->GetValue(5) == 200,
     "packed rgb unpacked to (10, 21, 200) for point 1");
   vtkDataArray* curvature = a->GetPointData()->GetArray("curvature");
   Check(curvature && curvature->GetComponent(3, 0) == 2.0, "extra fields become arrays");

@@ -23,11 +23,11 @@ int TestComputeCompileError(int, char*[])
   renWin->Render();
   auto* glWin = vtkOpenGLRenderWindow::SafeDownCast(renWin);
 
-  const std::string broken = "//VTK::System::Dec\n"             // 1
+  const std::string broken = "//VTK::System::Dec\n"            // 1
                              "layout(local_size_x = 64) in;\n" // 2
-                             "void main()\n"                  // 3
-                             "{\n"                            // 4
-                             "  float x = undefinedThing;\n"  // 5
+                             "void main()\n"                   // 3
+                             "{\n"                             // 4
+                             "  float x = undefinedThing;\n"   // 5
                              "}\n";
   vtkNew<vtkComputeShaderProgram> program;
   program->SetName("BrokenKernel");

@@ -9,6 +9,7 @@
 // program VTK's cache used for the first sphere: if the compute helper left
 // the cache believing that program still bound, the second sphere would be
 // drawn with the compute program and vanish from the image.
+#include "vtkActor.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkComputeShaderProgram.h"
@@ -24,7 +25,6 @@
 #include "vtkRenderer.h"
 #include "vtkShaderStorageBuffer.h"
 #include "vtkSphereSource.h"
-#include "vtkActor.h"
 
 #include "vtk_glew.h"
 
@@ -103,7 +103,8 @@ void Dispatch(vtkObject*, unsigned long, void* clientData, void*)
 
   h->Counts.resize(tiles);
   h->Tiles.resize(NumberOfPoints);
-  h->Failed = h->Failed || !h->CountBuffer->Download(h->Counts.data(), tiles * sizeof(unsigned int));
+  h->Failed =
+    h->Failed || !h->CountBuffer->Download(h->Counts.data(), tiles * sizeof(unsigned int));
   h->Failed = h->Failed || !h->TileBuffer->Download(h->Tiles.data(), NumberOfPoints * sizeof(int));
   if (glGetError() != GL_NO_ERROR)
   {

@@ -37,7 +37,8 @@ int TestEGLHeadlessRenderWindow(int argc, char* argv[])
   if (vtkPointSurfacesRenderWindowFactory::GetSelectedWindowClassName() !=
     std::string(renWin->GetClassName()))
   {
-    std::cerr << "The factory reports " << vtkPointSurfacesRenderWindowFactory::GetSelectedWindowClassName()
+    std::cerr << "The factory reports "
+              << vtkPointSurfacesRenderWindowFactory::GetSelectedWindowClassName()
               << " but created a " << renWin->GetClassName() << "\n";
     return EXIT_FAILURE;
   }
