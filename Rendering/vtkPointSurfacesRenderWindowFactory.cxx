@@ -81,12 +81,34 @@ vtkObject* CreateRenderWindow()
   return vtkEGLHeadlessRenderWindow::New();
 }
 
-// Applies the environment switch when the library is loaded.
+bool EnvironmentApplied = false;
+
+void ApplyEnvironmentOnce()
+{
+  if (!EnvironmentApplied)
+  {
+    EnvironmentApplied = true;
+    vtkPointSurfacesRenderWindowFactory::ConfigureFromEnvironment();
+  }
+}
+
+// Applies the environment switch when the library is loaded (Python imports,
+// programs that call into the library).
 struct EnvironmentSwitch
 {
-  EnvironmentSwitch() { vtkPointSurfacesRenderWindowFactory::ConfigureFromEnvironment(); }
+  EnvironmentSwitch() { ApplyEnvironmentOnce(); }
 } TheEnvironmentSwitch;
 } // namespace
+
+// The module implements VTK::RenderingCore: vtk_module_autoinit() in a
+// consumer calls this before main(), so C++ programs that only link the
+// module (and never name one of its symbols) get the switch as well.
+POINTSURFACESRENDERING_EXPORT void PointSurfacesRendering_AutoInit_Construct()
+{
+  ApplyEnvironmentOnce();
+}
+
+POINTSURFACESRENDERING_EXPORT void PointSurfacesRendering_AutoInit_Destruct() {}
 
 //------------------------------------------------------------------------------
 vtkPointSurfacesRenderWindowFactory::vtkPointSurfacesRenderWindowFactory()
