@@ -79,7 +79,7 @@ int main(int argc, char* argv[])
     points->GetLength() / std::sqrt(static_cast<double>(points->GetNumberOfPoints()));
   vtkNew<vtkPointGaussianMapper> mapper;
   mapper->SetInputData(points);
-  mapper->SetScaleFactor(0.7 * spacing);
+  mapper->SetScaleFactor(1.4 * spacing);
   mapper->EmissiveOff();
   mapper->SetScalarVisibility(points->GetPointData()->GetScalars() != nullptr);
   mapper->SetSplatShaderCode("//VTK::Color::Impl\n"

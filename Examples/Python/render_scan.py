@@ -1,0 +1,122 @@
+#!/usr/bin/env python3
+# SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+# SPDX-License-Identifier: BSD-3-Clause
+"""Render a point scan headless to a PNG and report what it cost.
+
+    render_scan.py [input.{ply,vtp,pcd,xyz}] [output.png] [--size N]
+
+Until the algebraic-splat mapper lands, the points are drawn as shaded discs
+with VTK's vtkPointGaussianMapper (the linear-splat baseline that the splats
+will be measured against). Rendering goes through PointSurfaces' EGL window
+when there is no X display.
+"""
+import argparse
+import math
+import os
+import sys
+import time
+
+import pointsurfaces
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkIOImage import vtkPNGWriter
+from vtkmodules.vtkIOPLY import vtkPLYReader
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+from vtkmodules.vtkRenderingCore import (vtkActor, vtkRenderer, vtkRenderWindow,
+                                         vtkWindowToImageFilter)
+from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLPointGaussianMapper
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DEFAULT_INPUT = os.path.join(HERE, "..", "..", "Testing", "Data", "bunny.vtp")
+
+
+def read(path):
+    ext = os.path.splitext(path)[1].lower()
+    if ext == ".xyz":
+        points = vtkPoints()
+        with open(path) as f:
+            for line in f:
+                parts = line.split()
+                if len(parts) >= 3:
+                    points.InsertNextPoint(*map(float, parts[:3]))
+        poly = vtkPolyData()
+        poly.SetPoints(points)
+        return poly
+    reader = {".ply": vtkPLYReader, ".vtp": vtkXMLPolyDataReader,
+              ".pcd": pointsurfaces.vtkPCDReader}.get(ext)
+    if reader is None:
+        sys.exit("render_scan.py: cannot read %s files" % ext)
+    r = reader()
+    r.SetFileName(path)
+    r.Update()
+    return r.GetOutput()
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("input", nargs="?", default=DEFAULT_INPUT)
+    parser.add_argument("output", nargs="?", default="scan.png")
+    parser.add_argument("--size", type=int, default=800)
+    args = parser.parse_args()
+
+    t0 = time.perf_counter()
+    poly = read(args.input)
+    load_s = time.perf_counter() - t0
+    n = poly.GetNumberOfPoints()
+    if n == 0:
+        sys.exit("render_scan.py: no points in " + args.input)
+
+    spacing = poly.GetLength() / math.sqrt(n)
+    mapper = vtkOpenGLPointGaussianMapper()
+    mapper.SetInputData(poly)
+    mapper.SetScaleFactor(1.4 * spacing)
+    mapper.EmissiveOff()
+    mapper.SetScalarVisibility(poly.GetPointData().GetScalars() is not None)
+    mapper.SetSplatShaderCode(
+        "//VTK::Color::Impl\n"
+        "float dist = dot(offsetVCVSOutput.xy, offsetVCVSOutput.xy);\n"
+        "if (dist > 1.0) { discard; }\n"
+        "float shade = sqrt(1.0 - dist);\n"
+        "ambientColor *= shade;\n"
+        "diffuseColor *= shade;\n")
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    actor.GetProperty().SetColor(0.85, 0.75, 0.6)
+    renderer = vtkRenderer()
+    renderer.AddActor(actor)
+    renderer.SetBackground(0.1, 0.1, 0.15)
+    window = vtkRenderWindow()
+    window.SetSize(args.size, args.size)
+    window.SetMultiSamples(0)
+    window.AddRenderer(renderer)
+    renderer.ResetCamera()
+    renderer.GetActiveCamera().Zoom(1.3)
+
+    t0 = time.perf_counter()
+    window.Render()
+    first_ms = 1000 * (time.perf_counter() - t0)
+    frames = 10
+    t0 = time.perf_counter()
+    for _ in range(frames):
+        renderer.GetActiveCamera().Azimuth(0.5)
+        window.Render()
+    frame_ms = 1000 * (time.perf_counter() - t0) / frames
+
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.ReadFrontBufferOff()
+    writer = vtkPNGWriter()
+    writer.SetInputConnection(grab.GetOutputPort())
+    writer.SetFileName(args.output)
+    writer.Write()
+    print("input:        %s" % os.path.relpath(args.input))
+    print("points:       %d" % n)
+    print("window:       %s" % window.GetClassName())
+    print("load:         %.1f ms" % (1000 * load_s))
+    print("first frame:  %.1f ms (context, shaders, upload)" % first_ms)
+    print("frame:        %.1f ms at %dx%d" % (frame_ms, args.size, args.size))
+    print("image:        %s" % args.output)
+
+
+if __name__ == "__main__":
+    main()

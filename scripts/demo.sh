@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The main job: set everything up on a fresh Debian 12 machine, then render a
+# real scan headless to a PNG and print what it cost.
+#
+# Usage: scripts/demo.sh [input.{ply,vtp,pcd,xyz}] [output.png]
+#   default input: Testing/Data/bunny.vtp (the Stanford Bunny), output: bunny.png
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+input=$(realpath "${1:-$root/Testing/Data/bunny.vtp}")
+output=$(realpath -m "${2:-bunny.png}")
+
+"$root/scripts/install-deps.sh" >&2
+if [ ! -f "$root/build/vtk/build.ninja" ]; then
+  (cd "$root" && cmake --preset vtk) >&2
+fi
+cmake --build "$root/build/vtk" >&2
+export PYTHONPATH="$root/build/vtk/$(cd "$root/build/vtk" && sed -n 's/^POINTSURFACES_PYTHON_SITE_PACKAGES:STRING=//p' CMakeCache.txt)${PYTHONPATH:+:$PYTHONPATH}"
+exec /usr/bin/python3 "$root/Examples/Python/render_scan.py" "$input" "$output"
