@@ -4,7 +4,8 @@
 # Runs as root, or through sudo otherwise. Never installs python3-paraview, which
 # conflicts with python3-vtk9 (see DESIGN.md section 5).
 #
-# Usage: scripts/install-deps.sh [--paraview] [--dry-run]
+# Usage: scripts/install-deps.sh [--dry-run]
+#   --dry-run  only list the packages that are missing
 set -euo pipefail
 
 packages=(
@@ -19,20 +20,14 @@ packages=(
   # benchmark plots
   python3-matplotlib
 )
-paraview=0
 dryrun=0
 for arg in "$@"; do
   case "$arg" in
-    --paraview) paraview=1 ;;
     --dry-run) dryrun=1 ;;
-    -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
     *) echo "install-deps.sh: unknown argument '$arg'" >&2; exit 2 ;;
   esac
 done
-if [ "$paraview" = 1 ]; then
-  packages+=(paraview paraview-dev)
-fi
-
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
