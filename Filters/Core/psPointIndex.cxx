@@ -1,0 +1,134 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "psPointIndex.h"
+
+#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/point_types.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace pointsurfaces
+{
+struct PointIndex::Tree
+{
+  pcl::KdTreeFLANN<pcl::PointXYZ> KdTree;
+};
+
+PointIndex::PointIndex(const double* xyz, long long n)
+  : XYZ(xyz)
+  , N(n)
+  , Impl(new Tree)
+{
+  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+  for (long long i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lo[c] = i ? std::min(lo[c], xyz[3 * i + c]) : xyz[c];
+      hi[c] = i ? std::max(hi[c], xyz[3 * i + c]) : xyz[c];
+    }
+  }
+  double diag = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    this->Centre[c] = 0.5 * (lo[c] + hi[c]);
+    diag += (hi[c] - lo[c]) * (hi[c] - lo[c]);
+  }
+  diag = std::sqrt(diag);
+  this->InvScale = diag > 0.0 ? 1.0 / diag : 1.0;
+  if (n == 0)
+  {
+    return;
+  }
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  cloud->resize(static_cast<size_t>(n));
+  for (long long i = 0; i < n; ++i)
+  {
+    auto& p = (*cloud)[static_cast<size_t>(i)];
+    p.x = static_cast<float>((xyz[3 * i] - this->Centre[0]) * this->InvScale);
+    p.y = static_cast<float>((xyz[3 * i + 1] - this->Centre[1]) * this->InvScale);
+    p.z = static_cast<float>((xyz[3 * i + 2] - this->Centre[2]) * this->InvScale);
+  }
+  this->Impl->KdTree.setSortedResults(true);
+  this->Impl->KdTree.setInputCloud(cloud);
+}
+
+PointIndex::~PointIndex() = default;
+
+void PointIndex::Finish(const double q[3], std::vector<int>& ids, std::vector<double>& d2) const
+{
+  // Distances in double from the original coordinates, then re-sorted: the
+  // float tree may order near-ties differently.
+  d2.resize(ids.size());
+  for (size_t j = 0; j < ids.size(); ++j)
+  {
+    const double* p = this->Point(ids[j]);
+    const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+    d2[j] = dx * dx + dy * dy + dz * dz;
+  }
+  std::vector<size_t> order(ids.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return d2[a] < d2[b]; });
+  std::vector<int> sortedIds(ids.size());
+  std::vector<double> sortedD2(ids.size());
+  for (size_t j = 0; j < order.size(); ++j)
+  {
+    sortedIds[j] = ids[order[j]];
+    sortedD2[j] = d2[order[j]];
+  }
+  ids.swap(sortedIds);
+  d2.swap(sortedD2);
+}
+
+void PointIndex::Nearest(const double q[3], int k, std::vector<int>& ids, std::vector<double>& d2) const
+{
+  ids.clear();
+  d2.clear();
+  if (this->N == 0 || k <= 0)
+  {
+    return;
+  }
+  k = static_cast<int>(std::min<long long>(k, this->N));
+  pcl::PointXYZ p;
+  p.x = static_cast<float>((q[0] - this->Centre[0]) * this->InvScale);
+  p.y = static_cast<float>((q[1] - this->Centre[1]) * this->InvScale);
+  p.z = static_cast<float>((q[2] - this->Centre[2]) * this->InvScale);
+  pcl::Indices found(k);
+  std::vector<float> fd2(k);
+  const int got = this->Impl->KdTree.nearestKSearch(p, static_cast<unsigned int>(k), found, fd2);
+  ids.assign(found.begin(), found.begin() + std::max(got, 0));
+  this->Finish(q, ids, d2);
+}
+
+void PointIndex::Within(
+  const double q[3], double radius, std::vector<int>& ids, std::vector<double>& d2) const
+{
+  ids.clear();
+  d2.clear();
+  if (this->N == 0 || !(radius > 0.0))
+  {
+    return;
+  }
+  pcl::PointXYZ p;
+  p.x = static_cast<float>((q[0] - this->Centre[0]) * this->InvScale);
+  p.y = static_cast<float>((q[1] - this->Centre[1]) * this->InvScale);
+  p.z = static_cast<float>((q[2] - this->Centre[2]) * this->InvScale);
+  pcl::Indices found;
+  std::vector<float> fd2;
+  // A relative margin covers the float rounding of the scaled coordinates;
+  // the exact test is done in double below.
+  this->Impl->KdTree.radiusSearch(p, radius * this->InvScale * (1.0 + 1e-5) + 1e-6, found, fd2);
+  ids.assign(found.begin(), found.end());
+  this->Finish(q, ids, d2);
+  const double r2 = radius * radius;
+  size_t keep = 0;
+  while (keep < d2.size() && d2[keep] <= r2)
+  {
+    ++keep;
+  }
+  ids.resize(keep);
+  d2.resize(keep);
+}
+} // namespace pointsurfaces

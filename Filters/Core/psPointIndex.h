@@ -1,0 +1,58 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file psPointIndex.h
+ * @brief k-nearest-neighbour and radius queries on double-precision points, through PCL's kd-tree.
+ *
+ * PCL's KdTreeFLANN works on float coordinates: a scan placed at 1e7 keeps
+ * only ~1 unit of precision there (pcl#2184, #2403). The index therefore
+ * stores the points centred on their bounding-box centre and divided by its
+ * diagonal, and recomputes every returned distance in double from the
+ * caller's coordinates, which it does not copy (they must outlive the index).
+ * Queries are const and may run from several threads at once.
+ */
+#ifndef psPointIndex_h
+#define psPointIndex_h
+
+#include "PointSurfacesFiltersModule.h" // For export macro
+
+#include <memory> // For std::unique_ptr
+#include <vector> // For results
+
+namespace pointsurfaces
+{
+class POINTSURFACESFILTERS_EXPORT PointIndex
+{
+public:
+  /** Index `n` points given as xyz triples. Points must be finite. */
+  PointIndex(const double* xyz, long long n);
+  ~PointIndex();
+  PointIndex(const PointIndex&) = delete;
+  PointIndex& operator=(const PointIndex&) = delete;
+
+  long long Size() const { return this->N; }
+  const double* Point(long long i) const { return this->XYZ + 3 * i; }
+
+  /**
+   * The k nearest points to q (q itself included when it is an indexed
+   * point), sorted by distance; fewer when the index holds fewer.
+   */
+  void Nearest(const double q[3], int k, std::vector<int>& ids, std::vector<double>& d2) const;
+
+  /** All points within `radius` of q, sorted by distance. */
+  void Within(
+    const double q[3], double radius, std::vector<int>& ids, std::vector<double>& d2) const;
+
+private:
+  void Finish(const double q[3], std::vector<int>& ids, std::vector<double>& d2) const;
+
+  const double* XYZ;
+  long long N;
+  double Centre[3];
+  double InvScale;
+  struct Tree;
+  std::unique_ptr<Tree> Impl;
+};
+} // namespace pointsurfaces
+
+#endif

@@ -1,0 +1,387 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "psSplatBuilder.h"
+
+#include "psPointIndex.h"
+#include "psSplatSelection.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace pointsurfaces
+{
+namespace
+{
+struct Position
+{
+  double Q[3];
+  long long Source;
+  int Level;
+  double S;
+};
+
+// The neighbour coordinates of q, gathered contiguously.
+void Gather(const PointIndex& index, const double q[3], int k, std::vector<int>& ids,
+  std::vector<double>& d2, std::vector<double>& coords)
+{
+  index.Nearest(q, k, ids, d2);
+  coords.resize(3 * ids.size());
+  for (size_t j = 0; j < ids.size(); ++j)
+  {
+    const double* p = index.Point(ids[j]);
+    coords[3 * j] = p[0];
+    coords[3 * j + 1] = p[1];
+    coords[3 * j + 2] = p[2];
+  }
+}
+
+double MeanSpacing(const PointIndex& index, unsigned int seed)
+{
+  const long long n = index.Size();
+  std::mt19937 gen(seed);
+  std::vector<int> ids;
+  std::vector<double> d2;
+  double sum = 0.0;
+  int count = 0;
+  for (int t = 0; t < 200 && n > 1; ++t)
+  {
+    const long long i = static_cast<long long>(gen() % static_cast<unsigned long long>(n));
+    index.Nearest(index.Point(i), 7, ids, d2);
+    for (size_t j = 1; j < d2.size(); ++j)
+    {
+      sum += std::sqrt(d2[j]);
+      ++count;
+    }
+  }
+  return count ? sum / count : 0.0;
+}
+} // namespace
+
+int LocallyOptimalProjection(const double* p, long long n, std::vector<double>& x, bool weighted,
+  int iterations, double h, double mu)
+{
+  const long long m = static_cast<long long>(x.size() / 3);
+  if (n == 0 || m == 0)
+  {
+    return 0;
+  }
+  PointIndex data(p, n);
+  if (!(h > 0.0))
+  {
+    // Area from the input spacing, then the support of m evenly spread samples.
+    const double spacing = MeanSpacing(data, 7u);
+    h = 4.0 * std::sqrt(static_cast<double>(n) * spacing * spacing / static_cast<double>(m));
+  }
+  const double h2 = (h / 4.0) * (h / 4.0);
+  auto theta = [h2](double r2) { return std::exp(-r2 / h2); };
+
+  // WLOP's density weights of the input points, once.
+  std::vector<double> v(static_cast<size_t>(n), 1.0);
+  if (weighted)
+  {
+    vtkSMPTools::For(0, n, [&](long long begin, long long end) {
+      std::vector<int> ids;
+      std::vector<double> d2;
+      for (long long j = begin; j < end; ++j)
+      {
+        data.Within(data.Point(j), h, ids, d2);
+        double s = 1.0;
+        for (double e : d2)
+        {
+          s += e > 0.0 ? theta(e) : 0.0;
+        }
+        v[j] = s;
+      }
+    });
+  }
+
+  std::vector<double> next(x.size());
+  int step = 0;
+  for (; step < iterations; ++step)
+  {
+    PointIndex samples(x.data(), m);
+    std::vector<double> w(static_cast<size_t>(m), 1.0);
+    if (weighted)
+    {
+      vtkSMPTools::For(0, m, [&](long long begin, long long end) {
+        std::vector<int> ids;
+        std::vector<double> d2;
+        for (long long i = begin; i < end; ++i)
+        {
+          samples.Within(&x[3 * i], h, ids, d2);
+          double s = 1.0;
+          for (double e : d2)
+          {
+            s += e > 0.0 ? theta(e) : 0.0;
+          }
+          w[i] = s;
+        }
+      });
+    }
+    std::vector<double> moved(static_cast<size_t>(m), 0.0);
+    vtkSMPTools::For(0, m, [&](long long begin, long long end) {
+      std::vector<int> ids;
+      std::vector<double> d2;
+      for (long long i = begin; i < end; ++i)
+      {
+        const double* xi = &x[3 * i];
+        // Attraction to the data.
+        double attract[3] = { 0, 0, 0 }, asum = 0.0;
+        data.Within(xi, h, ids, d2);
+        for (size_t j = 0; j < ids.size(); ++j)
+        {
+          const double r = std::max(std::sqrt(d2[j]), 1e-12 * h);
+          const double a = theta(d2[j]) / r / v[ids[j]];
+          const double* pj = data.Point(ids[j]);
+          for (int c = 0; c < 3; ++c)
+          {
+            attract[c] += a * pj[c];
+          }
+          asum += a;
+        }
+        // Repulsion from the other samples.
+        double repel[3] = { 0, 0, 0 }, rsum = 0.0;
+        samples.Within(xi, h, ids, d2);
+        for (size_t j = 0; j < ids.size(); ++j)
+        {
+          if (ids[j] == i || d2[j] <= 0.0)
+          {
+            continue;
+          }
+          const double r = std::sqrt(d2[j]);
+          // LOP: eta = 1/(3 r^3), |eta'| = 1/r^4; WLOP: eta = -r, |eta'| = 1.
+          const double deta = weighted ? w[ids[j]] : 1.0 / (d2[j] * d2[j]);
+          const double b = theta(d2[j]) * deta / r;
+          const double* xj = &x[3 * ids[j]];
+          for (int c = 0; c < 3; ++c)
+          {
+            repel[c] += b * (xi[c] - xj[c]);
+          }
+          rsum += b;
+        }
+        double shift2 = 0.0;
+        for (int c = 0; c < 3; ++c)
+        {
+          double value = asum > 0.0 ? attract[c] / asum : xi[c];
+          if (rsum > 0.0)
+          {
+            value += mu * repel[c] / rsum;
+          }
+          next[3 * i + c] = value;
+          shift2 += (value - xi[c]) * (value - xi[c]);
+        }
+        moved[i] = shift2;
+      }
+    });
+    x.swap(next);
+    const double largest = *std::max_element(moved.begin(), moved.end());
+    if (largest < (1e-4 * h) * (1e-4 * h))
+    {
+      ++step;
+      break;
+    }
+  }
+  return step;
+}
+
+BuildResult BuildSplats(const double* xyz, long long n, const double* normals,
+  const BuildParameters& params, const std::function<void(double)>& progress,
+  const std::atomic<bool>* abort)
+{
+  BuildResult result;
+  if (n < 3)
+  {
+    return result;
+  }
+  auto report = [&](double f) {
+    if (progress)
+    {
+      progress(f);
+    }
+  };
+  auto aborted = [&] { return abort && abort->load(); };
+  PointIndex index(xyz, n);
+  SplatFitParameters fit = params.Fit;
+  fit.NumberOfNeighbors = static_cast<int>(std::min<long long>(fit.NumberOfNeighbors, n));
+  fit.FeatureSizeNeighbors = static_cast<int>(std::min<long long>(fit.FeatureSizeNeighbors, n - 1));
+  const int kAll = std::max(fit.NumberOfNeighbors, fit.FeatureSizeNeighbors + 1);
+
+  FrameFunction frameOf = [&](long long i, LocalFrame& frame) {
+    thread_local std::vector<int> ids;
+    thread_local std::vector<double> d2, coords;
+    Gather(index, index.Point(i), kAll, ids, d2, coords);
+    const int m = std::min(fit.NumberOfNeighbors, static_cast<int>(ids.size()));
+    if (FitReferencePlane(coords.data(), nullptr, m, frame, normals ? normals + 3 * i : nullptr) !=
+      FitStatus::Ok)
+    {
+      return false;
+    }
+    frame.Scale = FeatureSize(
+      index.Point(i), frame, coords.data(), static_cast<int>(ids.size()), fit.FeatureSizeNeighbors);
+    return frame.Scale > 0.0;
+  };
+
+  // 1. Positions.
+  std::vector<Position> positions;
+  if (params.Select == Selection::All)
+  {
+    positions.resize(static_cast<size_t>(n));
+    for (long long i = 0; i < n; ++i)
+    {
+      positions[i] = Position{ { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] }, i, 0, params.Quality };
+    }
+    result.LevelQuality.push_back(params.Quality);
+  }
+  else if (params.Select == Selection::Quality)
+  {
+    const int levels = std::max(1, params.Levels);
+    std::vector<long long> order;
+    if (params.VisitOrder == Order::Lattice)
+    {
+      // Median h of a sample of points sets the grid; the finest s is used so
+      // that every level's first visits are spread out.
+      std::vector<double> hs;
+      std::mt19937 gen(params.Seed);
+      for (int t = 0; t < 256; ++t)
+      {
+        LocalFrame f;
+        if (frameOf(static_cast<long long>(gen() % static_cast<unsigned long long>(n)), f))
+        {
+          hs.push_back(f.Scale);
+        }
+      }
+      std::nth_element(hs.begin(), hs.begin() + hs.size() / 2, hs.end());
+      const double h = hs.empty() ? 0.0 : hs[hs.size() / 2];
+      order = LatticeOrder(xyz, n, params.LatticeSpacing * params.Quality * h, params.Seed);
+    }
+    else
+    {
+      order = RandomOrder(n, params.Seed);
+    }
+    std::vector<PointState> state(static_cast<size_t>(n), PointState::Free);
+    std::vector<long long> chosenAll;
+    std::vector<LocalFrame> framesAll;
+    for (int level = 0; level < levels && !aborted(); ++level)
+    {
+      const double s = levels == 1 ? params.Quality
+                                   : params.CoarsestQuality +
+          (params.Quality - params.CoarsestQuality) * level / (levels - 1.0);
+      result.LevelQuality.push_back(s);
+      for (auto& st : state)
+      {
+        if (st == PointState::Claimed)
+        {
+          st = PointState::Free; // claims depend on s: redo them at this level
+        }
+      }
+      std::vector<LocalFrame> frames;
+      const std::vector<long long> chosen =
+        SelectByQuality(index, s, order, frameOf, state, frames, chosenAll, framesAll,
+          params.VisitOrder == Order::Front);
+      for (size_t j = 0; j < chosen.size(); ++j)
+      {
+        const double* p = index.Point(chosen[j]);
+        positions.push_back(Position{ { p[0], p[1], p[2] }, chosen[j], level, s });
+      }
+      chosenAll.insert(chosenAll.end(), chosen.begin(), chosen.end());
+      framesAll.insert(framesAll.end(), frames.begin(), frames.end());
+      report(0.5 * (level + 1) / levels);
+    }
+    for (const auto st : state)
+    {
+      result.Degenerate += st == PointState::Unusable ? 1 : 0;
+    }
+  }
+  else
+  {
+    const long long m = std::min(params.Count, n);
+    const std::vector<long long> order = RandomOrder(n, params.Seed);
+    std::vector<double> x(static_cast<size_t>(3 * m));
+    for (long long i = 0; i < m; ++i)
+    {
+      std::copy(xyz + 3 * order[i], xyz + 3 * order[i] + 3, &x[3 * i]);
+    }
+    LocallyOptimalProjection(xyz, n, x, params.Weighted, params.LOPIterations);
+    for (long long i = 0; i < m; ++i)
+    {
+      positions.push_back(Position{ { x[3 * i], x[3 * i + 1], x[3 * i + 2] }, -1, 0, 1.0 });
+    }
+    result.LevelQuality.push_back(1.0);
+    report(0.5);
+  }
+
+  // 2. Fits, in parallel; each position is fitted once.
+  const long long count = static_cast<long long>(positions.size());
+  std::vector<BuiltSplat> built(static_cast<size_t>(count));
+  std::vector<char> ok(static_cast<size_t>(count), 0);
+  vtkSMPTools::For(0, count, [&](long long begin, long long end) {
+    std::vector<int> ids;
+    std::vector<double> d2, coords, w;
+    for (long long k = begin; k < end && !aborted(); ++k)
+    {
+      const Position& pos = positions[k];
+      Gather(index, pos.Q, kAll, ids, d2, coords);
+      const long long orientFrom = pos.Source >= 0 ? pos.Source : (ids.empty() ? -1 : ids[0]);
+      const double* orientation = normals && orientFrom >= 0 ? normals + 3 * orientFrom : nullptr;
+      BuiltSplat& b = built[k];
+      b.Fitted = FitSplat(pos.Q, coords.data(), static_cast<int>(ids.size()), fit, orientation,
+        params.KeepWeights ? &w : nullptr);
+      b.Level = pos.Level;
+      b.Source = pos.Source;
+      b.Radius = params.RadiusScale * pos.S * b.Fitted.Frame.Scale;
+      ok[k] = b.Fitted.Fit.Degree > 0;
+      if (ok[k] && params.KeepWeights)
+      {
+        b.Ids.assign(ids.begin(), ids.begin() + w.size());
+        b.Weights.assign(w.begin(), w.end());
+      }
+    }
+  });
+  report(0.9);
+
+  if (params.Select == Selection::FixedCount && count > 1)
+  {
+    // Thesis 3.3.2: the radius follows the spacing of the decimated set.
+    std::vector<double> centres(static_cast<size_t>(3 * count));
+    for (long long k = 0; k < count; ++k)
+    {
+      std::copy(positions[k].Q, positions[k].Q + 3, &centres[3 * k]);
+    }
+    PointIndex decimated(centres.data(), count);
+    vtkSMPTools::For(0, count, [&](long long begin, long long end) {
+      std::vector<int> ids;
+      std::vector<double> d2, near;
+      for (long long k = begin; k < end; ++k)
+      {
+        decimated.Nearest(&centres[3 * k], 7, ids, d2);
+        near.resize(3 * ids.size());
+        for (size_t j = 0; j < ids.size(); ++j)
+        {
+          std::copy(&centres[3 * ids[j]], &centres[3 * ids[j]] + 3, &near[3 * j]);
+        }
+        const double hd = FeatureSize(
+          &centres[3 * k], built[k].Fitted.Frame, near.data(), static_cast<int>(ids.size()), 6);
+        built[k].Radius = params.RadiusScale * (hd > 0.0 ? hd : built[k].Fitted.Frame.Scale);
+      }
+    });
+  }
+
+  for (long long k = 0; k < count; ++k)
+  {
+    if (!ok[k])
+    {
+      ++result.Degenerate;
+      continue;
+    }
+    result.Reduced += built[k].Fitted.Fit.Status == FitStatus::ReducedDegree ? 1 : 0;
+    result.Splats.push_back(std::move(built[k]));
+  }
+  std::stable_sort(result.Splats.begin(), result.Splats.end(),
+    [](const BuiltSplat& a, const BuiltSplat& b) { return a.Level < b.Level; });
+  report(1.0);
+  return result;
+}
+} // namespace pointsurfaces

@@ -1,0 +1,95 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file psSplatBuilder.h
+ * @brief Selection plus fitting of a whole splat set, on plain arrays.
+ *
+ * The work of vtkAlgebraicSplatFitter without the pipeline: choose the splat
+ * positions (all points, quality-based decimation over one or several nested
+ * levels, or LOP/WLOP to a fixed count), then fit every splat against the
+ * original points in parallel (vtkSMPTools). Each chosen point is fitted
+ * once, at the level where it first appears: finer levels only add splats.
+ */
+#ifndef psSplatBuilder_h
+#define psSplatBuilder_h
+
+#include "PointSurfacesFiltersModule.h" // For export macro
+#include "psSplatFit.h"
+
+#include <atomic>     // For the abort flag
+#include <functional> // For progress
+#include <vector>     // For results
+
+namespace pointsurfaces
+{
+enum class Selection
+{
+  All = 0,
+  Quality = 1,
+  FixedCount = 2
+};
+
+enum class Order
+{
+  Random = 0, ///< the thesis's order
+  Lattice = 1, ///< grid-centre points first
+  Front = 2   ///< grow fronts at hexagonal-covering spacing: fewest splats
+};
+
+struct BuildParameters
+{
+  SplatFitParameters Fit;
+  Selection Select = Selection::Quality;
+  double Quality = 1.0;          ///< s, the finest level's when Levels > 1
+  double CoarsestQuality = 1.0;  ///< s_0 when Levels > 1
+  int Levels = 1;                ///< K nested quality levels from s_0 down to s
+  Order VisitOrder = Order::Lattice;
+  double LatticeSpacing = 1.6;   ///< Lattice cell, in units of s times the median h
+  long long Count = 1000;        ///< m of FixedCount
+  bool Weighted = true;          ///< FixedCount: WLOP (true) or LOP
+  int LOPIterations = 50;
+  unsigned int Seed = 1;
+  double RadiusScale = 1.0;      ///< R_i = RadiusScale s h_i
+  bool KeepWeights = false;      ///< keep neighbour ids and weights for attributes
+};
+
+struct BuiltSplat
+{
+  Splat Fitted;
+  double Radius = 0.0;
+  int Level = 0;
+  long long Source = -1; ///< input point the splat grew from, -1 for LOP positions
+  std::vector<int> Ids;  ///< with KeepWeights: fit neighbours and their weights
+  std::vector<float> Weights;
+};
+
+struct BuildResult
+{
+  std::vector<BuiltSplat> Splats; ///< successful splats, coarsest level first
+  long long Degenerate = 0;       ///< chosen positions that gave no splat
+  long long Reduced = 0;          ///< splats fitted at a lower degree
+  std::vector<double> LevelQuality; ///< s of each level
+};
+
+/**
+ * Build the splats of `n` finite points `xyz` (with optional unit normals
+ * that orient the splats). `progress(f)` is called with f in [0, 1];
+ * `abort`, when set, stops the work early with what was built.
+ */
+POINTSURFACESFILTERS_EXPORT BuildResult BuildSplats(const double* xyz, long long n,
+  const double* normals, const BuildParameters& params,
+  const std::function<void(double)>& progress = nullptr,
+  const std::atomic<bool>* abort = nullptr);
+
+/**
+ * LOP (Lipman et al. 2007) or WLOP (Huang et al. 2009): move `x` (m xyz
+ * triples, usually a random subset of the input) towards the input points
+ * `p` while repelling each other, for at most `iterations` steps or until no
+ * point moves by more than 1e-4 h. Support radius h defaults (h <= 0) to
+ * 4 sqrt(area / m) estimated from the bounding box. Returns the steps taken.
+ */
+POINTSURFACESFILTERS_EXPORT int LocallyOptimalProjection(const double* p, long long n,
+  std::vector<double>& x, bool weighted, int iterations, double h = 0.0, double mu = 0.45);
+} // namespace pointsurfaces
+
+#endif

@@ -1,0 +1,143 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "psSplatFit.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pointsurfaces
+{
+double FeatureSize(const double q[3], const LocalFrame& frame, const double* nbrs, int n, int k)
+{
+  double sum = 0.0;
+  int count = 0;
+  for (int j = 0; j < n && count < k; ++j)
+  {
+    const double d[3] = { nbrs[3 * j] - q[0], nbrs[3 * j + 1] - q[1], nbrs[3 * j + 2] - q[2] };
+    const double along = d[0] * frame.Normal[0] + d[1] * frame.Normal[1] + d[2] * frame.Normal[2];
+    const double all = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if (all <= 0.0)
+    {
+      continue; // q itself, or a duplicate of it
+    }
+    sum += std::sqrt(std::max(0.0, all - along * along));
+    ++count;
+  }
+  return count ? sum / count : 0.0;
+}
+
+namespace
+{
+void Weigh(const double c[3], const double* nbrs, int m, double h, double scale, double* w)
+{
+  const double h2 = (scale * h) * (scale * h);
+  for (int j = 0; j < m; ++j)
+  {
+    const double dx = nbrs[3 * j] - c[0], dy = nbrs[3 * j + 1] - c[1], dz = nbrs[3 * j + 2] - c[2];
+    w[j] = GaussianWeight(dx * dx + dy * dy + dz * dz, h2);
+  }
+}
+
+// Weighted plane around `centre`, with the origin at centre's projection.
+FitStatus PlaneAt(const double centre[3], const double* nbrs, int m, const double* w,
+  const double* orientation, LocalFrame& frame)
+{
+  const double scale = frame.Scale;
+  const FitStatus status = FitReferencePlane(nbrs, w, m, frame, orientation);
+  frame.Scale = scale;
+  if (status != FitStatus::Ok)
+  {
+    return status;
+  }
+  const double d[3] = { centre[0] - frame.Origin[0], centre[1] - frame.Origin[1],
+    centre[2] - frame.Origin[2] };
+  const double along = d[0] * frame.Normal[0] + d[1] * frame.Normal[1] + d[2] * frame.Normal[2];
+  for (int c = 0; c < 3; ++c)
+  {
+    frame.Origin[c] = centre[c] - along * frame.Normal[c];
+  }
+  return FitStatus::Ok;
+}
+} // namespace
+
+Splat FitSplat(const double q[3], const double* nbrs, int n, const SplatFitParameters& params,
+  const double* orientation, std::vector<double>* weights)
+{
+  Splat splat;
+  const int m = std::max(0, std::min(n, params.NumberOfNeighbors));
+  if (m < 3)
+  {
+    splat.Fit.Status = FitStatus::TooFewPoints;
+    return splat;
+  }
+  // 1. Parametric domain: the plane of the fit neighbourhood, unweighted.
+  LocalFrame domain;
+  FitStatus status = FitReferencePlane(nbrs, nullptr, m, domain, orientation);
+  if (status != FitStatus::Ok)
+  {
+    splat.Fit.Status = status;
+    return splat;
+  }
+  // 2. Feature size in that domain.
+  const double h = FeatureSize(q, domain, nbrs, n, params.FeatureSizeNeighbors);
+  if (!(h > 0.0) || !std::isfinite(h))
+  {
+    splat.Fit.Status = FitStatus::Degenerate;
+    return splat;
+  }
+  // 3-4. Gaussian weights and the weighted reference plane through q's projection.
+  std::vector<double> w(m);
+  Weigh(q, nbrs, m, h, params.WeightScale, w.data());
+  splat.Frame.Scale = h;
+  const double* orient = orientation ? orientation : domain.Normal;
+  status = PlaneAt(q, nbrs, m, w.data(), orient, splat.Frame);
+  if (status != FitStatus::Ok)
+  {
+    splat.Fit.Status = status;
+    return splat;
+  }
+  // 5. The polynomial.
+  splat.Fit = FitPolynomial(nbrs, w.data(), m, splat.Frame, params.Degree);
+  if (params.Mode == FitMode::Projected)
+  {
+    for (int it = 0; it < params.MaximumIterations && splat.Fit.Degree > 0; ++it)
+    {
+      const double g0 = splat.Fit.Coefficients[0];
+      if (std::abs(g0) < params.Tolerance)
+      {
+        break;
+      }
+      // Move the origin onto the local surface and refit around it.
+      double moved[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        moved[c] = splat.Frame.Origin[c] + g0 * h * splat.Frame.Normal[c];
+      }
+      Weigh(moved, nbrs, m, h, params.WeightScale, w.data());
+      LocalFrame next = splat.Frame;
+      if (PlaneAt(moved, nbrs, m, w.data(), splat.Frame.Normal, next) != FitStatus::Ok)
+      {
+        break;
+      }
+      const PolynomialFit fit = FitPolynomial(nbrs, w.data(), m, next, params.Degree);
+      if (fit.Degree == 0)
+      {
+        break;
+      }
+      splat.Frame = next;
+      splat.Fit = fit;
+      splat.Iterations = it + 1;
+    }
+  }
+  else if (params.Mode == FitMode::Robust && splat.Fit.Degree > 0)
+  {
+    splat.Fit = FitPolynomialRobust(nbrs, w.data(), m, splat.Frame, splat.Fit, params.Loss,
+      params.LossScale, 10 * params.MaximumIterations, &splat.Iterations);
+  }
+  if (weights)
+  {
+    weights->assign(w.begin(), w.end());
+  }
+  return splat;
+}
+} // namespace pointsurfaces

@@ -1,0 +1,92 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file psSplatFit.h
+ * @brief One algebraic splat from a point and its neighbours (thesis section 3.2).
+ *
+ * FitSplat() is the per-splat kernel of vtkAlgebraicSplatFitter, as a plain
+ * stateless function over the neighbour coordinates:
+ *
+ * 1. an unweighted plane through the neighbours gives the parametric domain;
+ * 2. the feature size h is the mean distance, in that plane, from the point to
+ *    its FeatureSizeNeighbors nearest neighbours (thesis: "the average distance
+ *    of k nearest neighbors in the local parametric domain");
+ * 3. Gaussian weights theta(d) = exp(-d^2 / (WeightScale h)^2);
+ * 4. the weighted reference plane (eq. 3.1); the origin is the point's
+ *    projection onto it;
+ * 5. g(u, v) fitted in the normalised frame (eq. 3.2): by weighted least
+ *    squares (Linear), with a robust loss through Ceres (Robust), or by
+ *    iterating the MLS projection of the origin onto the surface (Projected).
+ */
+#ifndef psSplatFit_h
+#define psSplatFit_h
+
+#include "PointSurfacesFiltersModule.h" // For export macro
+#include "psLocalFit.h"
+
+#include <vector> // For weights
+
+namespace pointsurfaces
+{
+enum class FitMode
+{
+  Linear = 0,   ///< closed-form weighted least squares: fast, the default
+  Robust = 1,   ///< Ceres with a Huber or Cauchy loss: scans with outliers
+  Projected = 2 ///< origin moved onto the MLS surface by iteration: accuracy
+};
+
+enum class RobustLoss
+{
+  Huber = 0,
+  Cauchy = 1
+};
+
+struct SplatFitParameters
+{
+  int Degree = 2;               ///< 1 to 4
+  int NumberOfNeighbors = 40;   ///< neighbours in the fit
+  int FeatureSizeNeighbors = 100; ///< neighbours whose mean in-plane distance is h
+  double WeightScale = 1.0;     ///< Gaussian width, in units of h
+  FitMode Mode = FitMode::Linear;
+  RobustLoss Loss = RobustLoss::Huber;
+  double LossScale = 0.05;      ///< where the robust loss bends, in units of h
+  int MaximumIterations = 10;   ///< Projected: projection steps; Robust: solver iterations x 10
+  double Tolerance = 1e-7;      ///< Projected: stop when |g(0,0)| < Tolerance (units of h)
+};
+
+struct Splat
+{
+  LocalFrame Frame; ///< origin, axes, and Scale = h
+  PolynomialFit Fit;
+  int Iterations = 0; ///< projection steps (Projected) or solver iterations (Robust)
+};
+
+/**
+ * Fit the splat of point `q` from its neighbours `nbrs` (xyz triples sorted by
+ * distance to q; q itself may be among them). `orientation`, when given,
+ * orients the normal. `weights`, when given, receives the Gaussian weight of
+ * each of the first min(n, NumberOfNeighbors) neighbours, for carrying
+ * attributes over. Never returns NaN: failures are in splat.Fit.Status.
+ */
+POINTSURFACESFILTERS_EXPORT Splat FitSplat(const double q[3], const double* nbrs, int n,
+  const SplatFitParameters& params, const double* orientation = nullptr,
+  std::vector<double>* weights = nullptr);
+
+/**
+ * Feature size: mean distance from q to the first `k` neighbours measured in
+ * the plane of `frame` (only Normal is used); coincident points are skipped.
+ * Returns 0 when there is no distinct neighbour.
+ */
+POINTSURFACESFILTERS_EXPORT double FeatureSize(
+  const double q[3], const LocalFrame& frame, const double* nbrs, int n, int k);
+
+/**
+ * The robust fit of Fit Mode Robust: starting from `initial`, minimise
+ * sum w_i rho((g(u_i, v_i) - h_i)^2) with Ceres. Implemented in psRobustFit.cxx.
+ */
+POINTSURFACESFILTERS_EXPORT PolynomialFit FitPolynomialRobust(const double* points,
+  const double* w, int n, const LocalFrame& frame, const PolynomialFit& initial, RobustLoss loss,
+  double lossScale, int maxIterations, int* iterations = nullptr);
+} // namespace pointsurfaces
+
+#endif

@@ -1,0 +1,190 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "psSplatSelection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <queue>
+#include <random>
+#include <unordered_map>
+
+namespace pointsurfaces
+{
+std::vector<long long> RandomOrder(long long n, unsigned int seed)
+{
+  std::vector<long long> order(static_cast<size_t>(std::max(0LL, n)));
+  std::iota(order.begin(), order.end(), 0LL);
+  // Fisher-Yates with mt19937 directly: std::shuffle's use of the engine is
+  // implementation-defined, this is the same everywhere.
+  std::mt19937 gen(seed);
+  for (long long i = n - 1; i > 0; --i)
+  {
+    const long long j = static_cast<long long>(gen() % static_cast<unsigned long long>(i + 1));
+    std::swap(order[i], order[j]);
+  }
+  return order;
+}
+
+std::vector<long long> LatticeOrder(const double* xyz, long long n, double cell, unsigned int seed)
+{
+  std::vector<long long> random = RandomOrder(n, seed);
+  if (n == 0 || !(cell > 0.0))
+  {
+    return random;
+  }
+  double lo[3] = { xyz[0], xyz[1], xyz[2] };
+  for (long long i = 1; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lo[c] = std::min(lo[c], xyz[3 * i + c]);
+    }
+  }
+  // For each occupied cell, the point nearest to its centre.
+  struct Best
+  {
+    long long Id;
+    double D2;
+  };
+  std::unordered_map<unsigned long long, Best> best;
+  best.reserve(static_cast<size_t>(n / 4 + 1));
+  auto key = [](long long a, long long b, long long c) {
+    return (static_cast<unsigned long long>(c) << 42) ^ (static_cast<unsigned long long>(b) << 21) ^
+      static_cast<unsigned long long>(a);
+  };
+  for (long long i = 0; i < n; ++i)
+  {
+    long long ijk[3];
+    double d2 = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double t = (xyz[3 * i + c] - lo[c]) / cell;
+      ijk[c] = static_cast<long long>(std::floor(t));
+      const double off = t - (ijk[c] + 0.5);
+      d2 += off * off;
+    }
+    const unsigned long long k = key(ijk[0], ijk[1], ijk[2]);
+    auto it = best.find(k);
+    if (it == best.end() || d2 < it->second.D2)
+    {
+      best[k] = Best{ i, d2 };
+    }
+  }
+  std::vector<std::pair<unsigned long long, long long>> firsts;
+  firsts.reserve(best.size());
+  for (const auto& kv : best)
+  {
+    firsts.emplace_back(kv.first, kv.second.Id);
+  }
+  std::sort(firsts.begin(), firsts.end());
+  std::vector<char> used(static_cast<size_t>(n), 0);
+  std::vector<long long> order;
+  order.reserve(static_cast<size_t>(n));
+  for (const auto& f : firsts)
+  {
+    order.push_back(f.second);
+    used[f.second] = 1;
+  }
+  for (long long i : random)
+  {
+    if (!used[i])
+    {
+      order.push_back(i);
+    }
+  }
+  return order;
+}
+
+void Claim(const PointIndex& index, const double centre[3], const LocalFrame& frame, double s,
+  std::vector<PointState>& state)
+{
+  const double r = s * frame.Scale;
+  thread_local std::vector<int> ids;
+  thread_local std::vector<double> d2;
+  index.Within(centre, std::sqrt(2.0) * r, ids, d2);
+  for (size_t j = 0; j < ids.size(); ++j)
+  {
+    if (state[ids[j]] != PointState::Free)
+    {
+      continue;
+    }
+    const double* p = index.Point(ids[j]);
+    const double d[3] = { p[0] - centre[0], p[1] - centre[1], p[2] - centre[2] };
+    const double height = d[0] * frame.Normal[0] + d[1] * frame.Normal[1] + d[2] * frame.Normal[2];
+    const double inPlane2 = d2[j] - height * height;
+    if (inPlane2 <= r * r && std::abs(height) <= r)
+    {
+      state[ids[j]] = PointState::Claimed;
+    }
+  }
+}
+
+std::vector<long long> SelectByQuality(const PointIndex& index, double s,
+  const std::vector<long long>& order, const FrameFunction& frameOf, std::vector<PointState>& state,
+  std::vector<LocalFrame>& frames, const std::vector<long long>& alreadyChosen,
+  const std::vector<LocalFrame>& chosenFrames, bool front)
+{
+  for (size_t i = 0; i < alreadyChosen.size() && i < chosenFrames.size(); ++i)
+  {
+    Claim(index, index.Point(alreadyChosen[i]), chosenFrames[i], s, state);
+  }
+  std::vector<long long> chosen;
+  frames.clear();
+  // Front growth: candidates around chosen points, best first where their
+  // in-plane distance is closest to sqrt(3) s h, the spacing of a hexagonal
+  // covering by discs of radius s h.
+  using Candidate = std::pair<double, long long>;
+  std::priority_queue<Candidate, std::vector<Candidate>, std::greater<Candidate>> queue;
+  std::vector<int> ids;
+  std::vector<double> d2;
+  auto choose = [&](long long i) {
+    LocalFrame frame;
+    if (!frameOf(i, frame))
+    {
+      state[i] = PointState::Unusable;
+      return;
+    }
+    state[i] = PointState::Chosen;
+    chosen.push_back(i);
+    frames.push_back(frame);
+    const double* c = index.Point(i);
+    Claim(index, c, frame, s, state);
+    if (!front)
+    {
+      return;
+    }
+    const double r = s * frame.Scale;
+    index.Within(c, 2.0 * r, ids, d2);
+    for (size_t j = 0; j < ids.size(); ++j)
+    {
+      if (state[ids[j]] != PointState::Free)
+      {
+        continue;
+      }
+      const double* p = index.Point(ids[j]);
+      const double height = (p[0] - c[0]) * frame.Normal[0] + (p[1] - c[1]) * frame.Normal[1] +
+        (p[2] - c[2]) * frame.Normal[2];
+      const double inPlane = std::sqrt(std::max(0.0, d2[j] - height * height));
+      queue.emplace(std::abs(inPlane - std::sqrt(3.0) * r) / r, ids[j]);
+    }
+  };
+  for (long long seed : order)
+  {
+    if (state[seed] == PointState::Free)
+    {
+      choose(seed);
+    }
+    while (!queue.empty())
+    {
+      const long long i = queue.top().second;
+      queue.pop();
+      if (state[i] == PointState::Free)
+      {
+        choose(i);
+      }
+    }
+  }
+  return chosen;
+}
+} // namespace pointsurfaces

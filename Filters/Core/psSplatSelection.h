@@ -1,0 +1,73 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file psSplatSelection.h
+ * @brief Quality-based decimation (thesis section 3.3.1) and the candidate orders it visits.
+ *
+ * A chosen point i claims every point within s·h_i of it in its parametric
+ * domain (in-plane distance <= s·h_i, and height <= s·h_i so that the other
+ * side of a thin part is not claimed); claimed points are never chosen. The
+ * visiting order decides how many points end up chosen: RandomOrder() is the
+ * thesis's, LatticeOrder() visits first the points nearest to the centres of
+ * a grid slightly coarser than the splat spacing, which leaves fewer gaps
+ * for later splats to fill.
+ *
+ * The state vector makes levels nest (section 3.4): points chosen at a
+ * coarser s stay chosen at a finer one, and only the remaining points are
+ * visited.
+ */
+#ifndef psSplatSelection_h
+#define psSplatSelection_h
+
+#include "PointSurfacesFiltersModule.h" // For export macro
+#include "psLocalFit.h"
+#include "psPointIndex.h"
+
+#include <functional> // For the frame callback
+#include <vector>     // For orders and states
+
+namespace pointsurfaces
+{
+enum class PointState : signed char
+{
+  Free = 0,
+  Chosen = 1,
+  Claimed = 2,
+  Unusable = 3 ///< no frame could be computed: degenerate neighbourhood
+};
+
+/** Frame (origin unused, Normal and Scale = h) of point i; false when degenerate. */
+using FrameFunction = std::function<bool(long long, LocalFrame&)>;
+
+/** 0..n-1 shuffled with std::mt19937(seed): deterministic on every platform. */
+POINTSURFACESFILTERS_EXPORT std::vector<long long> RandomOrder(long long n, unsigned int seed);
+
+/**
+ * Points nearest to the centres of a cubic grid of cell size `cell` first
+ * (cells in z, y, x order), then the others in RandomOrder(seed).
+ */
+POINTSURFACESFILTERS_EXPORT std::vector<long long> LatticeOrder(
+  const double* xyz, long long n, double cell, unsigned int seed);
+
+/**
+ * Choose points in `order` with quality factor s. With `front`, each choice
+ * is followed by growing a front: the free points around it are chosen next,
+ * those whose in-plane distance is nearest to sqrt(3) s h first (the spacing
+ * of a hexagonal covering), and `order` only seeds new fronts. `state` (size n) is read
+ * and updated; `frames` receives the frames of newly chosen points, indexed
+ * like the returned list (chosen point ids, in the order they were chosen).
+ * Points already Chosen in `state` first claim their neighbourhoods using
+ * `chosenFrames` (same indexing as `alreadyChosen`).
+ */
+POINTSURFACESFILTERS_EXPORT std::vector<long long> SelectByQuality(const PointIndex& index,
+  double s, const std::vector<long long>& order, const FrameFunction& frameOf,
+  std::vector<PointState>& state, std::vector<LocalFrame>& frames,
+  const std::vector<long long>& alreadyChosen = {},
+  const std::vector<LocalFrame>& chosenFrames = {}, bool front = false);
+
+/** Mark the points that `frame` at point `centre` claims for quality s. */
+POINTSURFACESFILTERS_EXPORT void Claim(const PointIndex& index, const double centre[3],
+  const LocalFrame& frame, double s, std::vector<PointState>& state);
+} // namespace pointsurfaces
+
+#endif

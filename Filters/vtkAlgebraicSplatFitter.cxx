@@ -1,0 +1,338 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkAlgebraicSplatFitter.h"
+
+#include "psOctree.h"
+#include "psSplatBuilder.h"
+
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdList.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+
+#include <atomic>
+#include <cmath>
+#include <vector>
+
+vtkStandardNewMacro(vtkAlgebraicSplatFitter);
+
+namespace
+{
+using namespace pointsurfaces;
+
+template <typename T>
+vtkNew<T> MakeArray(const char* name, int components, vtkIdType tuples)
+{
+  vtkNew<T> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(components);
+  a->SetNumberOfTuples(tuples);
+  return a;
+}
+
+void AddCount(vtkFieldData* fd, const char* name, vtkIdType value)
+{
+  vtkNew<vtkIdTypeArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+
+// Splats into the data model of DESIGN.md section 3.
+void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
+{
+  const vtkIdType n = static_cast<vtkIdType>(built.Splats.size());
+  const int m = MonomialCount(degree);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  auto normal = MakeArray<vtkDoubleArray>("SplatNormal", 3, n);
+  auto tangent = MakeArray<vtkDoubleArray>("SplatTangent", 3, n);
+  auto size = MakeArray<vtkDoubleArray>("SplatFeatureSize", 1, n);
+  auto coeffs = MakeArray<vtkDoubleArray>("SplatCoefficients", m, n);
+  auto radius = MakeArray<vtkDoubleArray>("SplatRadius", 1, n);
+  auto lod = MakeArray<vtkIntArray>("SplatLOD", 1, n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const Splat& s = built.Splats[i].Fitted;
+    points->SetPoint(i, s.Frame.Origin);
+    normal->SetTypedTuple(i, s.Frame.Normal);
+    tangent->SetTypedTuple(i, s.Frame.Tangent);
+    size->SetValue(i, s.Frame.Scale);
+    // Lower-degree fallbacks keep zeros in the higher coefficients.
+    for (int c = 0; c < m; ++c)
+    {
+      coeffs->SetTypedComponent(i, c, c < MonomialCount(s.Fit.Degree) ? s.Fit.Coefficients[c] : 0.0);
+    }
+    radius->SetValue(i, built.Splats[i].Radius);
+    lod->SetValue(i, built.Splats[i].Level);
+  }
+  output->SetPoints(points);
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(n + 1);
+  connectivity->SetNumberOfValues(n);
+  for (vtkIdType i = 0; i <= n; ++i)
+  {
+    offsets->SetValue(i, i);
+    if (i < n)
+    {
+      connectivity->SetValue(i, i);
+    }
+  }
+  vtkNew<vtkCellArray> verts;
+  verts->SetData(offsets, connectivity);
+  output->SetVerts(verts);
+  vtkPointData* pd = output->GetPointData();
+  for (vtkDataArray* a : { static_cast<vtkDataArray*>(normal), static_cast<vtkDataArray*>(tangent),
+         static_cast<vtkDataArray*>(size), static_cast<vtkDataArray*>(coeffs),
+         static_cast<vtkDataArray*>(radius), static_cast<vtkDataArray*>(lod) })
+  {
+    pd->AddArray(a);
+  }
+  vtkNew<vtkIntArray> deg;
+  deg->SetName("SplatDegree");
+  deg->InsertNextValue(degree);
+  output->GetFieldData()->AddArray(deg);
+  vtkNew<vtkDoubleArray> levels;
+  levels->SetName("SplatLODQuality");
+  for (double s : built.LevelQuality)
+  {
+    levels->InsertNextValue(s);
+  }
+  output->GetFieldData()->AddArray(levels);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkAlgebraicSplatFitter::vtkAlgebraicSplatFitter() = default;
+
+//------------------------------------------------------------------------------
+int vtkAlgebraicSplatFitter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkAlgebraicSplatFitter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  this->NumberOfInvalidPoints = this->NumberOfDegenerateSplats = 0;
+  this->NumberOfReducedDegreeSplats = 0;
+  const vtkIdType nIn = input ? input->GetNumberOfPoints() : 0;
+
+  // Finite points only, in double; `kept` maps back to input ids.
+  std::vector<double> xyz, normals;
+  std::vector<vtkIdType> kept;
+  xyz.reserve(3 * nIn);
+  kept.reserve(nIn);
+  vtkDataArray* inNormals = nIn ? input->GetPointData()->GetNormals() : nullptr;
+  for (vtkIdType i = 0; i < nIn; ++i)
+  {
+    double p[3];
+    input->GetPoint(i, p);
+    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+    {
+      xyz.insert(xyz.end(), p, p + 3);
+      kept.push_back(i);
+      if (inNormals)
+      {
+        double nrm[3];
+        inNormals->GetTuple(i, nrm);
+        normals.insert(normals.end(), nrm, nrm + 3);
+      }
+    }
+  }
+  this->NumberOfInvalidPoints = nIn - static_cast<vtkIdType>(kept.size());
+  if (this->NumberOfInvalidPoints > 0)
+  {
+    vtkWarningMacro(<< "Dropped " << this->NumberOfInvalidPoints << " of " << nIn
+                    << " input points with NaN or infinite coordinates.");
+  }
+  const vtkIdType n = static_cast<vtkIdType>(kept.size());
+  if (n < 3)
+  {
+    vtkWarningMacro(<< "Need at least 3 finite points to fit splats, got " << n
+                    << ": the output is empty.");
+    Assemble(BuildResult(), this->Degree, output);
+    return 1;
+  }
+  if (this->NumberOfNeighbors > n || this->FeatureSizeNeighbors >= n)
+  {
+    vtkWarningMacro(<< "NumberOfNeighbors " << this->NumberOfNeighbors << " / FeatureSizeNeighbors "
+                    << this->FeatureSizeNeighbors << " exceed the " << n
+                    << " points: using all points.");
+  }
+
+  BuildParameters params;
+  params.Fit.Degree = this->Degree;
+  params.Fit.NumberOfNeighbors = this->NumberOfNeighbors;
+  params.Fit.FeatureSizeNeighbors = this->FeatureSizeNeighbors;
+  params.Fit.WeightScale = this->WeightScale;
+  params.Fit.Mode = static_cast<pointsurfaces::FitMode>(this->FitMode);
+  params.Fit.Loss = static_cast<pointsurfaces::RobustLoss>(this->RobustLoss);
+  params.Fit.LossScale = this->RobustLossScale;
+  params.Select = static_cast<pointsurfaces::Selection>(this->SelectionMode);
+  params.Quality = this->QualityFactor;
+  params.VisitOrder = static_cast<pointsurfaces::Order>(this->SelectionOrder);
+  params.Count = this->NumberOfSplats;
+  params.Weighted = this->LOPVariant == WLOP;
+  params.LOPIterations = this->LOPIterations;
+  params.Seed = this->RandomSeed;
+  params.RadiusScale = this->RadiusScale;
+  params.KeepWeights = input->GetPointData()->GetNumberOfArrays() > 0;
+  params.Levels = this->SelectionMode == Quality ? this->NumberOfLevels : 1;
+  params.CoarsestQuality = this->CoarsestQualityFactor;
+  std::atomic<bool> abort(false);
+  BuildResult built = BuildSplats(xyz.data(), n, inNormals ? normals.data() : nullptr,
+    params, [&](double f) {
+      this->UpdateProgress(f);
+      abort = this->GetAbortExecute() != 0;
+    },
+    &abort);
+
+  if (this->BuildOctree)
+  {
+    this->SortByOctree(built, output);
+  }
+  Assemble(built, this->Degree, output);
+  // Carry every input array over, MLS-weighted (VTK interpolates each type).
+  if (params.KeepWeights)
+  {
+    vtkPointData* outPD = output->GetPointData();
+    vtkNew<vtkPointData> carried;
+    carried->InterpolateAllocate(input->GetPointData(), static_cast<vtkIdType>(built.Splats.size()));
+    vtkNew<vtkIdList> ids;
+    std::vector<double> w;
+    for (vtkIdType i = 0; i < static_cast<vtkIdType>(built.Splats.size()); ++i)
+    {
+      const BuiltSplat& b = built.Splats[i];
+      ids->SetNumberOfIds(static_cast<vtkIdType>(b.Ids.size()));
+      w.resize(b.Weights.size());
+      double sum = 0.0;
+      for (size_t j = 0; j < b.Weights.size(); ++j)
+      {
+        sum += b.Weights[j];
+      }
+      for (size_t j = 0; j < b.Ids.size(); ++j)
+      {
+        ids->SetId(static_cast<vtkIdType>(j), kept[b.Ids[j]]);
+        w[j] = sum > 0.0 ? b.Weights[j] / sum : 1.0 / b.Ids.size();
+      }
+      carried->InterpolatePoint(input->GetPointData(), i, ids, w.data());
+    }
+    for (int a = 0; a < carried->GetNumberOfArrays(); ++a)
+    {
+      outPD->AddArray(carried->GetAbstractArray(a));
+    }
+    if (carried->GetScalars())
+    {
+      outPD->SetActiveScalars(carried->GetScalars()->GetName());
+    }
+  }
+
+  this->NumberOfDegenerateSplats = built.Degenerate;
+  this->NumberOfReducedDegreeSplats = built.Reduced;
+  if (built.Degenerate > 0)
+  {
+    vtkWarningMacro(<< built.Degenerate
+                    << " positions had degenerate neighbourhoods (duplicates, collinear points) "
+                       "and produced no splat.");
+  }
+  if (built.Reduced > 0)
+  {
+    vtkWarningMacro(<< built.Reduced << " splats were fitted below degree " << this->Degree
+                    << " (rank-deficient neighbourhoods).");
+  }
+  vtkFieldData* fd = output->GetFieldData();
+  AddCount(fd, "SplatInvalidInputPoints", this->NumberOfInvalidPoints);
+  AddCount(fd, "SplatDegeneratePositions", this->NumberOfDegenerateSplats);
+  AddCount(fd, "SplatReducedDegree", this->NumberOfReducedDegreeSplats);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatFitter::SortByOctree(pointsurfaces::BuildResult& built, vtkPolyData* output)
+{
+  const vtkIdType n = static_cast<vtkIdType>(built.Splats.size());
+  std::vector<double> origins(3 * n), radii(n);
+  std::vector<int> levels(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    std::copy(built.Splats[i].Fitted.Frame.Origin, built.Splats[i].Fitted.Frame.Origin + 3,
+      &origins[3 * i]);
+    radii[i] = built.Splats[i].Radius;
+    levels[i] = built.Splats[i].Level;
+  }
+  const int L = static_cast<int>(std::max<size_t>(1, built.LevelQuality.size()));
+  const Octree tree =
+    pointsurfaces::BuildOctree(origins.data(), radii.data(), levels.data(), n, L, this->OctreeBucketSize);
+  std::vector<BuiltSplat> sorted(static_cast<size_t>(n));
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    sorted[k] = std::move(built.Splats[tree.Order[k]]);
+  }
+  built.Splats.swap(sorted);
+
+  const vtkIdType nodes = static_cast<vtkIdType>(tree.Nodes.size());
+  auto bounds = MakeArray<vtkDoubleArray>("OctreeNodeBounds", 6, nodes);
+  auto sphere = MakeArray<vtkDoubleArray>("OctreeNodeSphere", 4, nodes);
+  auto children = MakeArray<vtkIdTypeArray>("OctreeNodeChildren", 2, nodes);
+  auto range = MakeArray<vtkIdTypeArray>("OctreeNodeRange", 2, nodes);
+  auto ends = MakeArray<vtkIdTypeArray>("OctreeNodeLevelEnds", L, nodes);
+  for (vtkIdType id = 0; id < nodes; ++id)
+  {
+    const OctreeNode& node = tree.Nodes[id];
+    bounds->SetTypedTuple(id, node.Bounds);
+    sphere->SetTypedTuple(id, node.Sphere);
+    children->SetTypedComponent(id, 0, node.FirstChild);
+    children->SetTypedComponent(id, 1, node.ChildCount);
+    range->SetTypedComponent(id, 0, node.Begin);
+    range->SetTypedComponent(id, 1, node.End);
+    for (int l = 0; l < L; ++l)
+    {
+      ends->SetTypedComponent(id, l, tree.LevelEnds[id * L + l]);
+    }
+  }
+  vtkFieldData* fd = output->GetFieldData();
+  fd->AddArray(bounds);
+  fd->AddArray(sphere);
+  fd->AddArray(children);
+  fd->AddArray(range);
+  fd->AddArray(ends);
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatFitter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Degree: " << this->Degree << "\n";
+  os << indent << "NumberOfNeighbors: " << this->NumberOfNeighbors << "\n";
+  os << indent << "FeatureSizeNeighbors: " << this->FeatureSizeNeighbors << "\n";
+  os << indent << "WeightScale: " << this->WeightScale << "\n";
+  os << indent << "FitMode: " << this->FitMode << "\n";
+  os << indent << "SelectionMode: " << this->SelectionMode << "\n";
+  os << indent << "QualityFactor: " << this->QualityFactor << "\n";
+  os << indent << "SelectionOrder: " << this->SelectionOrder << "\n";
+  os << indent << "NumberOfSplats: " << this->NumberOfSplats << "\n";
+  os << indent << "LOPVariant: " << this->LOPVariant << "\n";
+  os << indent << "RadiusScale: " << this->RadiusScale << "\n";
+  os << indent << "RandomSeed: " << this->RandomSeed << "\n";
+  os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";
+  os << indent << "CoarsestQualityFactor: " << this->CoarsestQualityFactor << "\n";
+  os << indent << "BuildOctree: " << this->BuildOctree << "\n";
+  os << indent << "OctreeBucketSize: " << this->OctreeBucketSize << "\n";
+}

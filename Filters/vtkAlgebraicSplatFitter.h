@@ -1,0 +1,258 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkAlgebraicSplatFitter
+ * @brief   Replaces a point cloud by algebraic splats: MLS polynomial patches bounded to discs.
+ *
+ * Implements chapter 3 of "Algebraic Splats and Metaballs" (after Levin's MLS
+ * surfaces and Lipman et al.'s LOP). For each selected point r_i it fits a
+ * weighted least-squares reference plane (eq. 3.1), measures the feature size
+ * h_i as the mean distance of the FeatureSizeNeighbors nearest neighbours in
+ * that plane, and fits a bivariate polynomial g of degree 1 to 4 in the
+ * normalised frame (u/h_i, v/h_i, n/h_i) with Gaussian weights
+ * exp(-d^2 / (WeightScale h_i)^2) (eq. 3.2). Splats are always fitted against
+ * the original points.
+ *
+ * Selection:
+ * - `All`: one splat per input point.
+ * - `Quality` (section 3.3.1): a chosen point claims the points within
+ *   s·h_i of it in its parametric domain; `Random` order is the thesis's,
+ *   `Lattice` visits grid-centre points first and yields fewer splats.
+ *   Deterministic for a given RandomSeed.
+ * - `FixedCount` (section 3.3.2): m points seeded from the input, moved to
+ *   convergence by LOP (Lipman et al. 2007) or its density-weighted WLOP
+ *   (Huang et al. 2009), then fitted.
+ *
+ * The output is the splat data model of DESIGN.md section 3: one vertex per
+ * splat at its origin o_i, point arrays SplatNormal, SplatTangent,
+ * SplatFeatureSize, SplatCoefficients (3/6/10/15 components), SplatRadius
+ * (R_i = RadiusScale · s · h_i) and SplatLOD, every input point array carried
+ * over by MLS-weighted averaging, and SplatDegree in the field data.
+ *
+ * Calibration: FeatureSizeNeighbors defaults to 120, which makes h_i about
+ * four point spacings; at s = 1 in random order that reproduces the splat
+ * counts of the thesis's Table 4.7 for the Bunny (1344 against 1315) and
+ * Igea (within 3 %). The thesis's Horse count (6.1 %) implies a smaller h
+ * for that model: FeatureSizeNeighbors = 60 reproduces it.
+ *
+ * Bad input never crashes and never produces NaN: points with NaN or infinite
+ * coordinates are dropped and counted, degenerate neighbourhoods (duplicates,
+ * collinear points) yield no splat and are counted, rank-deficient fits fall
+ * back to a lower degree and are counted; each count is reported with a
+ * warning and kept in the output's field data.
+ */
+#ifndef vtkAlgebraicSplatFitter_h
+#define vtkAlgebraicSplatFitter_h
+
+#include "PointSurfacesFiltersModule.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+
+namespace pointsurfaces
+{
+struct BuildResult;
+}
+
+class POINTSURFACESFILTERS_EXPORT vtkAlgebraicSplatFitter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkAlgebraicSplatFitter* New();
+  vtkTypeMacro(vtkAlgebraicSplatFitter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum FitModes
+  {
+    Linear = 0,
+    Robust = 1,
+    Projected = 2
+  };
+  enum RobustLosses
+  {
+    Huber = 0,
+    Cauchy = 1
+  };
+  enum SelectionModes
+  {
+    All = 0,
+    Quality = 1,
+    FixedCount = 2
+  };
+  enum SelectionOrders
+  {
+    Random = 0,
+    Lattice = 1,
+    Front = 2
+  };
+  enum LOPVariants
+  {
+    LOP = 0,
+    WLOP = 1
+  };
+
+  ///@{
+  /** Polynomial degree, 1 (flat disc) to 4. Default 2. */
+  vtkSetClampMacro(Degree, int, 1, 4);
+  vtkGetMacro(Degree, int);
+  ///@}
+
+  ///@{
+  /** Neighbours in each fit (k). Default 40. */
+  vtkSetClampMacro(NumberOfNeighbors, int, 3, 100000);
+  vtkGetMacro(NumberOfNeighbors, int);
+  ///@}
+
+  ///@{
+  /** Neighbours whose mean in-plane distance is h_i. Default 120 (see the class comment). */
+  vtkSetClampMacro(FeatureSizeNeighbors, int, 1, 100000);
+  vtkGetMacro(FeatureSizeNeighbors, int);
+  ///@}
+
+  ///@{
+  /** Width of the Gaussian weight, in units of h_i. Default 1. */
+  vtkSetClampMacro(WeightScale, double, 1e-3, 1e3);
+  vtkGetMacro(WeightScale, double);
+  ///@}
+
+  ///@{
+  /** Linear (default), Robust (Ceres) or Projected. */
+  vtkSetClampMacro(FitMode, int, Linear, Projected);
+  vtkGetMacro(FitMode, int);
+  ///@}
+
+  ///@{
+  /** Loss of the Robust mode: Huber (default) or Cauchy. */
+  vtkSetClampMacro(RobustLoss, int, Huber, Cauchy);
+  vtkGetMacro(RobustLoss, int);
+  ///@}
+
+  ///@{
+  /** Where the robust loss bends, in units of h_i. Default 0.05. */
+  vtkSetClampMacro(RobustLossScale, double, 1e-6, 1e3);
+  vtkGetMacro(RobustLossScale, double);
+  ///@}
+
+  ///@{
+  /** All, Quality (default) or FixedCount. */
+  vtkSetClampMacro(SelectionMode, int, All, FixedCount);
+  vtkGetMacro(SelectionMode, int);
+  ///@}
+
+  ///@{
+  /** Inverse quality factor s of the Quality selection. Default 1. */
+  vtkSetClampMacro(QualityFactor, double, 1e-3, 1e3);
+  vtkGetMacro(QualityFactor, double);
+  ///@}
+
+  ///@{
+  /**
+   * Visiting order of the Quality selection: Random (default, the thesis's),
+   * Lattice (grid-centre points first) or Front (fronts grown at the spacing
+   * of a hexagonal covering: about 8 % fewer splats at equal error).
+   */
+  vtkSetClampMacro(SelectionOrder, int, Random, Front);
+  vtkGetMacro(SelectionOrder, int);
+  ///@}
+
+  ///@{
+  /** Number of splats m of the FixedCount selection. Default 1000. */
+  vtkSetClampMacro(NumberOfSplats, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(NumberOfSplats, vtkIdType);
+  ///@}
+
+  ///@{
+  /** LOP or WLOP (default) for FixedCount. */
+  vtkSetClampMacro(LOPVariant, int, LOP, WLOP);
+  vtkGetMacro(LOPVariant, int);
+  ///@}
+
+  ///@{
+  /** Maximum LOP iterations. Default 50. */
+  vtkSetClampMacro(LOPIterations, int, 0, 10000);
+  vtkGetMacro(LOPIterations, int);
+  ///@}
+
+  ///@{
+  /** Disc radius R_i = RadiusScale · s · h_i (s = 1 for All and FixedCount). Default 1. */
+  vtkSetClampMacro(RadiusScale, double, 1e-3, 1e3);
+  vtkGetMacro(RadiusScale, double);
+  ///@}
+
+  ///@{
+  /**
+   * Quality levels (section 3.4): K nested levels from CoarsestQualityFactor
+   * (s_0) down to QualityFactor (s_k), linearly. Each splat is tagged in
+   * SplatLOD with the level where it first appears and is fitted once.
+   * Default 1 (a single level); the thesis uses 25 to 50.
+   */
+  vtkSetClampMacro(NumberOfLevels, int, 1, 1000);
+  vtkGetMacro(NumberOfLevels, int);
+  vtkSetClampMacro(CoarsestQualityFactor, double, 1e-3, 1e3);
+  vtkGetMacro(CoarsestQualityFactor, double);
+  ///@}
+
+  ///@{
+  /**
+   * Build the bucketed octree (section 3.5): the splats are reordered by leaf,
+   * then by level, and the nodes are stored in the field data as
+   * OctreeNodeBounds (6), OctreeNodeSphere (4), OctreeNodeChildren (first
+   * child, child count), OctreeNodeRange (begin, end) and
+   * OctreeNodeLevelEnds (one end offset per level), so that a mapper can cull
+   * nodes and draw prefixes. Default on, with buckets of 64 splats.
+   */
+  vtkSetMacro(BuildOctree, bool);
+  vtkGetMacro(BuildOctree, bool);
+  vtkBooleanMacro(BuildOctree, bool);
+  vtkSetClampMacro(OctreeBucketSize, int, 1, 1000000);
+  vtkGetMacro(OctreeBucketSize, int);
+  ///@}
+
+  ///@{
+  /** Seed of every random choice. Default 1. */
+  vtkSetMacro(RandomSeed, unsigned int);
+  vtkGetMacro(RandomSeed, unsigned int);
+  ///@}
+
+  ///@{
+  /** Counts of the last run: dropped input points, neighbourhoods without a splat, fits at a lower degree. */
+  vtkGetMacro(NumberOfInvalidPoints, vtkIdType);
+  vtkGetMacro(NumberOfDegenerateSplats, vtkIdType);
+  vtkGetMacro(NumberOfReducedDegreeSplats, vtkIdType);
+  ///@}
+
+protected:
+  vtkAlgebraicSplatFitter();
+  ~vtkAlgebraicSplatFitter() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  void SortByOctree(pointsurfaces::BuildResult& built, vtkPolyData* output);
+
+  int Degree = 2;
+  int NumberOfNeighbors = 40;
+  int FeatureSizeNeighbors = 120;
+  double WeightScale = 1.0;
+  int FitMode = Linear;
+  int RobustLoss = Huber;
+  double RobustLossScale = 0.05;
+  int SelectionMode = Quality;
+  double QualityFactor = 1.0;
+  int SelectionOrder = Random;
+  vtkIdType NumberOfSplats = 1000;
+  int LOPVariant = WLOP;
+  int LOPIterations = 50;
+  double RadiusScale = 1.0;
+  unsigned int RandomSeed = 1;
+  int NumberOfLevels = 1;
+  double CoarsestQualityFactor = 4.0;
+  bool BuildOctree = true;
+  int OctreeBucketSize = 64;
+
+  vtkIdType NumberOfInvalidPoints = 0;
+  vtkIdType NumberOfDegenerateSplats = 0;
+  vtkIdType NumberOfReducedDegreeSplats = 0;
+
+private:
+  vtkAlgebraicSplatFitter(const vtkAlgebraicSplatFitter&) = delete;
+  void operator=(const vtkAlgebraicSplatFitter&) = delete;
+};
+
+#endif
