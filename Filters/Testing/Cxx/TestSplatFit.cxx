@@ -1,0 +1,389 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+// Unit tests of the splat kernel and the set builder (plain numerics):
+// exact recovery through the whole kernel, convergence order on a sphere,
+// invariance of the whole build under offsets of 1e7 and scales of 1e-6 and
+// 1e6, LOP/WLOP uniformity, the octree's invariants and the error metric
+// against exactly known distances.
+#include "psOctree.h"
+#include "psPointIndex.h"
+#include "psSplatBuilder.h"
+#include "psSplatError.h"
+#include "psSplatFit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <random>
+#include <vector>
+
+using namespace pointsurfaces;
+
+namespace
+{
+int Failures = 0;
+void Check(bool ok, const char* what)
+{
+  if (!ok)
+  {
+    std::cerr << "FAILED: " << what << "\n";
+    ++Failures;
+  }
+}
+
+std::vector<double> FibonacciSphere(int n)
+{
+  std::vector<double> p(3 * n);
+  const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i)
+  {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), t = golden * i;
+    p[3 * i] = r * std::cos(t);
+    p[3 * i + 1] = r * std::sin(t);
+    p[3 * i + 2] = z;
+  }
+  return p;
+}
+
+Splat FitAt(const PointIndex& index, const double* q, const SplatFitParameters& par)
+{
+  std::vector<int> ids;
+  std::vector<double> d2, c;
+  index.Nearest(q, std::max(par.NumberOfNeighbors, par.FeatureSizeNeighbors + 1), ids, d2);
+  c.resize(3 * ids.size());
+  for (size_t j = 0; j < ids.size(); ++j)
+  {
+    std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &c[3 * j]);
+  }
+  return FitSplat(q, c.data(), static_cast<int>(ids.size()), par);
+}
+
+// Largest distance from the unit sphere of the patch, sampled on its disc of radius h.
+double SphereError(const Splat& s)
+{
+  double worst = 0.0;
+  for (double u = -1.0; u <= 1.0; u += 0.25)
+  {
+    for (double v = -1.0; v <= 1.0; v += 0.25)
+    {
+      if (u * u + v * v > 1.0)
+      {
+        continue;
+      }
+      const double g = Evaluate(s.Fit.Coefficients, s.Fit.Degree, u, v);
+      double x[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        x[k] = s.Frame.Origin[k] +
+          s.Frame.Scale * (u * s.Frame.Tangent[k] + v * s.Frame.Bitangent[k] + g * s.Frame.Normal[k]);
+      }
+      worst = std::max(worst, std::abs(std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - 1.0));
+    }
+  }
+  return worst;
+}
+
+void TestConvergenceOrder()
+{
+  // Error of the patches against the exact sphere at spacing h, h/2, h/4 (k
+  // fixed, so the support shrinks with h). Expected order h^(d+1); on a
+  // sphere odd degrees gain one by symmetry: 2, 4, 4, 6.
+  for (int degree = 1; degree <= 4; ++degree)
+  {
+    SplatFitParameters par;
+    par.Degree = degree;
+    par.FeatureSizeNeighbors = 20;
+    double previous = 0.0;
+    for (int n : { 2000, 8000, 32000 })
+    {
+      const std::vector<double> p = FibonacciSphere(n);
+      PointIndex index(p.data(), n);
+      double worst = 0.0;
+      for (int t = 0; t < 100; ++t)
+      {
+        worst = std::max(worst, SphereError(FitAt(index, &p[3 * ((t * 7919LL) % n)], par)));
+      }
+      if (previous > 0.0)
+      {
+        const double rate = std::log2(previous / worst);
+        std::cout << "degree " << degree << ", " << n << " points: max error " << worst
+                  << ", order " << rate << "\n";
+        Check(rate > degree + 1 - 0.2, "the sphere error falls at the rate of the degree");
+      }
+      previous = worst;
+    }
+  }
+}
+
+void TestParaboloidThroughKernel()
+{
+  // z = a (x^2 + y^2) on a symmetric grid: the frame is exactly the xy plane,
+  // so the kernel must return g = a h (u^2 + v^2) - c0 to rounding.
+  const double a = 0.3;
+  std::vector<double> p;
+  for (int i = -6; i <= 6; ++i)
+  {
+    for (int j = -6; j <= 6; ++j)
+    {
+      const double x = 0.1 * i, y = 0.1 * j;
+      p.insert(p.end(), { x, y, a * (x * x + y * y) });
+    }
+  }
+  const int n = static_cast<int>(p.size() / 3);
+  PointIndex index(p.data(), n);
+  SplatFitParameters par;
+  par.NumberOfNeighbors = n;
+  par.FeatureSizeNeighbors = 24;
+  par.WeightScale = 2.0;
+  const double q[3] = { 0, 0, 0 };
+  for (int degree = 2; degree <= 4; ++degree)
+  {
+    par.Degree = degree;
+    const Splat s = FitAt(index, q, par);
+    const double h = s.Frame.Scale;
+    const double* c = s.Fit.Coefficients;
+    const double expected = a * h;
+    bool ok = s.Fit.Status == FitStatus::Ok && std::abs(std::abs(s.Frame.Normal[2]) - 1.0) < 1e-12;
+    ok = ok && std::abs(c[3] - expected) < 1e-9 * expected && std::abs(c[5] - expected) < 1e-9 * expected;
+    ok = ok && std::abs(c[1]) < 1e-9 && std::abs(c[2]) < 1e-9 && std::abs(c[4]) < 1e-9;
+    for (int k = 6; k < MonomialCount(degree); ++k)
+    {
+      ok = ok && std::abs(c[k]) < 1e-9;
+    }
+    Check(ok, "a paraboloid is recovered exactly through the whole kernel");
+  }
+}
+
+std::vector<double> Torus(int n, unsigned seed)
+{
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> uni(0.0, 2.0 * 3.14159265358979323846);
+  std::vector<double> p(3 * n);
+  for (int i = 0; i < n; ++i)
+  {
+    const double s = uni(gen), t = uni(gen), R = 30.0, r = 10.0;
+    p[3 * i] = (R + r * std::cos(t)) * std::cos(s);
+    p[3 * i + 1] = (R + r * std::cos(t)) * std::sin(s);
+    p[3 * i + 2] = r * std::sin(t);
+  }
+  return p;
+}
+
+void TestInvariance()
+{
+  // The same build after translating by 1e7 or scaling by 1e-6 and 1e6.
+  const int n = 8000;
+  const std::vector<double> base = Torus(n, 5u);
+  BuildParameters params;
+  params.VisitOrder = Order::Random;
+  params.Fit.Degree = 3;
+  const BuildResult ref = BuildSplats(base.data(), n, nullptr, params);
+  Check(ref.Splats.size() > 100, "the torus gives splats");
+  const double cases[][2] = { { 1e7, 1.0 }, { 0.0, 1e-6 }, { 0.0, 1e6 } };
+  for (const auto& cs : cases)
+  {
+    std::vector<double> moved(base);
+    for (double& v : moved)
+    {
+      v = v * cs[1] + cs[0];
+    }
+    const BuildResult got = BuildSplats(moved.data(), n, nullptr, params);
+    bool same = got.Splats.size() == ref.Splats.size();
+    double worst = 0.0;
+    for (size_t i = 0; same && i < ref.Splats.size(); ++i)
+    {
+      const Splat& a = ref.Splats[i].Fitted;
+      const Splat& b = got.Splats[i].Fitted;
+      same = ref.Splats[i].Source == got.Splats[i].Source && a.Fit.Degree == b.Fit.Degree;
+      double scale = 0.0;
+      for (int k = 0; k < MonomialCount(a.Fit.Degree); ++k)
+      {
+        scale = std::max(scale, std::abs(a.Fit.Coefficients[k]));
+      }
+      for (int k = 0; k < MonomialCount(a.Fit.Degree); ++k)
+      {
+        worst = std::max(worst, std::abs(a.Fit.Coefficients[k] - b.Fit.Coefficients[k]) / scale);
+      }
+      worst = std::max(worst, std::abs(a.Frame.Scale * cs[1] - b.Frame.Scale) / b.Frame.Scale);
+      for (int k = 0; k < 3; ++k)
+      {
+        worst = std::max(worst,
+          std::abs(a.Frame.Origin[k] * cs[1] + cs[0] - b.Frame.Origin[k]) / b.Frame.Scale);
+      }
+    }
+    std::cout << "offset " << cs[0] << ", scale " << cs[1] << ": " << got.Splats.size()
+              << " splats, largest relative difference " << worst << "\n";
+    Check(same && worst < 1e-6, "identical splats after translation or scaling");
+  }
+}
+
+void TestLOP()
+{
+  // A sphere sampled four times more densely on its northern half. WLOP must
+  // even the density out, LOP must stay on the surface.
+  std::mt19937 gen(3);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<double> p;
+  while (p.size() < 3 * 20000)
+  {
+    double v[3] = { normal(gen), normal(gen), normal(gen) };
+    const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (v[2] < 0 && (gen() % 4) != 0)
+    {
+      continue;
+    }
+    p.insert(p.end(), { v[0] / len, v[1] / len, v[2] / len });
+  }
+  const long long n = static_cast<long long>(p.size() / 3);
+  auto spread = [](const std::vector<double>& x) {
+    // coefficient of variation of nearest-neighbour distances, and radius error
+    const long long m = static_cast<long long>(x.size() / 3);
+    PointIndex index(x.data(), m);
+    std::vector<int> ids;
+    std::vector<double> d2;
+    double sum = 0, sum2 = 0, radial = 0;
+    for (long long i = 0; i < m; ++i)
+    {
+      index.Nearest(&x[3 * i], 2, ids, d2);
+      const double d = std::sqrt(d2[1]);
+      sum += d;
+      sum2 += d * d;
+      radial = std::max(radial,
+        std::abs(std::sqrt(x[3 * i] * x[3 * i] + x[3 * i + 1] * x[3 * i + 1] + x[3 * i + 2] * x[3 * i + 2]) - 1));
+    }
+    const double mean = sum / m;
+    return std::make_pair(std::sqrt(std::max(0.0, sum2 / m - mean * mean)) / mean, radial);
+  };
+  const long long m = 800;
+  std::vector<double> start(3 * m);
+  for (long long i = 0; i < m; ++i)
+  {
+    std::copy(&p[3 * (i * 23 % n)], &p[3 * (i * 23 % n)] + 3, &start[3 * i]);
+  }
+  const auto before = spread(start);
+  for (bool weighted : { false, true })
+  {
+    std::vector<double> x(start);
+    const int steps = LocallyOptimalProjection(p.data(), n, x, weighted, 60);
+    const auto after = spread(x);
+    std::cout << (weighted ? "WLOP" : "LOP") << ": " << steps << " steps, NN-distance variation "
+              << before.first << " -> " << after.first << ", radial error " << after.second << "\n";
+    Check(after.first < 0.75 * before.first, "(W)LOP spreads the samples more evenly");
+    Check(after.second < 0.02, "(W)LOP keeps the samples on the surface");
+  }
+}
+
+void TestOctree()
+{
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  const long long n = 5000;
+  std::vector<double> xyz(3 * n), radius(n);
+  std::vector<int> level(n);
+  for (long long i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      xyz[3 * i + c] = uni(gen);
+    }
+    radius[i] = 0.01 + 0.02 * (uni(gen) + 1.0);
+    level[i] = static_cast<int>(gen() % 5);
+  }
+  // A few coincident origins must not recurse forever.
+  for (long long i = 0; i < 100; ++i)
+  {
+    std::fill(&xyz[3 * i], &xyz[3 * i] + 3, 0.5);
+  }
+  const Octree tree = BuildOctree(xyz.data(), radius.data(), level.data(), n, 5, 32);
+  bool ok = tree.Nodes[0].Begin == 0 && tree.Nodes[0].End == n;
+  std::vector<long long> seen(tree.Order);
+  std::sort(seen.begin(), seen.end());
+  for (long long i = 0; i < n; ++i)
+  {
+    ok = ok && seen[i] == i;
+  }
+  for (size_t id = 0; id < tree.Nodes.size(); ++id)
+  {
+    const OctreeNode& node = tree.Nodes[id];
+    if (node.ChildCount > 0)
+    {
+      long long next = node.Begin;
+      for (int c = 0; c < node.ChildCount; ++c)
+      {
+        const OctreeNode& child = tree.Nodes[node.FirstChild + c];
+        ok = ok && child.Begin == next && child.Depth == node.Depth + 1;
+        next = child.End;
+      }
+      ok = ok && next == node.End;
+    }
+    else
+    {
+      for (long long k = node.Begin + 1; k < node.End; ++k)
+      {
+        ok = ok && level[tree.Order[k - 1]] <= level[tree.Order[k]];
+      }
+      for (int l = 1; l < 5; ++l)
+      {
+        ok = ok && tree.LevelEnds[id * 5 + l - 1] <= tree.LevelEnds[id * 5 + l];
+      }
+      ok = ok && tree.LevelEnds[id * 5 + 4] == node.End;
+    }
+    for (long long k = node.Begin; k < node.End; ++k)
+    {
+      const long long i = tree.Order[k];
+      double d2 = 0.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        ok = ok && xyz[3 * i + c] - radius[i] >= node.Bounds[2 * c] - 1e-12 &&
+          xyz[3 * i + c] + radius[i] <= node.Bounds[2 * c + 1] + 1e-12;
+        d2 += (xyz[3 * i + c] - node.Sphere[c]) * (xyz[3 * i + c] - node.Sphere[c]);
+      }
+      ok = ok && std::sqrt(d2) + radius[i] <= node.Sphere[3] + 1e-12;
+    }
+  }
+  Check(ok, "octree ranges, children, level order, bounds and spheres");
+}
+
+void TestErrorMetric()
+{
+  // One flat splat (z = 0.5 h) and points at known heights above it.
+  const double origin[3] = { 0, 0, 0 }, normal[3] = { 0, 0, 1 }, tangent[3] = { 1, 0, 0 };
+  const double scale = 2.0, radius = 4.0;
+  const double coeffs[3] = { 0.25, 0.0, 0.0 }; // g = 0.25 in units of h: z = 0.5
+  SplatArrays s;
+  s.Origin = origin;
+  s.Normal = normal;
+  s.Tangent = tangent;
+  s.Scale = &scale;
+  s.Radius = &radius;
+  s.Coefficients = coeffs;
+  s.Degree = 1;
+  s.Count = 1;
+  const double pts[] = { 1.0, 1.0, 0.5, -2.0, 0.0, 1.5, 0.0, 3.0, -0.25, 10.0, 0.0, 0.5 };
+  std::vector<double> delta, distance;
+  std::vector<int> covering;
+  const ErrorSummary sum = EvaluateSplatError(s, pts, 4, delta, distance, covering);
+  Check(std::abs(distance[0]) < 1e-12 && std::abs(distance[1] - 1.0) < 1e-12 &&
+      std::abs(distance[2] - 0.75) < 1e-12,
+    "distances to a flat splat");
+  Check(covering[0] == 1 && covering[3] == 0 && sum.Uncovered == 1, "the point outside the disc is uncovered");
+  Check(std::abs(sum.Maximum - 1.0) < 1e-12, "maximum distance");
+}
+} // namespace
+
+int TestSplatFit(int, char*[])
+{
+  TestParaboloidThroughKernel();
+  TestConvergenceOrder();
+  TestInvariance();
+  TestLOP();
+  TestOctree();
+  TestErrorMetric();
+  if (Failures)
+  {
+    std::cerr << Failures << " checks failed\n";
+    return EXIT_FAILURE;
+  }
+  return EXIT_SUCCESS;
+}
