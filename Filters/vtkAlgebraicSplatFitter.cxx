@@ -31,7 +31,7 @@ namespace
 {
 using namespace pointsurfaces;
 
-template <typename T>
+template<typename T>
 vtkNew<T> MakeArray(const char* name, int components, vtkIdType tuples)
 {
   vtkNew<T> a;
@@ -73,7 +73,8 @@ void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
     // Lower-degree fallbacks keep zeros in the higher coefficients.
     for (int c = 0; c < m; ++c)
     {
-      coeffs->SetTypedComponent(i, c, c < MonomialCount(s.Fit.Degree) ? s.Fit.Coefficients[c] : 0.0);
+      coeffs->SetTypedComponent(
+        i, c, c < MonomialCount(s.Fit.Degree) ? s.Fit.Coefficients[c] : 0.0);
     }
     radius->SetValue(i, built.Splats[i].Radius);
     lod->SetValue(i, built.Splats[i].Level);
@@ -94,9 +95,12 @@ void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
   verts->SetData(offsets, connectivity);
   output->SetVerts(verts);
   vtkPointData* pd = output->GetPointData();
-  for (vtkDataArray* a : { static_cast<vtkDataArray*>(normal), static_cast<vtkDataArray*>(tangent),
-         static_cast<vtkDataArray*>(size), static_cast<vtkDataArray*>(coeffs),
-         static_cast<vtkDataArray*>(radius), static_cast<vtkDataArray*>(lod) })
+  for (vtkDataArray* a : { static_cast<vtkDataArray*>(normal),
+         static_cast<vtkDataArray*>(tangent),
+         static_cast<vtkDataArray*>(size),
+         static_cast<vtkDataArray*>(coeffs),
+         static_cast<vtkDataArray*>(radius),
+         static_cast<vtkDataArray*>(lod) })
   {
     pd->AddArray(a);
   }
@@ -125,8 +129,9 @@ int vtkAlgebraicSplatFitter::FillInputPortInformation(int, vtkInformation* info)
 }
 
 //------------------------------------------------------------------------------
-int vtkAlgebraicSplatFitter::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
@@ -197,8 +202,13 @@ int vtkAlgebraicSplatFitter::RequestData(
   params.Levels = this->SelectionMode == Quality ? this->NumberOfLevels : 1;
   params.CoarsestQuality = this->CoarsestQualityFactor;
   std::atomic<bool> abort(false);
-  BuildResult built = BuildSplats(xyz.data(), n, inNormals ? normals.data() : nullptr,
-    params, [&](double f) {
+  BuildResult built = BuildSplats(
+    xyz.data(),
+    n,
+    inNormals ? normals.data() : nullptr,
+    params,
+    [&](double f)
+    {
       this->UpdateProgress(f);
       abort = this->GetAbortExecute() != 0;
     },
@@ -214,7 +224,8 @@ int vtkAlgebraicSplatFitter::RequestData(
   {
     vtkPointData* outPD = output->GetPointData();
     vtkNew<vtkPointData> carried;
-    carried->InterpolateAllocate(input->GetPointData(), static_cast<vtkIdType>(built.Splats.size()));
+    carried->InterpolateAllocate(
+      input->GetPointData(), static_cast<vtkIdType>(built.Splats.size()));
     vtkNew<vtkIdList> ids;
     std::vector<double> w;
     for (vtkIdType i = 0; i < static_cast<vtkIdType>(built.Splats.size()); ++i)
@@ -272,14 +283,15 @@ void vtkAlgebraicSplatFitter::SortByOctree(pointsurfaces::BuildResult& built, vt
   std::vector<int> levels(n);
   for (vtkIdType i = 0; i < n; ++i)
   {
-    std::copy(built.Splats[i].Fitted.Frame.Origin, built.Splats[i].Fitted.Frame.Origin + 3,
+    std::copy(built.Splats[i].Fitted.Frame.Origin,
+      built.Splats[i].Fitted.Frame.Origin + 3,
       &origins[3 * i]);
     radii[i] = built.Splats[i].Radius;
     levels[i] = built.Splats[i].Level;
   }
   const int L = static_cast<int>(std::max<size_t>(1, built.LevelQuality.size()));
-  const Octree tree =
-    pointsurfaces::BuildOctree(origins.data(), radii.data(), levels.data(), n, L, this->OctreeBucketSize);
+  const Octree tree = pointsurfaces::BuildOctree(
+    origins.data(), radii.data(), levels.data(), n, L, this->OctreeBucketSize);
   std::vector<BuiltSplat> sorted(static_cast<size_t>(n));
   for (vtkIdType k = 0; k < n; ++k)
   {

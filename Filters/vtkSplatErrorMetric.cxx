@@ -27,7 +27,11 @@ vtkStandardNewMacro(vtkSplatErrorMetric);
 
 namespace
 {
-bool Fetch(vtkPointData* pd, const char* name, int components, vtkIdType n, std::vector<double>& out)
+bool Fetch(vtkPointData* pd,
+  const char* name,
+  int components,
+  vtkIdType n,
+  std::vector<double>& out)
 {
   vtkDataArray* a = pd->GetArray(name);
   if (!a || a->GetNumberOfComponents() != components || a->GetNumberOfTuples() != n)
@@ -65,8 +69,9 @@ int vtkSplatErrorMetric::FillInputPortInformation(int port, vtkInformation* info
 }
 
 //------------------------------------------------------------------------------
-int vtkSplatErrorMetric::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkSplatErrorMetric::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkPointSet* points = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* splats = vtkPolyData::GetData(inputVector[1]);
@@ -84,7 +89,8 @@ int vtkSplatErrorMetric::RequestData(
     Fetch(splats->GetPointData(), "SplatTangent", 3, m, tangent) &&
     Fetch(splats->GetPointData(), "SplatFeatureSize", 1, m, scale) &&
     Fetch(splats->GetPointData(), "SplatRadius", 1, m, radius) &&
-    Fetch(splats->GetPointData(), "SplatCoefficients", pointsurfaces::MonomialCount(degree), m, coeffs);
+    Fetch(
+      splats->GetPointData(), "SplatCoefficients", pointsurfaces::MonomialCount(degree), m, coeffs);
   if (!valid)
   {
     vtkErrorMacro(<< "Input 1 is not a splat set: it needs points, SplatDegree in the field data "

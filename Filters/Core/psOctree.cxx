@@ -41,7 +41,8 @@ struct Builder
     for (long long k = node.Begin; k < node.End; ++k)
     {
       const long long i = this->Tree.Order[k];
-      const double dx = this->XYZ[3 * i] - node.Sphere[0], dy = this->XYZ[3 * i + 1] - node.Sphere[1],
+      const double dx = this->XYZ[3 * i] - node.Sphere[0],
+                   dy = this->XYZ[3 * i + 1] - node.Sphere[1],
                    dz = this->XYZ[3 * i + 2] - node.Sphere[2];
       r = std::max(r, std::sqrt(dx * dx + dy * dy + dz * dz) + this->Radius[i]);
     }
@@ -56,7 +57,8 @@ struct Builder
     auto last = this->Tree.Order.begin() + node.End;
     if (count <= this->Bucket || node.Depth >= this->MaxDepth)
     {
-      std::stable_sort(first, last, [&](long long a, long long b) { return this->Level[a] < this->Level[b]; });
+      std::stable_sort(
+        first, last, [&](long long a, long long b) { return this->Level[a] < this->Level[b]; });
       return;
     }
     double mean[3] = { 0, 0, 0 };
@@ -71,7 +73,8 @@ struct Builder
     {
       mean[c] /= static_cast<double>(count);
     }
-    auto octant = [&](long long i) {
+    auto octant = [&](long long i)
+    {
       return (this->XYZ[3 * i] > mean[0] ? 1 : 0) | (this->XYZ[3 * i + 1] > mean[1] ? 2 : 0) |
         (this->XYZ[3 * i + 2] > mean[2] ? 4 : 0);
     };
@@ -79,7 +82,8 @@ struct Builder
     // Coincident origins cannot be separated: keep them in one leaf.
     if (octant(*first) == octant(*(last - 1)))
     {
-      std::stable_sort(first, last, [&](long long a, long long b) { return this->Level[a] < this->Level[b]; });
+      std::stable_sort(
+        first, last, [&](long long a, long long b) { return this->Level[a] < this->Level[b]; });
       return;
     }
     std::vector<std::pair<long long, long long>> ranges;
@@ -112,8 +116,13 @@ struct Builder
 };
 } // namespace
 
-Octree BuildOctree(const double* xyz, const double* radius, const int* level, long long n,
-  int levels, int bucket, int maxDepth)
+Octree BuildOctree(const double* xyz,
+  const double* radius,
+  const int* level,
+  long long n,
+  int levels,
+  int bucket,
+  int maxDepth)
 {
   Builder b{ xyz, radius, level, std::max(1, bucket), maxDepth, Octree() };
   b.Tree.Levels = std::max(1, levels);

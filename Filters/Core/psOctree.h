@@ -33,18 +33,23 @@ struct OctreeNode
 
 struct Octree
 {
-  std::vector<OctreeNode> Nodes;     ///< node 0 is the root
-  std::vector<long long> Order;      ///< output position -> input splat index
+  std::vector<OctreeNode> Nodes; ///< node 0 is the root
+  std::vector<long long> Order;  ///< output position -> input splat index
   int Levels = 1;
-  std::vector<long long> LevelEnds;  ///< per node, Levels values: end of each level's prefix
+  std::vector<long long> LevelEnds; ///< per node, Levels values: end of each level's prefix
 };
 
 /**
  * Build the octree of `n` splats with origins `xyz`, disc radii `radius` and
  * levels `level` (0 = coarsest, < levels).
  */
-POINTSURFACESFILTERS_EXPORT Octree BuildOctree(const double* xyz, const double* radius,
-  const int* level, long long n, int levels, int bucket = 64, int maxDepth = 21);
+POINTSURFACESFILTERS_EXPORT Octree BuildOctree(const double* xyz,
+  const double* radius,
+  const int* level,
+  long long n,
+  int levels,
+  int bucket = 64,
+  int maxDepth = 21);
 } // namespace pointsurfaces
 
 #endif

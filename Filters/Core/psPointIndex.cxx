@@ -82,7 +82,10 @@ void PointIndex::Finish(const double q[3], std::vector<int>& ids, std::vector<do
   d2.swap(sortedD2);
 }
 
-void PointIndex::Nearest(const double q[3], int k, std::vector<int>& ids, std::vector<double>& d2) const
+void PointIndex::Nearest(const double q[3],
+  int k,
+  std::vector<int>& ids,
+  std::vector<double>& d2) const
 {
   ids.clear();
   d2.clear();
@@ -102,8 +105,10 @@ void PointIndex::Nearest(const double q[3], int k, std::vector<int>& ids, std::v
   this->Finish(q, ids, d2);
 }
 
-void PointIndex::Within(
-  const double q[3], double radius, std::vector<int>& ids, std::vector<double>& d2) const
+void PointIndex::Within(const double q[3],
+  double radius,
+  std::vector<int>& ids,
+  std::vector<double>& d2) const
 {
   ids.clear();
   d2.clear();

@@ -40,8 +40,10 @@ public:
   void Nearest(const double q[3], int k, std::vector<int>& ids, std::vector<double>& d2) const;
 
   /** All points within `radius` of q, sorted by distance. */
-  void Within(
-    const double q[3], double radius, std::vector<int>& ids, std::vector<double>& d2) const;
+  void Within(const double q[3],
+    double radius,
+    std::vector<int>& ids,
+    std::vector<double>& d2) const;
 
 private:
   void Finish(const double q[3], std::vector<int>& ids, std::vector<double>& d2) const;

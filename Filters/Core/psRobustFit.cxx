@@ -26,7 +26,9 @@ struct HeightResidual : public ceres::CostFunction
     this->mutable_parameter_block_sizes()->push_back(m);
   }
 
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override
+  bool Evaluate(double const* const* parameters,
+    double* residuals,
+    double** jacobians) const override
   {
     const double* c = parameters[0];
     double g = 0.0;
@@ -51,9 +53,15 @@ struct HeightResidual : public ceres::CostFunction
 };
 } // namespace
 
-PolynomialFit FitPolynomialRobust(const double* points, const double* w, int n,
-  const LocalFrame& frame, const PolynomialFit& initial, RobustLoss loss, double lossScale,
-  int maxIterations, int* iterations)
+PolynomialFit FitPolynomialRobust(const double* points,
+  const double* w,
+  int n,
+  const LocalFrame& frame,
+  const PolynomialFit& initial,
+  RobustLoss loss,
+  double lossScale,
+  int maxIterations,
+  int* iterations)
 {
   if (initial.Degree < 1 || !(lossScale > 0.0))
   {
@@ -85,15 +93,18 @@ PolynomialFit FitPolynomialRobust(const double* points, const double* w, int n,
     {
       continue;
     }
-    const double d[3] = { points[3 * i] - frame.Origin[0], points[3 * i + 1] - frame.Origin[1],
+    const double d[3] = { points[3 * i] - frame.Origin[0],
+      points[3 * i + 1] - frame.Origin[1],
       points[3 * i + 2] - frame.Origin[2] };
-    const double u = (d[0] * frame.Tangent[0] + d[1] * frame.Tangent[1] + d[2] * frame.Tangent[2]) * inv;
+    const double u =
+      (d[0] * frame.Tangent[0] + d[1] * frame.Tangent[1] + d[2] * frame.Tangent[2]) * inv;
     const double v =
       (d[0] * frame.Bitangent[0] + d[1] * frame.Bitangent[1] + d[2] * frame.Bitangent[2]) * inv;
     const double height =
       (d[0] * frame.Normal[0] + d[1] * frame.Normal[1] + d[2] * frame.Normal[2]) * inv;
     Monomials(u, v, degree, row);
-    problem.AddResidualBlock(new HeightResidual(row, m, std::sqrt(wi), height), rho.get(), c.data());
+    problem.AddResidualBlock(
+      new HeightResidual(row, m, std::sqrt(wi), height), rho.get(), c.data());
     ++used;
   }
   if (used < m)

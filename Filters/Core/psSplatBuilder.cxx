@@ -24,8 +24,12 @@ struct Position
 };
 
 // The neighbour coordinates of q, gathered contiguously.
-void Gather(const PointIndex& index, const double q[3], int k, std::vector<int>& ids,
-  std::vector<double>& d2, std::vector<double>& coords)
+void Gather(const PointIndex& index,
+  const double q[3],
+  int k,
+  std::vector<int>& ids,
+  std::vector<double>& d2,
+  std::vector<double>& coords)
 {
   index.Nearest(q, k, ids, d2);
   coords.resize(3 * ids.size());
@@ -60,8 +64,13 @@ double MeanSpacing(const PointIndex& index, unsigned int seed)
 }
 } // namespace
 
-int LocallyOptimalProjection(const double* p, long long n, std::vector<double>& x, bool weighted,
-  int iterations, double h, double mu)
+int LocallyOptimalProjection(const double* p,
+  long long n,
+  std::vector<double>& x,
+  bool weighted,
+  int iterations,
+  double h,
+  double mu)
 {
   const long long m = static_cast<long long>(x.size() / 3);
   if (n == 0 || m == 0)
@@ -82,20 +91,23 @@ int LocallyOptimalProjection(const double* p, long long n, std::vector<double>& 
   std::vector<double> v(static_cast<size_t>(n), 1.0);
   if (weighted)
   {
-    vtkSMPTools::For(0, n, [&](long long begin, long long end) {
-      std::vector<int> ids;
-      std::vector<double> d2;
-      for (long long j = begin; j < end; ++j)
+    vtkSMPTools::For(0,
+      n,
+      [&](long long begin, long long end)
       {
-        data.Within(data.Point(j), h, ids, d2);
-        double s = 1.0;
-        for (double e : d2)
+        std::vector<int> ids;
+        std::vector<double> d2;
+        for (long long j = begin; j < end; ++j)
         {
-          s += e > 0.0 ? theta(e) : 0.0;
+          data.Within(data.Point(j), h, ids, d2);
+          double s = 1.0;
+          for (double e : d2)
+          {
+            s += e > 0.0 ? theta(e) : 0.0;
+          }
+          v[j] = s;
         }
-        v[j] = s;
-      }
-    });
+      });
   }
 
   std::vector<double> next(x.size());
@@ -106,76 +118,82 @@ int LocallyOptimalProjection(const double* p, long long n, std::vector<double>& 
     std::vector<double> w(static_cast<size_t>(m), 1.0);
     if (weighted)
     {
-      vtkSMPTools::For(0, m, [&](long long begin, long long end) {
+      vtkSMPTools::For(0,
+        m,
+        [&](long long begin, long long end)
+        {
+          std::vector<int> ids;
+          std::vector<double> d2;
+          for (long long i = begin; i < end; ++i)
+          {
+            samples.Within(&x[3 * i], h, ids, d2);
+            double s = 1.0;
+            for (double e : d2)
+            {
+              s += e > 0.0 ? theta(e) : 0.0;
+            }
+            w[i] = s;
+          }
+        });
+    }
+    std::vector<double> moved(static_cast<size_t>(m), 0.0);
+    vtkSMPTools::For(0,
+      m,
+      [&](long long begin, long long end)
+      {
         std::vector<int> ids;
         std::vector<double> d2;
         for (long long i = begin; i < end; ++i)
         {
-          samples.Within(&x[3 * i], h, ids, d2);
-          double s = 1.0;
-          for (double e : d2)
+          const double* xi = &x[3 * i];
+          // Attraction to the data.
+          double attract[3] = { 0, 0, 0 }, asum = 0.0;
+          data.Within(xi, h, ids, d2);
+          for (size_t j = 0; j < ids.size(); ++j)
           {
-            s += e > 0.0 ? theta(e) : 0.0;
+            const double r = std::max(std::sqrt(d2[j]), 1e-12 * h);
+            const double a = theta(d2[j]) / r / v[ids[j]];
+            const double* pj = data.Point(ids[j]);
+            for (int c = 0; c < 3; ++c)
+            {
+              attract[c] += a * pj[c];
+            }
+            asum += a;
           }
-          w[i] = s;
+          // Repulsion from the other samples.
+          double repel[3] = { 0, 0, 0 }, rsum = 0.0;
+          samples.Within(xi, h, ids, d2);
+          for (size_t j = 0; j < ids.size(); ++j)
+          {
+            if (ids[j] == i || d2[j] <= 0.0)
+            {
+              continue;
+            }
+            const double r = std::sqrt(d2[j]);
+            // LOP: eta = 1/(3 r^3), |eta'| = 1/r^4; WLOP: eta = -r, |eta'| = 1.
+            const double deta = weighted ? w[ids[j]] : 1.0 / (d2[j] * d2[j]);
+            const double b = theta(d2[j]) * deta / r;
+            const double* xj = &x[3 * ids[j]];
+            for (int c = 0; c < 3; ++c)
+            {
+              repel[c] += b * (xi[c] - xj[c]);
+            }
+            rsum += b;
+          }
+          double shift2 = 0.0;
+          for (int c = 0; c < 3; ++c)
+          {
+            double value = asum > 0.0 ? attract[c] / asum : xi[c];
+            if (rsum > 0.0)
+            {
+              value += mu * repel[c] / rsum;
+            }
+            next[3 * i + c] = value;
+            shift2 += (value - xi[c]) * (value - xi[c]);
+          }
+          moved[i] = shift2;
         }
       });
-    }
-    std::vector<double> moved(static_cast<size_t>(m), 0.0);
-    vtkSMPTools::For(0, m, [&](long long begin, long long end) {
-      std::vector<int> ids;
-      std::vector<double> d2;
-      for (long long i = begin; i < end; ++i)
-      {
-        const double* xi = &x[3 * i];
-        // Attraction to the data.
-        double attract[3] = { 0, 0, 0 }, asum = 0.0;
-        data.Within(xi, h, ids, d2);
-        for (size_t j = 0; j < ids.size(); ++j)
-        {
-          const double r = std::max(std::sqrt(d2[j]), 1e-12 * h);
-          const double a = theta(d2[j]) / r / v[ids[j]];
-          const double* pj = data.Point(ids[j]);
-          for (int c = 0; c < 3; ++c)
-          {
-            attract[c] += a * pj[c];
-          }
-          asum += a;
-        }
-        // Repulsion from the other samples.
-        double repel[3] = { 0, 0, 0 }, rsum = 0.0;
-        samples.Within(xi, h, ids, d2);
-        for (size_t j = 0; j < ids.size(); ++j)
-        {
-          if (ids[j] == i || d2[j] <= 0.0)
-          {
-            continue;
-          }
-          const double r = std::sqrt(d2[j]);
-          // LOP: eta = 1/(3 r^3), |eta'| = 1/r^4; WLOP: eta = -r, |eta'| = 1.
-          const double deta = weighted ? w[ids[j]] : 1.0 / (d2[j] * d2[j]);
-          const double b = theta(d2[j]) * deta / r;
-          const double* xj = &x[3 * ids[j]];
-          for (int c = 0; c < 3; ++c)
-          {
-            repel[c] += b * (xi[c] - xj[c]);
-          }
-          rsum += b;
-        }
-        double shift2 = 0.0;
-        for (int c = 0; c < 3; ++c)
-        {
-          double value = asum > 0.0 ? attract[c] / asum : xi[c];
-          if (rsum > 0.0)
-          {
-            value += mu * repel[c] / rsum;
-          }
-          next[3 * i + c] = value;
-          shift2 += (value - xi[c]) * (value - xi[c]);
-        }
-        moved[i] = shift2;
-      }
-    });
     x.swap(next);
     const double largest = *std::max_element(moved.begin(), moved.end());
     if (largest < (1e-4 * h) * (1e-4 * h))
@@ -187,8 +205,11 @@ int LocallyOptimalProjection(const double* p, long long n, std::vector<double>& 
   return step;
 }
 
-BuildResult BuildSplats(const double* xyz, long long n, const double* normals,
-  const BuildParameters& params, const std::function<void(double)>& progress,
+BuildResult BuildSplats(const double* xyz,
+  long long n,
+  const double* normals,
+  const BuildParameters& params,
+  const std::function<void(double)>& progress,
   const std::atomic<bool>* abort)
 {
   BuildResult result;
@@ -196,7 +217,8 @@ BuildResult BuildSplats(const double* xyz, long long n, const double* normals,
   {
     return result;
   }
-  auto report = [&](double f) {
+  auto report = [&](double f)
+  {
     if (progress)
     {
       progress(f);
@@ -209,7 +231,8 @@ BuildResult BuildSplats(const double* xyz, long long n, const double* normals,
   fit.FeatureSizeNeighbors = static_cast<int>(std::min<long long>(fit.FeatureSizeNeighbors, n - 1));
   const int kAll = std::max(fit.NumberOfNeighbors, fit.FeatureSizeNeighbors + 1);
 
-  FrameFunction frameOf = [&](long long i, LocalFrame& frame) {
+  FrameFunction frameOf = [&](long long i, LocalFrame& frame)
+  {
     thread_local std::vector<int> ids;
     thread_local std::vector<double> d2, coords;
     Gather(index, index.Point(i), kAll, ids, d2, coords);
@@ -231,7 +254,8 @@ BuildResult BuildSplats(const double* xyz, long long n, const double* normals,
     positions.resize(static_cast<size_t>(n));
     for (long long i = 0; i < n; ++i)
     {
-      positions[i] = Position{ { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] }, i, 0, params.Quality };
+      positions[i] =
+        Position{ { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] }, i, 0, params.Quality };
     }
     result.LevelQuality.push_back(params.Quality);
   }
@@ -278,9 +302,15 @@ BuildResult BuildSplats(const double* xyz, long long n, const double* normals,
         }
       }
       std::vector<LocalFrame> frames;
-      const std::vector<long long> chosen =
-        SelectByQuality(index, s, order, frameOf, state, frames, chosenAll, framesAll,
-          params.VisitOrder == Order::Front);
+      const std::vector<long long> chosen = SelectByQuality(index,
+        s,
+        order,
+        frameOf,
+        state,
+        frames,
+        chosenAll,
+        framesAll,
+        params.VisitOrder == Order::Front);
       for (size_t j = 0; j < chosen.size(); ++j)
       {
         const double* p = index.Point(chosen[j]);
@@ -317,29 +347,36 @@ BuildResult BuildSplats(const double* xyz, long long n, const double* normals,
   const long long count = static_cast<long long>(positions.size());
   std::vector<BuiltSplat> built(static_cast<size_t>(count));
   std::vector<char> ok(static_cast<size_t>(count), 0);
-  vtkSMPTools::For(0, count, [&](long long begin, long long end) {
-    std::vector<int> ids;
-    std::vector<double> d2, coords, w;
-    for (long long k = begin; k < end && !aborted(); ++k)
+  vtkSMPTools::For(0,
+    count,
+    [&](long long begin, long long end)
     {
-      const Position& pos = positions[k];
-      Gather(index, pos.Q, kAll, ids, d2, coords);
-      const long long orientFrom = pos.Source >= 0 ? pos.Source : (ids.empty() ? -1 : ids[0]);
-      const double* orientation = normals && orientFrom >= 0 ? normals + 3 * orientFrom : nullptr;
-      BuiltSplat& b = built[k];
-      b.Fitted = FitSplat(pos.Q, coords.data(), static_cast<int>(ids.size()), fit, orientation,
-        params.KeepWeights ? &w : nullptr);
-      b.Level = pos.Level;
-      b.Source = pos.Source;
-      b.Radius = params.RadiusScale * pos.S * b.Fitted.Frame.Scale;
-      ok[k] = b.Fitted.Fit.Degree > 0;
-      if (ok[k] && params.KeepWeights)
+      std::vector<int> ids;
+      std::vector<double> d2, coords, w;
+      for (long long k = begin; k < end && !aborted(); ++k)
       {
-        b.Ids.assign(ids.begin(), ids.begin() + w.size());
-        b.Weights.assign(w.begin(), w.end());
+        const Position& pos = positions[k];
+        Gather(index, pos.Q, kAll, ids, d2, coords);
+        const long long orientFrom = pos.Source >= 0 ? pos.Source : (ids.empty() ? -1 : ids[0]);
+        const double* orientation = normals && orientFrom >= 0 ? normals + 3 * orientFrom : nullptr;
+        BuiltSplat& b = built[k];
+        b.Fitted = FitSplat(pos.Q,
+          coords.data(),
+          static_cast<int>(ids.size()),
+          fit,
+          orientation,
+          params.KeepWeights ? &w : nullptr);
+        b.Level = pos.Level;
+        b.Source = pos.Source;
+        b.Radius = params.RadiusScale * pos.S * b.Fitted.Frame.Scale;
+        ok[k] = b.Fitted.Fit.Degree > 0;
+        if (ok[k] && params.KeepWeights)
+        {
+          b.Ids.assign(ids.begin(), ids.begin() + w.size());
+          b.Weights.assign(w.begin(), w.end());
+        }
       }
-    }
-  });
+    });
   report(0.9);
 
   if (params.Select == Selection::FixedCount && count > 1)
@@ -351,22 +388,25 @@ BuildResult BuildSplats(const double* xyz, long long n, const double* normals,
       std::copy(positions[k].Q, positions[k].Q + 3, &centres[3 * k]);
     }
     PointIndex decimated(centres.data(), count);
-    vtkSMPTools::For(0, count, [&](long long begin, long long end) {
-      std::vector<int> ids;
-      std::vector<double> d2, near;
-      for (long long k = begin; k < end; ++k)
+    vtkSMPTools::For(0,
+      count,
+      [&](long long begin, long long end)
       {
-        decimated.Nearest(&centres[3 * k], 7, ids, d2);
-        near.resize(3 * ids.size());
-        for (size_t j = 0; j < ids.size(); ++j)
+        std::vector<int> ids;
+        std::vector<double> d2, near;
+        for (long long k = begin; k < end; ++k)
         {
-          std::copy(&centres[3 * ids[j]], &centres[3 * ids[j]] + 3, &near[3 * j]);
+          decimated.Nearest(&centres[3 * k], 7, ids, d2);
+          near.resize(3 * ids.size());
+          for (size_t j = 0; j < ids.size(); ++j)
+          {
+            std::copy(&centres[3 * ids[j]], &centres[3 * ids[j]] + 3, &near[3 * j]);
+          }
+          const double hd = FeatureSize(
+            &centres[3 * k], built[k].Fitted.Frame, near.data(), static_cast<int>(ids.size()), 6);
+          built[k].Radius = params.RadiusScale * (hd > 0.0 ? hd : built[k].Fitted.Frame.Scale);
         }
-        const double hd = FeatureSize(
-          &centres[3 * k], built[k].Fitted.Frame, near.data(), static_cast<int>(ids.size()), 6);
-        built[k].Radius = params.RadiusScale * (hd > 0.0 ? hd : built[k].Fitted.Frame.Scale);
-      }
-    });
+      });
   }
 
   for (long long k = 0; k < count; ++k)
@@ -379,7 +419,8 @@ BuildResult BuildSplats(const double* xyz, long long n, const double* normals,
     result.Reduced += built[k].Fitted.Fit.Status == FitStatus::ReducedDegree ? 1 : 0;
     result.Splats.push_back(std::move(built[k]));
   }
-  std::stable_sort(result.Splats.begin(), result.Splats.end(),
+  std::stable_sort(result.Splats.begin(),
+    result.Splats.end(),
     [](const BuiltSplat& a, const BuiltSplat& b) { return a.Level < b.Level; });
   report(1.0);
   return result;

@@ -31,26 +31,26 @@ enum class Selection
 
 enum class Order
 {
-  Random = 0, ///< the thesis's order
+  Random = 0,  ///< the thesis's order
   Lattice = 1, ///< grid-centre points first
-  Front = 2   ///< grow fronts at hexagonal-covering spacing: fewest splats
+  Front = 2    ///< grow fronts at hexagonal-covering spacing: fewest splats
 };
 
 struct BuildParameters
 {
   SplatFitParameters Fit;
   Selection Select = Selection::Quality;
-  double Quality = 1.0;          ///< s, the finest level's when Levels > 1
-  double CoarsestQuality = 1.0;  ///< s_0 when Levels > 1
-  int Levels = 1;                ///< K nested quality levels from s_0 down to s
+  double Quality = 1.0;         ///< s, the finest level's when Levels > 1
+  double CoarsestQuality = 1.0; ///< s_0 when Levels > 1
+  int Levels = 1;               ///< K nested quality levels from s_0 down to s
   Order VisitOrder = Order::Lattice;
-  double LatticeSpacing = 1.6;   ///< Lattice cell, in units of s times the median h
-  long long Count = 1000;        ///< m of FixedCount
-  bool Weighted = true;          ///< FixedCount: WLOP (true) or LOP
+  double LatticeSpacing = 1.6; ///< Lattice cell, in units of s times the median h
+  long long Count = 1000;      ///< m of FixedCount
+  bool Weighted = true;        ///< FixedCount: WLOP (true) or LOP
   int LOPIterations = 50;
   unsigned int Seed = 1;
-  double RadiusScale = 1.0;      ///< R_i = RadiusScale s h_i
-  bool KeepWeights = false;      ///< keep neighbour ids and weights for attributes
+  double RadiusScale = 1.0; ///< R_i = RadiusScale s h_i
+  bool KeepWeights = false; ///< keep neighbour ids and weights for attributes
 };
 
 struct BuiltSplat
@@ -65,9 +65,9 @@ struct BuiltSplat
 
 struct BuildResult
 {
-  std::vector<BuiltSplat> Splats; ///< successful splats, coarsest level first
-  long long Degenerate = 0;       ///< chosen positions that gave no splat
-  long long Reduced = 0;          ///< splats fitted at a lower degree
+  std::vector<BuiltSplat> Splats;   ///< successful splats, coarsest level first
+  long long Degenerate = 0;         ///< chosen positions that gave no splat
+  long long Reduced = 0;            ///< splats fitted at a lower degree
   std::vector<double> LevelQuality; ///< s of each level
 };
 
@@ -76,8 +76,10 @@ struct BuildResult
  * that orient the splats). `progress(f)` is called with f in [0, 1];
  * `abort`, when set, stops the work early with what was built.
  */
-POINTSURFACESFILTERS_EXPORT BuildResult BuildSplats(const double* xyz, long long n,
-  const double* normals, const BuildParameters& params,
+POINTSURFACESFILTERS_EXPORT BuildResult BuildSplats(const double* xyz,
+  long long n,
+  const double* normals,
+  const BuildParameters& params,
   const std::function<void(double)>& progress = nullptr,
   const std::atomic<bool>* abort = nullptr);
 
@@ -88,8 +90,13 @@ POINTSURFACESFILTERS_EXPORT BuildResult BuildSplats(const double* xyz, long long
  * point moves by more than 1e-4 h. Support radius h defaults (h <= 0) to
  * 4 sqrt(area / m) estimated from the bounding box. Returns the steps taken.
  */
-POINTSURFACESFILTERS_EXPORT int LocallyOptimalProjection(const double* p, long long n,
-  std::vector<double>& x, bool weighted, int iterations, double h = 0.0, double mu = 0.45);
+POINTSURFACESFILTERS_EXPORT int LocallyOptimalProjection(const double* p,
+  long long n,
+  std::vector<double>& x,
+  bool weighted,
+  int iterations,
+  double h = 0.0,
+  double mu = 0.45);
 } // namespace pointsurfaces
 
 #endif

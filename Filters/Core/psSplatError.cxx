@@ -22,8 +22,9 @@ double PatchDistance(const SplatArrays& s, long long j, const double p[3], doubl
   const double* o = s.Origin + 3 * j;
   const double* n = s.Normal + 3 * j;
   const double* t = s.Tangent + 3 * j;
-  const double b[3] = { n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2],
-    n[0] * t[1] - n[1] * t[0] };
+  const double b[3] = {
+    n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]
+  };
   const double h = s.Scale[j];
   const double d[3] = { p[0] - o[0], p[1] - o[1], p[2] - o[2] };
   const double u = (d[0] * t[0] + d[1] * t[1] + d[2] * t[2]) / h;
@@ -37,8 +38,12 @@ double PatchDistance(const SplatArrays& s, long long j, const double p[3], doubl
 }
 } // namespace
 
-ErrorSummary EvaluateSplatError(const SplatArrays& splats, const double* points, long long n,
-  std::vector<double>& delta, std::vector<double>& distance, std::vector<int>& covering)
+ErrorSummary EvaluateSplatError(const SplatArrays& splats,
+  const double* points,
+  long long n,
+  std::vector<double>& delta,
+  std::vector<double>& distance,
+  std::vector<int>& covering)
 {
   ErrorSummary summary;
   delta.assign(static_cast<size_t>(n), 0.0);
@@ -50,45 +55,47 @@ ErrorSummary EvaluateSplatError(const SplatArrays& splats, const double* points,
   }
   PointIndex origins(splats.Origin, splats.Count);
   const double maxRadius = *std::max_element(splats.Radius, splats.Radius + splats.Count);
-  vtkSMPTools::For(0, n, [&](long long begin, long long end) {
-    std::vector<int> ids;
-    std::vector<double> d2;
-    for (long long i = begin; i < end; ++i)
+  vtkSMPTools::For(0,
+    n,
+    [&](long long begin, long long end)
     {
-      const double* p = points + 3 * i;
-      origins.Within(p, maxRadius * 1.5, ids, d2);
-      double sumW = 0.0, sumWE = 0.0, sumDelta = 0.0;
-      int count = 0;
-      for (size_t k = 0; k < ids.size(); ++k)
+      std::vector<int> ids;
+      std::vector<double> d2;
+      for (long long i = begin; i < end; ++i)
       {
-        const long long j = ids[k];
-        double inPlane2;
-        const double e = PatchDistance(splats, j, p, inPlane2);
-        if (inPlane2 > splats.Radius[j] * splats.Radius[j] ||
-          std::abs(e) > splats.Radius[j])
+        const double* p = points + 3 * i;
+        origins.Within(p, maxRadius * 1.5, ids, d2);
+        double sumW = 0.0, sumWE = 0.0, sumDelta = 0.0;
+        int count = 0;
+        for (size_t k = 0; k < ids.size(); ++k)
         {
-          continue; // outside the disc, or another sheet of the surface
+          const long long j = ids[k];
+          double inPlane2;
+          const double e = PatchDistance(splats, j, p, inPlane2);
+          if (inPlane2 > splats.Radius[j] * splats.Radius[j] || std::abs(e) > splats.Radius[j])
+          {
+            continue; // outside the disc, or another sheet of the surface
+          }
+          const double w = GaussianWeight(d2[k], splats.Scale[j] * splats.Scale[j]);
+          sumW += w;
+          sumWE += w * e;
+          sumDelta += std::abs(e) * w;
+          ++count;
         }
-        const double w = GaussianWeight(d2[k], splats.Scale[j] * splats.Scale[j]);
-        sumW += w;
-        sumWE += w * e;
-        sumDelta += std::abs(e) * w;
-        ++count;
+        if (count == 0 || !(sumW > 0.0))
+        {
+          origins.Nearest(p, 1, ids, d2);
+          double inPlane2;
+          distance[i] = ids.empty() ? 0.0 : std::abs(PatchDistance(splats, ids[0], p, inPlane2));
+          delta[i] = distance[i];
+          covering[i] = 0;
+          continue;
+        }
+        distance[i] = std::abs(sumWE / sumW);
+        delta[i] = sumDelta;
+        covering[i] = count;
       }
-      if (count == 0 || !(sumW > 0.0))
-      {
-        origins.Nearest(p, 1, ids, d2);
-        double inPlane2;
-        distance[i] = ids.empty() ? 0.0 : std::abs(PatchDistance(splats, ids[0], p, inPlane2));
-        delta[i] = distance[i];
-        covering[i] = 0;
-        continue;
-      }
-      distance[i] = std::abs(sumWE / sumW);
-      delta[i] = sumDelta;
-      covering[i] = count;
-    }
-  });
+    });
   double sum2 = 0.0;
   for (long long i = 0; i < n; ++i)
   {

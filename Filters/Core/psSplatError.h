@@ -49,7 +49,10 @@ struct ErrorSummary
 
 /** Per-point delta_i and blended distance of `n` points; returns the summary. */
 POINTSURFACESFILTERS_EXPORT ErrorSummary EvaluateSplatError(const SplatArrays& splats,
-  const double* points, long long n, std::vector<double>& delta, std::vector<double>& distance,
+  const double* points,
+  long long n,
+  std::vector<double>& delta,
+  std::vector<double>& distance,
   std::vector<int>& covering);
 } // namespace pointsurfaces
 

@@ -39,8 +39,12 @@ void Weigh(const double c[3], const double* nbrs, int m, double h, double scale,
 }
 
 // Weighted plane around `centre`, with the origin at centre's projection.
-FitStatus PlaneAt(const double centre[3], const double* nbrs, int m, const double* w,
-  const double* orientation, LocalFrame& frame)
+FitStatus PlaneAt(const double centre[3],
+  const double* nbrs,
+  int m,
+  const double* w,
+  const double* orientation,
+  LocalFrame& frame)
 {
   const double scale = frame.Scale;
   const FitStatus status = FitReferencePlane(nbrs, w, m, frame, orientation);
@@ -49,8 +53,9 @@ FitStatus PlaneAt(const double centre[3], const double* nbrs, int m, const doubl
   {
     return status;
   }
-  const double d[3] = { centre[0] - frame.Origin[0], centre[1] - frame.Origin[1],
-    centre[2] - frame.Origin[2] };
+  const double d[3] = {
+    centre[0] - frame.Origin[0], centre[1] - frame.Origin[1], centre[2] - frame.Origin[2]
+  };
   const double along = d[0] * frame.Normal[0] + d[1] * frame.Normal[1] + d[2] * frame.Normal[2];
   for (int c = 0; c < 3; ++c)
   {
@@ -60,8 +65,12 @@ FitStatus PlaneAt(const double centre[3], const double* nbrs, int m, const doubl
 }
 } // namespace
 
-Splat FitSplat(const double q[3], const double* nbrs, int n, const SplatFitParameters& params,
-  const double* orientation, std::vector<double>* weights)
+Splat FitSplat(const double q[3],
+  const double* nbrs,
+  int n,
+  const SplatFitParameters& params,
+  const double* orientation,
+  std::vector<double>* weights)
 {
   Splat splat;
   const int m = std::max(0, std::min(n, params.NumberOfNeighbors));
@@ -131,8 +140,15 @@ Splat FitSplat(const double q[3], const double* nbrs, int n, const SplatFitParam
   }
   else if (params.Mode == FitMode::Robust && splat.Fit.Degree > 0)
   {
-    splat.Fit = FitPolynomialRobust(nbrs, w.data(), m, splat.Frame, splat.Fit, params.Loss,
-      params.LossScale, 10 * params.MaximumIterations, &splat.Iterations);
+    splat.Fit = FitPolynomialRobust(nbrs,
+      w.data(),
+      m,
+      splat.Frame,
+      splat.Fit,
+      params.Loss,
+      params.LossScale,
+      10 * params.MaximumIterations,
+      &splat.Iterations);
   }
   if (weights)
   {

@@ -43,15 +43,15 @@ enum class RobustLoss
 
 struct SplatFitParameters
 {
-  int Degree = 2;               ///< 1 to 4
-  int NumberOfNeighbors = 40;   ///< neighbours in the fit
+  int Degree = 2;                 ///< 1 to 4
+  int NumberOfNeighbors = 40;     ///< neighbours in the fit
   int FeatureSizeNeighbors = 100; ///< neighbours whose mean in-plane distance is h
-  double WeightScale = 1.0;     ///< Gaussian width, in units of h
+  double WeightScale = 1.0;       ///< Gaussian width, in units of h
   FitMode Mode = FitMode::Linear;
   RobustLoss Loss = RobustLoss::Huber;
-  double LossScale = 0.05;      ///< where the robust loss bends, in units of h
-  int MaximumIterations = 10;   ///< Projected: projection steps; Robust: solver iterations x 10
-  double Tolerance = 1e-7;      ///< Projected: stop when |g(0,0)| < Tolerance (units of h)
+  double LossScale = 0.05;    ///< where the robust loss bends, in units of h
+  int MaximumIterations = 10; ///< Projected: projection steps; Robust: solver iterations x 10
+  double Tolerance = 1e-7;    ///< Projected: stop when |g(0,0)| < Tolerance (units of h)
 };
 
 struct Splat
@@ -68,8 +68,11 @@ struct Splat
  * each of the first min(n, NumberOfNeighbors) neighbours, for carrying
  * attributes over. Never returns NaN: failures are in splat.Fit.Status.
  */
-POINTSURFACESFILTERS_EXPORT Splat FitSplat(const double q[3], const double* nbrs, int n,
-  const SplatFitParameters& params, const double* orientation = nullptr,
+POINTSURFACESFILTERS_EXPORT Splat FitSplat(const double q[3],
+  const double* nbrs,
+  int n,
+  const SplatFitParameters& params,
+  const double* orientation = nullptr,
   std::vector<double>* weights = nullptr);
 
 /**
@@ -77,16 +80,25 @@ POINTSURFACESFILTERS_EXPORT Splat FitSplat(const double q[3], const double* nbrs
  * the plane of `frame` (only Normal is used); coincident points are skipped.
  * Returns 0 when there is no distinct neighbour.
  */
-POINTSURFACESFILTERS_EXPORT double FeatureSize(
-  const double q[3], const LocalFrame& frame, const double* nbrs, int n, int k);
+POINTSURFACESFILTERS_EXPORT double FeatureSize(const double q[3],
+  const LocalFrame& frame,
+  const double* nbrs,
+  int n,
+  int k);
 
 /**
  * The robust fit of Fit Mode Robust: starting from `initial`, minimise
  * sum w_i rho((g(u_i, v_i) - h_i)^2) with Ceres. Implemented in psRobustFit.cxx.
  */
 POINTSURFACESFILTERS_EXPORT PolynomialFit FitPolynomialRobust(const double* points,
-  const double* w, int n, const LocalFrame& frame, const PolynomialFit& initial, RobustLoss loss,
-  double lossScale, int maxIterations, int* iterations = nullptr);
+  const double* w,
+  int n,
+  const LocalFrame& frame,
+  const PolynomialFit& initial,
+  RobustLoss loss,
+  double lossScale,
+  int maxIterations,
+  int* iterations = nullptr);
 } // namespace pointsurfaces
 
 #endif

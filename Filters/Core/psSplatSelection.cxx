@@ -49,7 +49,8 @@ std::vector<long long> LatticeOrder(const double* xyz, long long n, double cell,
   };
   std::unordered_map<unsigned long long, Best> best;
   best.reserve(static_cast<size_t>(n / 4 + 1));
-  auto key = [](long long a, long long b, long long c) {
+  auto key = [](long long a, long long b, long long c)
+  {
     return (static_cast<unsigned long long>(c) << 42) ^ (static_cast<unsigned long long>(b) << 21) ^
       static_cast<unsigned long long>(a);
   };
@@ -96,7 +97,10 @@ std::vector<long long> LatticeOrder(const double* xyz, long long n, double cell,
   return order;
 }
 
-void Claim(const PointIndex& index, const double centre[3], const LocalFrame& frame, double s,
+void Claim(const PointIndex& index,
+  const double centre[3],
+  const LocalFrame& frame,
+  double s,
   std::vector<PointState>& state)
 {
   const double r = s * frame.Scale;
@@ -120,10 +124,15 @@ void Claim(const PointIndex& index, const double centre[3], const LocalFrame& fr
   }
 }
 
-std::vector<long long> SelectByQuality(const PointIndex& index, double s,
-  const std::vector<long long>& order, const FrameFunction& frameOf, std::vector<PointState>& state,
-  std::vector<LocalFrame>& frames, const std::vector<long long>& alreadyChosen,
-  const std::vector<LocalFrame>& chosenFrames, bool front)
+std::vector<long long> SelectByQuality(const PointIndex& index,
+  double s,
+  const std::vector<long long>& order,
+  const FrameFunction& frameOf,
+  std::vector<PointState>& state,
+  std::vector<LocalFrame>& frames,
+  const std::vector<long long>& alreadyChosen,
+  const std::vector<LocalFrame>& chosenFrames,
+  bool front)
 {
   for (size_t i = 0; i < alreadyChosen.size() && i < chosenFrames.size(); ++i)
   {
@@ -138,7 +147,8 @@ std::vector<long long> SelectByQuality(const PointIndex& index, double s,
   std::priority_queue<Candidate, std::vector<Candidate>, std::greater<Candidate>> queue;
   std::vector<int> ids;
   std::vector<double> d2;
-  auto choose = [&](long long i) {
+  auto choose = [&](long long i)
+  {
     LocalFrame frame;
     if (!frameOf(i, frame))
     {

@@ -46,8 +46,10 @@ POINTSURFACESFILTERS_EXPORT std::vector<long long> RandomOrder(long long n, unsi
  * Points nearest to the centres of a cubic grid of cell size `cell` first
  * (cells in z, y, x order), then the others in RandomOrder(seed).
  */
-POINTSURFACESFILTERS_EXPORT std::vector<long long> LatticeOrder(
-  const double* xyz, long long n, double cell, unsigned int seed);
+POINTSURFACESFILTERS_EXPORT std::vector<long long> LatticeOrder(const double* xyz,
+  long long n,
+  double cell,
+  unsigned int seed);
 
 /**
  * Choose points in `order` with quality factor s. With `front`, each choice
@@ -60,14 +62,21 @@ POINTSURFACESFILTERS_EXPORT std::vector<long long> LatticeOrder(
  * `chosenFrames` (same indexing as `alreadyChosen`).
  */
 POINTSURFACESFILTERS_EXPORT std::vector<long long> SelectByQuality(const PointIndex& index,
-  double s, const std::vector<long long>& order, const FrameFunction& frameOf,
-  std::vector<PointState>& state, std::vector<LocalFrame>& frames,
+  double s,
+  const std::vector<long long>& order,
+  const FrameFunction& frameOf,
+  std::vector<PointState>& state,
+  std::vector<LocalFrame>& frames,
   const std::vector<long long>& alreadyChosen = {},
-  const std::vector<LocalFrame>& chosenFrames = {}, bool front = false);
+  const std::vector<LocalFrame>& chosenFrames = {},
+  bool front = false);
 
 /** Mark the points that `frame` at point `centre` claims for quality s. */
-POINTSURFACESFILTERS_EXPORT void Claim(const PointIndex& index, const double centre[3],
-  const LocalFrame& frame, double s, std::vector<PointState>& state);
+POINTSURFACESFILTERS_EXPORT void Claim(const PointIndex& index,
+  const double centre[3],
+  const LocalFrame& frame,
+  double s,
+  std::vector<PointState>& state);
 } // namespace pointsurfaces
 
 #endif

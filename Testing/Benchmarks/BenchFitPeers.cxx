@@ -132,7 +132,8 @@ void BenchMLS(const std::string& path, vtkPolyData* pd, int k, int threads)
   for (vtkIdType i = 0; i < n; ++i)
   {
     cloud->push_back(pcl::PointXYZ(static_cast<float>(xyz[3 * i] - c[0]),
-      static_cast<float>(xyz[3 * i + 1] - c[1]), static_cast<float>(xyz[3 * i + 2] - c[2])));
+      static_cast<float>(xyz[3 * i + 1] - c[1]),
+      static_cast<float>(xyz[3 * i + 2] - c[2])));
   }
   const double radius = RadiusForK(index, k);
   pcl::MovingLeastSquares<pcl::PointXYZ, pcl::PointNormal> mls;
@@ -154,15 +155,23 @@ void BenchMLS(const std::string& path, vtkPolyData* pd, int k, int threads)
   for (size_t j = 0; j < projected.size(); ++j)
   {
     const int i = corr.indices.empty() ? static_cast<int>(j) : corr.indices[j];
-    const double dx = projected[j].x + c[0] - xyz[3 * i], dy = projected[j].y + c[1] - xyz[3 * i + 1],
+    const double dx = projected[j].x + c[0] - xyz[3 * i],
+                 dy = projected[j].y + c[1] - xyz[3 * i + 1],
                  dz = projected[j].z + c[2] - xyz[3 * i + 2];
     const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
     sum2 += d * d;
     worst = std::max(worst, d);
   }
   const double pclRMS = std::sqrt(sum2 / std::max<size_t>(1, projected.size())) / diag;
-  std::printf("mls,%s,%lld,pcl-mls-order2,%d,%d,%.4f,%.3e,%.3e,%zu fits,1.00\n", Base(path).c_str(),
-    static_cast<long long>(n), k, threads, pclTime, pclRMS, worst / diag, projected.size());
+  std::printf("mls,%s,%lld,pcl-mls-order2,%d,%d,%.4f,%.3e,%.3e,%zu fits,1.00\n",
+    Base(path).c_str(),
+    static_cast<long long>(n),
+    k,
+    threads,
+    pclTime,
+    pclRMS,
+    worst / diag,
+    projected.size());
 
   for (int selection : { vtkAlgebraicSplatFitter::All, vtkAlgebraicSplatFitter::Quality })
   {
@@ -179,15 +188,23 @@ void BenchMLS(const std::string& path, vtkPolyData* pd, int k, int threads)
     metric->SetSplatData(fitter->GetOutput());
     metric->Update();
     std::printf("mls,%s,%lld,splats-%s-degree2,%d,%d,%.4f,%.3e,%.3e,%lld splats,%.3f\n",
-      Base(path).c_str(), static_cast<long long>(n), selection == 0 ? "all" : "s1", k, threads,
-      ours, metric->GetRMSDistance() / diag, metric->GetMaximumDistance() / diag,
-      static_cast<long long>(fitter->GetOutput()->GetNumberOfPoints()), ours / pclTime);
+      Base(path).c_str(),
+      static_cast<long long>(n),
+      selection == 0 ? "all" : "s1",
+      k,
+      threads,
+      ours,
+      metric->GetRMSDistance() / diag,
+      metric->GetMaximumDistance() / diag,
+      static_cast<long long>(fitter->GetOutput()->GetNumberOfPoints()),
+      ours / pclTime);
   }
 }
 
 // RMS distance of samples to the input points (relative) and NN-distance variation.
-std::pair<double, double> SampleQuality(
-  const pointsurfaces::PointIndex& data, const std::vector<double>& x, double diag)
+std::pair<double, double> SampleQuality(const pointsurfaces::PointIndex& data,
+  const std::vector<double>& x,
+  double diag)
 {
   const long long m = static_cast<long long>(x.size() / 3);
   pointsurfaces::PointIndex samples(x.data(), m);
@@ -238,7 +255,9 @@ void BenchLOP(const std::string& path, vtkPolyData* pd, long long m, int iterati
   double t0 = Now();
   CGAL::wlop_simplify_and_regularize_point_set<CGAL::Parallel_if_available_tag>(cgalIn,
     std::back_inserter(cgalOut),
-    CGAL::parameters::select_percentage(100.0 * m / n).neighbor_radius(h).number_of_iterations(iterations));
+    CGAL::parameters::select_percentage(100.0 * m / n)
+      .neighbor_radius(h)
+      .number_of_iterations(iterations));
   const double cgalTime = Now() - t0;
   std::vector<double> cg(3 * cgalOut.size());
   for (size_t i = 0; i < cgalOut.size(); ++i)
@@ -248,9 +267,14 @@ void BenchLOP(const std::string& path, vtkPolyData* pd, long long m, int iterati
     cg[3 * i + 2] = cgalOut[i].z();
   }
   auto q = SampleQuality(data, cg, diag);
-  std::printf("lop,%s,%lld,cgal-wlop,%lld,%d,%.4f,%.3e,,%.3f nn-variation,1.00\n", Base(path).c_str(),
-    static_cast<long long>(n), static_cast<long long>(cgalOut.size()), vtkSMPTools::GetEstimatedNumberOfThreads(),
-    cgalTime, q.first, q.second);
+  std::printf("lop,%s,%lld,cgal-wlop,%lld,%d,%.4f,%.3e,,%.3f nn-variation,1.00\n",
+    Base(path).c_str(),
+    static_cast<long long>(n),
+    static_cast<long long>(cgalOut.size()),
+    vtkSMPTools::GetEstimatedNumberOfThreads(),
+    cgalTime,
+    q.first,
+    q.second);
 
   for (bool weighted : { false, true })
   {
@@ -262,13 +286,21 @@ void BenchLOP(const std::string& path, vtkPolyData* pd, long long m, int iterati
       std::copy(&xyz[3 * j], &xyz[3 * j] + 3, &x[3 * i]);
     }
     t0 = Now();
-    const int steps = pointsurfaces::LocallyOptimalProjection(xyz.data(), n, x, weighted, iterations, h);
+    const int steps =
+      pointsurfaces::LocallyOptimalProjection(xyz.data(), n, x, weighted, iterations, h);
     const double ours = Now() - t0;
     q = SampleQuality(data, x, diag);
     std::printf("lop,%s,%lld,%s,%lld,%d,%.4f,%.3e,,%.3f nn-variation %d steps,%.3f\n",
-      Base(path).c_str(), static_cast<long long>(n), weighted ? "ours-wlop" : "ours-lop",
-      static_cast<long long>(m), vtkSMPTools::GetEstimatedNumberOfThreads(), ours, q.first, q.second,
-      steps, ours / cgalTime);
+      Base(path).c_str(),
+      static_cast<long long>(n),
+      weighted ? "ours-wlop" : "ours-lop",
+      static_cast<long long>(m),
+      vtkSMPTools::GetEstimatedNumberOfThreads(),
+      ours,
+      q.first,
+      q.second,
+      steps,
+      ours / cgalTime);
   }
 }
 } // namespace

@@ -9,7 +9,8 @@ from pstesting import fail
 from vtkmodules.vtkRenderingCore import vtkRenderWindow
 
 for name in ("vtkEGLHeadlessRenderWindow", "vtkPointSurfacesRenderWindowFactory",
-             "vtkComputeShaderProgram", "vtkShaderStorageBuffer"):
+             "vtkComputeShaderProgram", "vtkShaderStorageBuffer", "vtkAlgebraicSplatFitter",
+             "vtkSplatErrorMetric", "vtkPCDReader"):
     if not hasattr(pointsurfaces, name):
         fail("pointsurfaces has no " + name)
 

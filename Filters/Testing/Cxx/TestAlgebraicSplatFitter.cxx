@@ -71,7 +71,8 @@ bool AllFinite(vtkDataArray* a)
 {
   for (vtkIdType i = 0; i < a->GetNumberOfValues(); ++i)
   {
-    if (!std::isfinite(a->GetComponent(i / a->GetNumberOfComponents(), i % a->GetNumberOfComponents())))
+    if (!std::isfinite(
+          a->GetComponent(i / a->GetNumberOfComponents(), i % a->GetNumberOfComponents())))
     {
       return false;
     }
@@ -80,7 +81,9 @@ bool AllFinite(vtkDataArray* a)
 }
 
 // Run the fitter on `input`; expect a warning containing `warning` (if not empty).
-vtkSmartPointer<vtkPolyData> Fit(vtkPolyData* input, const std::string& warning, int degree = 2,
+vtkSmartPointer<vtkPolyData> Fit(vtkPolyData* input,
+  const std::string& warning,
+  int degree = 2,
   int neighbors = 40)
 {
   vtkNew<vtkAlgebraicSplatFitter> fitter;
@@ -95,7 +98,8 @@ vtkSmartPointer<vtkPolyData> Fit(vtkPolyData* input, const std::string& warning,
   Check(!observer->GetError(), "no error for " + warning);
   if (!warning.empty())
   {
-    Check(observer->GetWarning() && observer->GetWarningMessage().find(warning) != std::string::npos,
+    Check(
+      observer->GetWarning() && observer->GetWarningMessage().find(warning) != std::string::npos,
       "a warning about '" + warning + "', got '" + observer->GetWarningMessage() + "'");
   }
   vtkDataArray* coeffs = out->GetPointData()->GetArray("SplatCoefficients");
@@ -117,9 +121,15 @@ void TestDataModel()
   Check(n > 50 && n < 1000, "quality selection decimates");
   Check(out->GetNumberOfVerts() == n, "one vertex per splat");
   vtkPointData* pd = out->GetPointData();
-  const std::pair<const char*, int> arrays[] = { { "SplatNormal", 3 }, { "SplatTangent", 3 },
-    { "SplatFeatureSize", 1 }, { "SplatCoefficients", 10 }, { "SplatRadius", 1 }, { "SplatLOD", 1 },
-    { "Temperature", 1 }, { "RGB", 3 }, { "Normals", 3 } };
+  const std::pair<const char*, int> arrays[] = { { "SplatNormal", 3 },
+    { "SplatTangent", 3 },
+    { "SplatFeatureSize", 1 },
+    { "SplatCoefficients", 10 },
+    { "SplatRadius", 1 },
+    { "SplatLOD", 1 },
+    { "Temperature", 1 },
+    { "RGB", 3 },
+    { "Normals", 3 } };
   for (const auto& a : arrays)
   {
     Check(pd->GetArray(a.first) && pd->GetArray(a.first)->GetNumberOfComponents() == a.second &&
@@ -217,12 +227,14 @@ void TestLevelsAndOctree()
   auto* ends = vtkIdTypeArray::SafeDownCast(fd->GetArray("OctreeNodeLevelEnds"));
   bool ok = range && children && ends && fd->GetArray("OctreeNodeBounds") &&
     fd->GetArray("OctreeNodeSphere") && ends->GetNumberOfComponents() == 5 &&
-    range->GetTypedComponent(0, 0) == 0 && range->GetTypedComponent(0, 1) == out->GetNumberOfPoints();
+    range->GetTypedComponent(0, 0) == 0 &&
+    range->GetTypedComponent(0, 1) == out->GetNumberOfPoints();
   for (vtkIdType id = 0; ok && id < range->GetNumberOfTuples(); ++id)
   {
     if (children->GetTypedComponent(id, 1) == 0)
     {
-      for (vtkIdType k = range->GetTypedComponent(id, 0) + 1; k < range->GetTypedComponent(id, 1); ++k)
+      for (vtkIdType k = range->GetTypedComponent(id, 0) + 1; k < range->GetTypedComponent(id, 1);
+           ++k)
       {
         ok = ok && lod->GetTuple1(k - 1) <= lod->GetTuple1(k);
       }

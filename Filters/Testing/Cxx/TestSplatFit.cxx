@@ -76,7 +76,8 @@ double SphereError(const Splat& s)
       for (int k = 0; k < 3; ++k)
       {
         x[k] = s.Frame.Origin[k] +
-          s.Frame.Scale * (u * s.Frame.Tangent[k] + v * s.Frame.Bitangent[k] + g * s.Frame.Normal[k]);
+          s.Frame.Scale *
+            (u * s.Frame.Tangent[k] + v * s.Frame.Bitangent[k] + g * s.Frame.Normal[k]);
       }
       worst = std::max(worst, std::abs(std::sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - 1.0));
     }
@@ -145,7 +146,8 @@ void TestParaboloidThroughKernel()
     const double* c = s.Fit.Coefficients;
     const double expected = a * h;
     bool ok = s.Fit.Status == FitStatus::Ok && std::abs(std::abs(s.Frame.Normal[2]) - 1.0) < 1e-12;
-    ok = ok && std::abs(c[3] - expected) < 1e-9 * expected && std::abs(c[5] - expected) < 1e-9 * expected;
+    ok = ok && std::abs(c[3] - expected) < 1e-9 * expected &&
+      std::abs(c[5] - expected) < 1e-9 * expected;
     ok = ok && std::abs(c[1]) < 1e-9 && std::abs(c[2]) < 1e-9 && std::abs(c[4]) < 1e-9;
     for (int k = 6; k < MonomialCount(degree); ++k)
     {
@@ -208,8 +210,8 @@ void TestInvariance()
       worst = std::max(worst, std::abs(a.Frame.Scale * cs[1] - b.Frame.Scale) / b.Frame.Scale);
       for (int k = 0; k < 3; ++k)
       {
-        worst = std::max(worst,
-          std::abs(a.Frame.Origin[k] * cs[1] + cs[0] - b.Frame.Origin[k]) / b.Frame.Scale);
+        worst = std::max(
+          worst, std::abs(a.Frame.Origin[k] * cs[1] + cs[0] - b.Frame.Origin[k]) / b.Frame.Scale);
       }
     }
     std::cout << "offset " << cs[0] << ", scale " << cs[1] << ": " << got.Splats.size()
@@ -236,7 +238,8 @@ void TestLOP()
     p.insert(p.end(), { v[0] / len, v[1] / len, v[2] / len });
   }
   const long long n = static_cast<long long>(p.size() / 3);
-  auto spread = [](const std::vector<double>& x) {
+  auto spread = [](const std::vector<double>& x)
+  {
     // coefficient of variation of nearest-neighbour distances, and radius error
     const long long m = static_cast<long long>(x.size() / 3);
     PointIndex index(x.data(), m);
@@ -250,7 +253,9 @@ void TestLOP()
       sum += d;
       sum2 += d * d;
       radial = std::max(radial,
-        std::abs(std::sqrt(x[3 * i] * x[3 * i] + x[3 * i + 1] * x[3 * i + 1] + x[3 * i + 2] * x[3 * i + 2]) - 1));
+        std::abs(std::sqrt(x[3 * i] * x[3 * i] + x[3 * i + 1] * x[3 * i + 1] +
+                   x[3 * i + 2] * x[3 * i + 2]) -
+          1));
     }
     const double mean = sum / m;
     return std::make_pair(std::sqrt(std::max(0.0, sum2 / m - mean * mean)) / mean, radial);
@@ -367,7 +372,8 @@ void TestErrorMetric()
   Check(std::abs(distance[0]) < 1e-12 && std::abs(distance[1] - 1.0) < 1e-12 &&
       std::abs(distance[2] - 0.75) < 1e-12,
     "distances to a flat splat");
-  Check(covering[0] == 1 && covering[3] == 0 && sum.Uncovered == 1, "the point outside the disc is uncovered");
+  Check(covering[0] == 1 && covering[3] == 0 && sum.Uncovered == 1,
+    "the point outside the disc is uncovered");
   Check(std::abs(sum.Maximum - 1.0) < 1e-12, "maximum distance");
 }
 } // namespace

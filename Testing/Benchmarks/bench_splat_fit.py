@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+# SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+# SPDX-License-Identifier: BSD-3-Clause
+"""Benchmarks of the splat fitter. Each prints CSV and writes a plot.
+
+    bench_splat_fit.py counts    [--out DIR] [scans...]   splat counts at s = 1 against thesis Table 4.7
+    bench_splat_fit.py million   [--out DIR] [--points N] 1M points (sampled on the Bunny's mesh) at s = 1
+    bench_splat_fit.py tradeoff  [--out DIR]              error against time over degree, s, k, fit mode
+    add --smoke for a few-second run on a subset (what ctest runs)
+
+Scans default to ../shared/data/scans/{bunny.ply,igea.xyz,horse.ply}. Times
+are wall-clock seconds of vtkAlgebraicSplatFitter.Update() on this machine,
+with every core vtkSMPTools uses; compare them only within one run.
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+import time
+
+import numpy as np
+import pointsurfaces
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkIOPLY import vtkPLYReader
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+SCANS = os.path.normpath(os.path.join(ROOT, "..", "shared", "data", "scans"))
+THESIS = {"bunny": 1315, "igea": 4819, "horse": 2983}  # Table 4.7, s = 1
+
+
+def load(path, every=1):
+    if path.endswith(".xyz"):
+        xyz = np.loadtxt(path, usecols=(0, 1, 2))
+    else:
+        reader = vtkXMLPolyDataReader() if path.endswith(".vtp") else vtkPLYReader()
+        reader.SetFileName(path)
+        reader.Update()
+        xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)
+    return points(xyz[::every])
+
+
+def points(xyz):
+    pts = vtkPoints()
+    pts.SetData(numpy_to_vtk(np.ascontiguousarray(xyz, dtype=np.float64), deep=True))
+    pd = vtkPolyData()
+    pd.SetPoints(pts)
+    return pd
+
+
+def fit(pd, **settings):
+    fitter = pointsurfaces.vtkAlgebraicSplatFitter()
+    fitter.SetInputData(pd)
+    for key, value in settings.items():
+        getattr(fitter, "Set" + key)(value)
+    start = time.perf_counter()
+    fitter.Update()
+    seconds = time.perf_counter() - start
+    metric = pointsurfaces.vtkSplatErrorMetric()
+    metric.SetInputData(pd)
+    metric.SetSplatData(fitter.GetOutput())
+    metric.Update()
+    diagonal = pd.GetLength()
+    return {"splats": fitter.GetOutput().GetNumberOfPoints(), "seconds": seconds,
+            "rms_rel": metric.GetRMSDistance() / diagonal,
+            "max_rel": metric.GetMaximumDistance() / diagonal,
+            "uncovered": metric.GetNumberOfUncoveredPoints()}
+
+
+def write(rows, out, name):
+    os.makedirs(out, exist_ok=True)
+    path = os.path.join(out, name + ".csv")
+    with open(path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+        writer.writeheader()
+        writer.writerows(rows)
+    writer = csv.DictWriter(sys.stdout, fieldnames=list(rows[0].keys()))
+    writer.writeheader()
+    writer.writerows(rows)
+    return path
+
+
+def plt():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as pyplot
+    return pyplot
+
+
+def counts(args):
+    scans = args.scans or [os.path.join(SCANS, s) for s in ("bunny.ply", "igea.xyz", "horse.ply")]
+    if args.smoke:
+        scans = [os.path.join(ROOT, "Testing", "Data", "bunny.vtp")]
+    rows = []
+    for path in scans:
+        model = os.path.basename(path).split(".")[0].split("_")[0]
+        pd = load(path)
+        for order, name in ((0, "random"), (2, "front")):
+            r = fit(pd, SelectionOrder=order)
+            rows.append({"model": model, "points": pd.GetNumberOfPoints(), "order": name,
+                         "splats": r["splats"],
+                         "percent": round(100.0 * r["splats"] / pd.GetNumberOfPoints(), 2),
+                         "thesis": THESIS.get(model, ""), "seconds": round(r["seconds"], 4),
+                         "rms_rel": "%.3e" % r["rms_rel"], "max_rel": "%.3e" % r["max_rel"],
+                         "uncovered": r["uncovered"]})
+    write(rows, args.out, "splat_counts")
+    pyplot = plt()
+    fig, ax = pyplot.subplots(figsize=(6, 4))
+    models = sorted({r["model"] for r in rows}, key=[r["model"] for r in rows].index)
+    x = np.arange(len(models))
+    for i, order in enumerate(("random", "front")):
+        ax.bar(x + 0.27 * (i - 1), [next(r["splats"] for r in rows if r["model"] == m and r["order"] == order)
+                                    for m in models], 0.27, label="PointSurfaces, %s order" % order)
+    ax.bar(x + 0.27, [THESIS.get(m, 0) for m in models], 0.27, label="thesis Table 4.7")
+    ax.set_xticks(x)
+    ax.set_xticklabels(models)
+    ax.set_ylabel("splats at s = 1")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.out, "splat_counts.png"), dpi=100)
+
+
+def million(args):
+    n = 20000 if args.smoke else args.points
+    reader = vtkXMLPolyDataReader()
+    reader.SetFileName(os.path.join(ROOT, "Testing", "Data", "bunny.vtp"))
+    reader.Update()
+    mesh = reader.GetOutput()
+    xyz = vtk_to_numpy(mesh.GetPoints().GetData()).astype(np.float64)
+    tri = vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+    a, b, c = xyz[tri[:, 0]], xyz[tri[:, 1]], xyz[tri[:, 2]]
+    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    rng = np.random.default_rng(1)
+    pick = rng.choice(len(tri), size=n, p=area / area.sum())
+    r1, r2 = np.sqrt(rng.random(n))[:, None], rng.random(n)[:, None]
+    sample = (1 - r1) * a[pick] + r1 * (1 - r2) * b[pick] + r1 * r2 * c[pick]
+    pd = points(sample)
+    rows = []
+    for order, name in ((0, "random"), (2, "front")):
+        r = fit(pd, SelectionOrder=order)
+        rows.append({"points": n, "order": name, "splats": r["splats"],
+                     "seconds": round(r["seconds"], 3), "rms_rel": "%.3e" % r["rms_rel"],
+                     "max_rel": "%.3e" % r["max_rel"]})
+    write(rows, args.out, "million")
+
+
+def tradeoff(args):
+    pd = load(os.path.join(ROOT, "Testing", "Data", "bunny.vtp"), every=4 if args.smoke else 1)
+    degrees = (1, 2) if args.smoke else (1, 2, 3, 4)
+    qualities = (1.0,) if args.smoke else (0.5, 1.0, 2.0)
+    neighbours = (40,) if args.smoke else (20, 40, 80)
+    modes = ((0, "linear"), (2, "projected")) if args.smoke else (
+        (0, "linear"), (1, "robust"), (2, "projected"))
+    rows = []
+    for degree in degrees:
+        for s in qualities:
+            for k in neighbours:
+                for mode, name in modes:
+                    r = fit(pd, Degree=degree, QualityFactor=s, NumberOfNeighbors=k, FitMode=mode)
+                    rows.append({"degree": degree, "s": s, "k": k, "mode": name,
+                                 "splats": r["splats"], "seconds": round(r["seconds"], 4),
+                                 "rms_rel": "%.3e" % r["rms_rel"], "max_rel": "%.3e" % r["max_rel"]})
+    write(rows, args.out, "tradeoff")
+    pyplot = plt()
+    fig, ax = pyplot.subplots(figsize=(7, 4.5))
+    markers = {"linear": "o", "robust": "s", "projected": "^"}
+    for degree in degrees:
+        for name in markers:
+            sel = [r for r in rows if r["degree"] == degree and r["mode"] == name]
+            if sel:
+                ax.scatter([r["seconds"] for r in sel], [float(r["rms_rel"]) for r in sel],
+                           marker=markers[name], color="C%d" % degree,
+                           label="degree %d, %s" % (degree, name))
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("fit time [s] (Bunny, this machine)")
+    ax.set_ylabel("RMS distance / bounding-box diagonal")
+    ax.legend(fontsize=7, ncol=2)
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.out, "tradeoff.png"), dpi=100)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("bench", choices=("counts", "million", "tradeoff"))
+    parser.add_argument("scans", nargs="*")
+    parser.add_argument("--out", default="bench-results")
+    parser.add_argument("--points", type=int, default=1000000)
+    parser.add_argument("--smoke", action="store_true")
+    args = parser.parse_args()
+    {"counts": counts, "million": million, "tradeoff": tradeoff}[args.bench](args)
+
+
+if __name__ == "__main__":
+    main()
