@@ -181,7 +181,8 @@ public:
    * Quality levels (section 3.4): K nested levels from CoarsestQualityFactor
    * (s_0) down to QualityFactor (s_k), linearly. Each splat is tagged in
    * SplatLOD with the level where it first appears and is fitted once.
-   * Default 1 (a single level); the thesis uses 25 to 50.
+   * Default 1 (a single level); vtkMultiResolutionSplatBuilder defaults to
+   * 25 levels from s_0 = 4, as the thesis uses 25 to 50.
    */
   vtkSetClampMacro(NumberOfLevels, int, 1, 1000);
   vtkGetMacro(NumberOfLevels, int);

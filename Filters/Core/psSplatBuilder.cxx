@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <unordered_map>
 
 namespace pointsurfaces
 {
@@ -231,6 +232,10 @@ BuildResult BuildSplats(const double* xyz,
   fit.FeatureSizeNeighbors = static_cast<int>(std::min<long long>(fit.FeatureSizeNeighbors, n - 1));
   const int kAll = std::max(fit.NumberOfNeighbors, fit.FeatureSizeNeighbors + 1);
 
+  // Neighbour lists of the points whose frame the selection computed: a
+  // chosen point's fit reuses them instead of searching again. The selection
+  // is sequential, so the cache needs no lock.
+  std::unordered_map<long long, std::vector<int>> neighbours;
   FrameFunction frameOf = [&](long long i, LocalFrame& frame)
   {
     thread_local std::vector<int> ids;
@@ -244,7 +249,12 @@ BuildResult BuildSplats(const double* xyz,
     }
     frame.Scale = FeatureSize(
       index.Point(i), frame, coords.data(), static_cast<int>(ids.size()), fit.FeatureSizeNeighbors);
-    return frame.Scale > 0.0;
+    if (!(frame.Scale > 0.0))
+    {
+      return false;
+    }
+    neighbours[i] = ids;
+    return true;
   };
 
   // 1. Positions.
@@ -356,7 +366,20 @@ BuildResult BuildSplats(const double* xyz,
       for (long long k = begin; k < end && !aborted(); ++k)
       {
         const Position& pos = positions[k];
-        Gather(index, pos.Q, kAll, ids, d2, coords);
+        const auto cached = pos.Source >= 0 ? neighbours.find(pos.Source) : neighbours.end();
+        if (cached != neighbours.end())
+        {
+          ids = cached->second;
+          coords.resize(3 * ids.size());
+          for (size_t j = 0; j < ids.size(); ++j)
+          {
+            std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &coords[3 * j]);
+          }
+        }
+        else
+        {
+          Gather(index, pos.Q, kAll, ids, d2, coords);
+        }
         const long long orientFrom = pos.Source >= 0 ? pos.Source : (ids.empty() ? -1 : ids[0]);
         const double* orientation = normals && orientFrom >= 0 ? normals + 3 * orientFrom : nullptr;
         BuiltSplat& b = built[k];

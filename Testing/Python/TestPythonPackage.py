@@ -10,7 +10,7 @@ from vtkmodules.vtkRenderingCore import vtkRenderWindow
 
 for name in ("vtkEGLHeadlessRenderWindow", "vtkPointSurfacesRenderWindowFactory",
              "vtkComputeShaderProgram", "vtkShaderStorageBuffer", "vtkAlgebraicSplatFitter",
-             "vtkSplatErrorMetric", "vtkPCDReader"):
+             "vtkSplatErrorMetric", "vtkPCDReader", "vtkMultiResolutionSplatBuilder"):
     if not hasattr(pointsurfaces, name):
         fail("pointsurfaces has no " + name)
 

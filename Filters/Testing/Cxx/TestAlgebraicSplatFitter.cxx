@@ -10,6 +10,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
+#include "vtkMultiResolutionSplatBuilder.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -242,6 +243,26 @@ void TestLevelsAndOctree()
     }
   }
   Check(ok, "octree node arrays, leaves sorted by level");
+
+  // The multi-resolution builder: 25 levels from s_0 = 4 by default.
+  vtkNew<vtkMultiResolutionSplatBuilder> builder;
+  builder->SetInputData(sphere);
+  builder->Update();
+  vtkNew<vtkAlgebraicSplatFitter> s0;
+  s0->SetInputData(sphere);
+  s0->SetQualityFactor(4.0);
+  s0->Update();
+  vtkDataArray* levels = builder->GetOutput()->GetFieldData()->GetArray("SplatLODQuality");
+  vtkDataArray* tags = builder->GetOutput()->GetPointData()->GetArray("SplatLOD");
+  vtkIdType first = 0;
+  for (vtkIdType i = 0; i < tags->GetNumberOfTuples(); ++i)
+  {
+    first += tags->GetTuple1(i) == 0 ? 1 : 0;
+  }
+  Check(levels && levels->GetNumberOfTuples() == 25 && levels->GetTuple1(0) == 4.0 &&
+      levels->GetTuple1(24) == 1.0,
+    "25 levels from s = 4 to s = 1");
+  Check(first == s0->GetOutput()->GetNumberOfPoints(), "the builder's level 0 is the s = 4 set");
 }
 
 void TestFixedCount()
