@@ -145,10 +145,11 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   xyz.reserve(3 * nIn);
   kept.reserve(nIn);
   vtkDataArray* inNormals = nIn ? input->GetPointData()->GetNormals() : nullptr;
+  vtkDataArray* coords = nIn ? input->GetPoints()->GetData() : nullptr;
   for (vtkIdType i = 0; i < nIn; ++i)
   {
     double p[3];
-    input->GetPoint(i, p);
+    coords->GetTuple(i, p);
     if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
     {
       xyz.insert(xyz.end(), p, p + 3);

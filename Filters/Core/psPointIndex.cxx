@@ -108,7 +108,8 @@ void PointIndex::Nearest(const double q[3],
 void PointIndex::Within(const double q[3],
   double radius,
   std::vector<int>& ids,
-  std::vector<double>& d2) const
+  std::vector<double>& d2,
+  bool sorted) const
 {
   ids.clear();
   d2.clear();
@@ -125,9 +126,27 @@ void PointIndex::Within(const double q[3],
   // A relative margin covers the float rounding of the scaled coordinates;
   // the exact test is done in double below.
   this->Impl->KdTree.radiusSearch(p, radius * this->InvScale * (1.0 + 1e-5) + 1e-6, found, fd2);
+  const double r2 = radius * radius;
+  if (!sorted)
+  {
+    // Exact radius test in double, no ordering.
+    ids.clear();
+    d2.clear();
+    for (size_t j = 0; j < found.size(); ++j)
+    {
+      const double* x = this->Point(found[j]);
+      const double dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2];
+      const double e = dx * dx + dy * dy + dz * dz;
+      if (e <= r2)
+      {
+        ids.push_back(found[j]);
+        d2.push_back(e);
+      }
+    }
+    return;
+  }
   ids.assign(found.begin(), found.end());
   this->Finish(q, ids, d2);
-  const double r2 = radius * radius;
   size_t keep = 0;
   while (keep < d2.size() && d2[keep] <= r2)
   {

@@ -39,11 +39,12 @@ public:
    */
   void Nearest(const double q[3], int k, std::vector<int>& ids, std::vector<double>& d2) const;
 
-  /** All points within `radius` of q, sorted by distance. */
+  /** All points within `radius` of q, sorted by distance unless `sorted` is false. */
   void Within(const double q[3],
     double radius,
     std::vector<int>& ids,
-    std::vector<double>& d2) const;
+    std::vector<double>& d2,
+    bool sorted = true) const;
 
 private:
   void Finish(const double q[3], std::vector<int>& ids, std::vector<double>& d2) const;

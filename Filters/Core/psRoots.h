@@ -33,7 +33,9 @@ POINTSURFACESFILTERS_EXPORT int RealRoots(const double* c, int degree, double* r
 POINTSURFACESFILTERS_EXPORT int ComplexRoots(const double* c, int degree, double* re, double* im);
 
 /** p(t) in long double, by Horner. */
-POINTSURFACESFILTERS_EXPORT long double EvaluatePolynomial(const double* c, int degree, long double t);
+POINTSURFACESFILTERS_EXPORT long double EvaluatePolynomial(const double* c,
+  int degree,
+  long double t);
 } // namespace pointsurfaces
 
 #endif

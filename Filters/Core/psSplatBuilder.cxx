@@ -233,9 +233,9 @@ BuildResult BuildSplats(const double* xyz,
   const int kAll = std::max(fit.NumberOfNeighbors, fit.FeatureSizeNeighbors + 1);
 
   // Neighbour lists of the points whose frame the selection computed: a
-  // chosen point's fit reuses them instead of searching again. The selection
-  // is sequential, so the cache needs no lock.
-  std::unordered_map<long long, std::vector<int>> neighbours;
+  // chosen point's fit reuses them instead of searching again. One slot per
+  // point, so that selection threads never share one.
+  std::vector<std::vector<int>> neighbours(static_cast<size_t>(n));
   FrameFunction frameOf = [&](long long i, LocalFrame& frame)
   {
     thread_local std::vector<int> ids;
@@ -272,29 +272,31 @@ BuildResult BuildSplats(const double* xyz,
   else if (params.Select == Selection::Quality)
   {
     const int levels = std::max(1, params.Levels);
-    std::vector<long long> order;
-    if (params.VisitOrder == Order::Lattice)
+    // Median h of a sample of points: it sizes the Lattice grid and the
+    // slabs of the parallel selection.
+    std::vector<double> hs;
+    std::mt19937 gen(params.Seed);
+    for (int t = 0; t < 64; ++t)
     {
-      // Median h of a sample of points sets the grid; the finest s is used so
-      // that every level's first visits are spread out.
-      std::vector<double> hs;
-      std::mt19937 gen(params.Seed);
-      for (int t = 0; t < 256; ++t)
+      LocalFrame f;
+      if (frameOf(static_cast<long long>(gen() % static_cast<unsigned long long>(n)), f))
       {
-        LocalFrame f;
-        if (frameOf(static_cast<long long>(gen() % static_cast<unsigned long long>(n)), f))
-        {
-          hs.push_back(f.Scale);
-        }
+        hs.push_back(f.Scale);
       }
-      std::nth_element(hs.begin(), hs.begin() + hs.size() / 2, hs.end());
-      const double h = hs.empty() ? 0.0 : hs[hs.size() / 2];
-      order = LatticeOrder(xyz, n, params.LatticeSpacing * params.Quality * h, params.Seed);
     }
-    else
+    std::nth_element(hs.begin(), hs.begin() + hs.size() / 2, hs.end());
+    const double h = hs.empty() ? 0.0 : hs[hs.size() / 2];
+    // The sampled points' neighbour lists are not those of chosen points.
+    for (auto& list : neighbours)
     {
-      order = RandomOrder(n, params.Seed);
+      std::vector<int>().swap(list);
     }
+    const std::vector<long long> order = params.VisitOrder == Order::Lattice
+      ? LatticeOrder(xyz, n, params.LatticeSpacing * params.Quality * h, params.Seed)
+      : RandomOrder(n, params.Seed);
+    const double coarsest =
+      levels > 1 ? std::max(params.Quality, params.CoarsestQuality) : params.Quality;
+    const double slabWidth = params.SlabSpacing * coarsest * h;
     std::vector<PointState> state(static_cast<size_t>(n), PointState::Free);
     std::vector<long long> chosenAll;
     std::vector<LocalFrame> framesAll;
@@ -320,7 +322,8 @@ BuildResult BuildSplats(const double* xyz,
         frames,
         chosenAll,
         framesAll,
-        params.VisitOrder == Order::Front);
+        params.VisitOrder == Order::Front,
+        slabWidth);
       for (size_t j = 0; j < chosen.size(); ++j)
       {
         const double* p = index.Point(chosen[j]);
@@ -366,10 +369,9 @@ BuildResult BuildSplats(const double* xyz,
       for (long long k = begin; k < end && !aborted(); ++k)
       {
         const Position& pos = positions[k];
-        const auto cached = pos.Source >= 0 ? neighbours.find(pos.Source) : neighbours.end();
-        if (cached != neighbours.end())
+        if (pos.Source >= 0 && !neighbours[pos.Source].empty())
         {
-          ids = cached->second;
+          ids = neighbours[pos.Source];
           coords.resize(3 * ids.size());
           for (size_t j = 0; j < ids.size(); ++j)
           {

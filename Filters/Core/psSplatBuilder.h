@@ -45,8 +45,10 @@ struct BuildParameters
   int Levels = 1;               ///< K nested quality levels from s_0 down to s
   Order VisitOrder = Order::Lattice;
   double LatticeSpacing = 1.6; ///< Lattice cell, in units of s times the median h
-  long long Count = 1000;      ///< m of FixedCount
-  bool Weighted = true;        ///< FixedCount: WLOP (true) or LOP
+  double SlabSpacing =
+    4.0; ///< parallel selection slabs, in units of s times the median h; 0: one sequential pass
+  long long Count = 1000; ///< m of FixedCount
+  bool Weighted = true;   ///< FixedCount: WLOP (true) or LOP
   int LOPIterations = 50;
   unsigned int Seed = 1;
   double RadiusScale = 1.0; ///< R_i = RadiusScale s h_i

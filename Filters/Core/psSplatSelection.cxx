@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "psSplatSelection.h"
 
+#include "vtkSMPTools.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -101,15 +103,19 @@ void Claim(const PointIndex& index,
   const double centre[3],
   const LocalFrame& frame,
   double s,
-  std::vector<PointState>& state)
+  std::vector<PointState>& state,
+  const int* slabOf,
+  int firstSlab,
+  int lastSlab)
 {
   const double r = s * frame.Scale;
   thread_local std::vector<int> ids;
   thread_local std::vector<double> d2;
-  index.Within(centre, std::sqrt(2.0) * r, ids, d2);
+  index.Within(centre, std::sqrt(2.0) * r, ids, d2, false);
   for (size_t j = 0; j < ids.size(); ++j)
   {
-    if (state[ids[j]] != PointState::Free)
+    if (state[ids[j]] != PointState::Free ||
+      (slabOf && (slabOf[ids[j]] < firstSlab || slabOf[ids[j]] > lastSlab)))
     {
       continue;
     }
@@ -124,25 +130,22 @@ void Claim(const PointIndex& index,
   }
 }
 
-std::vector<long long> SelectByQuality(const PointIndex& index,
+namespace
+{
+// The sequential selection over `seeds`; with `slabOf`, only points of slab
+// `slab` are chosen and claims reach slabs slab .. slab + claimRight.
+void SelectSlab(const PointIndex& index,
   double s,
-  const std::vector<long long>& order,
+  const std::vector<long long>& seeds,
   const FrameFunction& frameOf,
   std::vector<PointState>& state,
+  std::vector<long long>& chosen,
   std::vector<LocalFrame>& frames,
-  const std::vector<long long>& alreadyChosen,
-  const std::vector<LocalFrame>& chosenFrames,
-  bool front)
+  bool front,
+  const int* slabOf,
+  int slab,
+  int claimRight)
 {
-  for (size_t i = 0; i < alreadyChosen.size() && i < chosenFrames.size(); ++i)
-  {
-    Claim(index, index.Point(alreadyChosen[i]), chosenFrames[i], s, state);
-  }
-  std::vector<long long> chosen;
-  frames.clear();
-  // Front growth: candidates around chosen points, best first where their
-  // in-plane distance is closest to sqrt(3) s h, the spacing of a hexagonal
-  // covering by discs of radius s h.
   using Candidate = std::pair<double, long long>;
   std::priority_queue<Candidate, std::vector<Candidate>, std::greater<Candidate>> queue;
   std::vector<int> ids;
@@ -159,16 +162,19 @@ std::vector<long long> SelectByQuality(const PointIndex& index,
     chosen.push_back(i);
     frames.push_back(frame);
     const double* c = index.Point(i);
-    Claim(index, c, frame, s, state);
+    Claim(index, c, frame, s, state, slabOf, slab, slab + claimRight);
     if (!front)
     {
       return;
     }
+    // Front growth: candidates around chosen points, best first where their
+    // in-plane distance is closest to sqrt(3) s h, the spacing of a
+    // hexagonal covering by discs of radius s h.
     const double r = s * frame.Scale;
     index.Within(c, 2.0 * r, ids, d2);
     for (size_t j = 0; j < ids.size(); ++j)
     {
-      if (state[ids[j]] != PointState::Free)
+      if (state[ids[j]] != PointState::Free || (slabOf && slabOf[ids[j]] != slab))
       {
         continue;
       }
@@ -179,7 +185,7 @@ std::vector<long long> SelectByQuality(const PointIndex& index,
       queue.emplace(std::abs(inPlane - std::sqrt(3.0) * r) / r, ids[j]);
     }
   };
-  for (long long seed : order)
+  for (long long seed : seeds)
   {
     if (state[seed] == PointState::Free)
     {
@@ -194,6 +200,124 @@ std::vector<long long> SelectByQuality(const PointIndex& index,
         choose(i);
       }
     }
+  }
+}
+} // namespace
+
+std::vector<long long> SelectByQuality(const PointIndex& index,
+  double s,
+  const std::vector<long long>& order,
+  const FrameFunction& frameOf,
+  std::vector<PointState>& state,
+  std::vector<LocalFrame>& frames,
+  const std::vector<long long>& alreadyChosen,
+  const std::vector<LocalFrame>& chosenFrames,
+  bool front,
+  double slabWidth)
+{
+  for (size_t i = 0; i < alreadyChosen.size() && i < chosenFrames.size(); ++i)
+  {
+    Claim(index, index.Point(alreadyChosen[i]), chosenFrames[i], s, state);
+  }
+  std::vector<long long> chosen;
+  frames.clear();
+  const long long n = index.Size();
+
+  // Slabs along the longest axis of the bounding box.
+  int axis = 0, slabs = 1;
+  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+  for (long long i = 0; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lo[c] = i ? std::min(lo[c], index.Point(i)[c]) : index.Point(i)[c];
+      hi[c] = i ? std::max(hi[c], index.Point(i)[c]) : index.Point(i)[c];
+    }
+  }
+  for (int c = 1; c < 3; ++c)
+  {
+    axis = hi[c] - lo[c] > hi[axis] - lo[axis] ? c : axis;
+  }
+  if (slabWidth > 0.0)
+  {
+    slabs = static_cast<int>(std::min(64.0, std::floor((hi[axis] - lo[axis]) / slabWidth)));
+  }
+  if (slabs < 4)
+  {
+    SelectSlab(index, s, order, frameOf, state, chosen, frames, front, nullptr, 0, 0);
+    return chosen;
+  }
+  const double width = (hi[axis] - lo[axis]) / slabs;
+  std::vector<int> slabOf(static_cast<size_t>(n));
+  for (long long i = 0; i < n; ++i)
+  {
+    slabOf[i] = std::min(slabs - 1, static_cast<int>((index.Point(i)[axis] - lo[axis]) / width));
+  }
+  std::vector<std::vector<long long>> seeds(slabs);
+  for (long long i : order)
+  {
+    seeds[slabOf[i]].push_back(i);
+  }
+  std::vector<std::vector<long long>> slabChosen(slabs);
+  std::vector<std::vector<LocalFrame>> slabFrames(slabs);
+  // Even slabs together (claims reach their right neighbour), then their
+  // claims on the left neighbour, then the odd slabs: no two threads ever
+  // touch the same point, and the result does not depend on their number.
+  for (int parity = 0; parity < 2; ++parity)
+  {
+    std::vector<int> mine;
+    for (int k = parity; k < slabs; k += 2)
+    {
+      mine.push_back(k);
+    }
+    vtkSMPTools::For(0,
+      static_cast<vtkIdType>(mine.size()),
+      [&](vtkIdType b, vtkIdType e)
+      {
+        for (vtkIdType m = b; m < e; ++m)
+        {
+          const int k = mine[m];
+          SelectSlab(index,
+            s,
+            seeds[k],
+            frameOf,
+            state,
+            slabChosen[k],
+            slabFrames[k],
+            front,
+            slabOf.data(),
+            k,
+            parity == 0 ? 1 : 0);
+        }
+      });
+    if (parity == 0)
+    {
+      vtkSMPTools::For(0,
+        static_cast<vtkIdType>(mine.size()),
+        [&](vtkIdType b, vtkIdType e)
+        {
+          for (vtkIdType m = b; m < e; ++m)
+          {
+            const int k = mine[m];
+            for (size_t j = 0; k > 0 && j < slabChosen[k].size(); ++j)
+            {
+              Claim(index,
+                index.Point(slabChosen[k][j]),
+                slabFrames[k][j],
+                s,
+                state,
+                slabOf.data(),
+                k - 1,
+                k - 1);
+            }
+          }
+        });
+    }
+  }
+  for (int k = 0; k < slabs; ++k)
+  {
+    chosen.insert(chosen.end(), slabChosen[k].begin(), slabChosen[k].end());
+    frames.insert(frames.end(), slabFrames[k].begin(), slabFrames[k].end());
   }
   return chosen;
 }

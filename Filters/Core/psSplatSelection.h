@@ -60,6 +60,13 @@ POINTSURFACESFILTERS_EXPORT std::vector<long long> LatticeOrder(const double* xy
  * like the returned list (chosen point ids, in the order they were chosen).
  * Points already Chosen in `state` first claim their neighbourhoods using
  * `chosenFrames` (same indexing as `alreadyChosen`).
+ *
+ * With `slabWidth` > 0 the work runs in parallel: the points are cut into
+ * slabs of at least that width along the longest axis, the even slabs are
+ * decimated concurrently, then the odd ones, each in `order`. The result is
+ * deterministic and independent of the number of threads; next to slab
+ * borders a few more splats may be chosen than in one sequential pass.
+ * `frameOf` must then be safe to call from several threads.
  */
 POINTSURFACESFILTERS_EXPORT std::vector<long long> SelectByQuality(const PointIndex& index,
   double s,
@@ -69,14 +76,21 @@ POINTSURFACESFILTERS_EXPORT std::vector<long long> SelectByQuality(const PointIn
   std::vector<LocalFrame>& frames,
   const std::vector<long long>& alreadyChosen = {},
   const std::vector<LocalFrame>& chosenFrames = {},
-  bool front = false);
+  bool front = false,
+  double slabWidth = 0.0);
 
-/** Mark the points that `frame` at point `centre` claims for quality s. */
+/**
+ * Mark the points that `frame` at point `centre` claims for quality s; with
+ * `slabOf`, only points whose slab lies in [firstSlab, lastSlab].
+ */
 POINTSURFACESFILTERS_EXPORT void Claim(const PointIndex& index,
   const double centre[3],
   const LocalFrame& frame,
   double s,
-  std::vector<PointState>& state);
+  std::vector<PointState>& state,
+  const int* slabOf = nullptr,
+  int firstSlab = 0,
+  int lastSlab = 0);
 } // namespace pointsurfaces
 
 #endif

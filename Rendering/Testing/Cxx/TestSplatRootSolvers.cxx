@@ -90,7 +90,8 @@ int TestSplatRootSolvers(int, char*[])
   std::mt19937 gen(17);
   std::uniform_real_distribution<double> uni(-10.0, 10.0), lead(0.1, 10.0);
   std::vector<Case> cases;
-  auto separated = [&](int n) {
+  auto separated = [&](int n)
+  {
     std::vector<double> r;
     while (static_cast<int>(r.size()) < n)
     {
@@ -121,8 +122,11 @@ int TestSplatRootSolvers(int, char*[])
   }
   // Quadratics and cubics over a 1e6 range; quartics over 1e3 (Ferrari's
   // known limit, documented in vtkSplatRoots.glsl).
-  const std::vector<std::vector<double>> spreads = { { 1e-3, 1e3 }, { -1e-3, 1e3 },
-    { -1e-3, 1.0, 1e3 }, { 2e-3, -5.0, 999.0 }, { 0.03, -0.3, 3.0, -30.0 },
+  const std::vector<std::vector<double>> spreads = { { 1e-3, 1e3 },
+    { -1e-3, 1e3 },
+    { -1e-3, 1.0, 1e3 },
+    { 2e-3, -5.0, 999.0 },
+    { 0.03, -0.3, 3.0, -30.0 },
     { 0.1, -1.0, 10.0, 100.0 } };
   for (const auto& r : spreads)
   {
@@ -271,8 +275,8 @@ int TestSplatRootSolvers(int, char*[])
       for (int k = 0; k < nAll; ++k)
       {
         const double dr = roots[4 * i + j] - re[k];
-        nearest = std::min(nearest,
-          std::sqrt(dr * dr + im[k] * im[k]) / std::max(std::hypot(re[k], im[k]), 1e-30));
+        nearest = std::min(
+          nearest, std::sqrt(dr * dr + im[k] * im[k]) / std::max(std::hypot(re[k], im[k]), 1e-30));
       }
       if (!(nearest < 1e-2))
       {
@@ -291,7 +295,8 @@ int TestSplatRootSolvers(int, char*[])
         double best = 1e300;
         for (int j = 0; j < counts[i]; ++j)
         {
-          best = std::min(best, std::abs(roots[4 * i + j] - c.Expected[k]) / std::abs(c.Expected[k]));
+          best =
+            std::min(best, std::abs(roots[4 * i + j] - c.Expected[k]) / std::abs(c.Expected[k]));
         }
         pairFound = pairFound && best <= 1e-2;
       }
@@ -309,8 +314,8 @@ int TestSplatRootSolvers(int, char*[])
       double best = 1e300;
       for (int j = 0; j < counts[i]; ++j)
       {
-        best = std::min(best, std::abs(roots[4 * i + j] - c.Expected[k]) /
-            std::max(std::abs(c.Expected[k]), 1e-30));
+        best = std::min(best,
+          std::abs(roots[4 * i + j] - c.Expected[k]) / std::max(std::abs(c.Expected[k]), 1e-30));
       }
       worst[c.Kind] = std::max(worst[c.Kind], best);
       if (!(best <= c.Bounds[k]))
@@ -332,8 +337,9 @@ int TestSplatRootSolvers(int, char*[])
   int bad = 0;
   for (const auto& t : total)
   {
-    std::cout << std::setw(14) << t.first << ": " << t.second << " polynomials, largest relative error "
-              << worst[t.first] << ", " << failures[t.first] << " over the bound";
+    std::cout << std::setw(14) << t.first << ": " << t.second
+              << " polynomials, largest relative error " << worst[t.first] << ", "
+              << failures[t.first] << " over the bound";
     if (t.first == "near-double")
     {
       std::cout << ", " << missedPairs[t.first] << " pairs missed as grazing";
