@@ -295,7 +295,8 @@ void BenchLOP(const std::string& path, vtkPolyData* pd, long long m, int iterati
     cg[3 * i + 2] = cgalOut[i].z();
   }
   auto q = SampleQuality(data, cg, diag);
-  std::printf("lop,%s,%lld,cgal-wlop,%lld,%d,%.4f,%.3e,,%.3f nn-variation,1.00\n",
+  const double cgalRMS = q.first;
+  std::printf("lop,%s,%lld,cgal-wlop,%lld,%d,%.4f,%.3e,,%.3f nn-variation,1.000,1.000\n",
     Base(path).c_str(),
     static_cast<long long>(n),
     static_cast<long long>(cgalOut.size()),
@@ -328,7 +329,8 @@ void BenchLOP(const std::string& path, vtkPolyData* pd, long long m, int iterati
       q.first,
       q.second,
       steps,
-      ours / cgalTime);
+      ours / cgalTime,
+      q.first / cgalRMS);
   }
 }
 } // namespace

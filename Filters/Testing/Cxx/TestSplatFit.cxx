@@ -11,6 +11,8 @@
 #include "psSplatError.h"
 #include "psSplatFit.h"
 
+#include "vtkSMPTools.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -220,6 +222,28 @@ void TestInvariance()
   }
 }
 
+void TestThreadIndependence()
+{
+  // The parallel selection must not depend on the number of threads.
+  const int n = 20000;
+  const std::vector<double> base = Torus(n, 9u);
+  BuildParameters params;
+  params.VisitOrder = Order::Front;
+  vtkSMPTools::Initialize(1);
+  const BuildResult one = BuildSplats(base.data(), n, nullptr, params);
+  vtkSMPTools::Initialize(2);
+  const BuildResult two = BuildSplats(base.data(), n, nullptr, params);
+  bool same = one.Splats.size() == two.Splats.size() && !one.Splats.empty();
+  for (size_t i = 0; same && i < one.Splats.size(); ++i)
+  {
+    same = one.Splats[i].Source == two.Splats[i].Source &&
+      one.Splats[i].Fitted.Fit.Coefficients[3] == two.Splats[i].Fitted.Fit.Coefficients[3];
+  }
+  std::cout << "1 and 2 threads: " << one.Splats.size() << " and " << two.Splats.size()
+            << " splats\n";
+  Check(same, "the same splats with 1 and 2 threads");
+}
+
 void TestLOP()
 {
   // A sphere sampled four times more densely on its northern half. WLOP must
@@ -383,6 +407,7 @@ int TestSplatFit(int, char*[])
   TestParaboloidThroughKernel();
   TestConvergenceOrder();
   TestInvariance();
+  TestThreadIndependence();
   TestLOP();
   TestOctree();
   TestErrorMetric();
