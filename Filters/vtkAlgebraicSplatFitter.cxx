@@ -20,6 +20,7 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSplatDataModel.h"
 
 #include <atomic>
 #include <cmath>
@@ -80,20 +81,7 @@ void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
     lod->SetValue(i, built.Splats[i].Level);
   }
   output->SetPoints(points);
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  offsets->SetNumberOfValues(n + 1);
-  connectivity->SetNumberOfValues(n);
-  for (vtkIdType i = 0; i <= n; ++i)
-  {
-    offsets->SetValue(i, i);
-    if (i < n)
-    {
-      connectivity->SetValue(i, i);
-    }
-  }
-  vtkNew<vtkCellArray> verts;
-  verts->SetData(offsets, connectivity);
-  output->SetVerts(verts);
+  vtkSplatDataModel::AddVertexCells(output);
   vtkPointData* pd = output->GetPointData();
   for (vtkDataArray* a : { static_cast<vtkDataArray*>(normal),
          static_cast<vtkDataArray*>(tangent),

@@ -19,6 +19,7 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSplatDataModel.h"
 
 #include <cmath>
 #include <vector>
@@ -27,23 +28,19 @@ vtkStandardNewMacro(vtkSplatErrorMetric);
 
 namespace
 {
-bool Fetch(vtkPointData* pd,
+// Copy an array that vtkSplatDataModel::GetSplatDegree() has validated.
+void Fetch(vtkPointData* pd,
   const char* name,
   int components,
   vtkIdType n,
   std::vector<double>& out)
 {
   vtkDataArray* a = pd->GetArray(name);
-  if (!a || a->GetNumberOfComponents() != components || a->GetNumberOfTuples() != n)
-  {
-    return false;
-  }
   out.resize(static_cast<size_t>(n) * components);
   for (vtkIdType i = 0; i < n; ++i)
   {
     a->GetTuple(i, &out[static_cast<size_t>(i) * components]);
   }
-  return true;
 }
 
 void AddValue(vtkFieldData* fd, const char* name, double value)
@@ -80,24 +77,23 @@ int vtkSplatErrorMetric::RequestData(vtkInformation*,
   this->NumberOfUncoveredPoints = 0;
 
   // Splat arrays, checked against the data model.
-  const vtkIdType m = splats ? splats->GetNumberOfPoints() : 0;
-  vtkDataArray* degreeArray = splats ? splats->GetFieldData()->GetArray("SplatDegree") : nullptr;
-  const int degree = degreeArray ? static_cast<int>(degreeArray->GetTuple1(0)) : -1;
+  const int degree = vtkSplatDataModel::GetSplatDegree(splats);
+  const vtkIdType m = degree > 0 ? splats->GetNumberOfPoints() : 0;
   std::vector<double> origin, normal, tangent, scale, radius, coeffs;
-  const bool valid = m > 0 && degree >= 1 && degree <= pointsurfaces::MaximumDegree &&
-    Fetch(splats->GetPointData(), "SplatNormal", 3, m, normal) &&
-    Fetch(splats->GetPointData(), "SplatTangent", 3, m, tangent) &&
-    Fetch(splats->GetPointData(), "SplatFeatureSize", 1, m, scale) &&
-    Fetch(splats->GetPointData(), "SplatRadius", 1, m, radius) &&
-    Fetch(
-      splats->GetPointData(), "SplatCoefficients", pointsurfaces::MonomialCount(degree), m, coeffs);
-  if (!valid)
+  if (degree < 0)
   {
     vtkErrorMacro(<< "Input 1 is not a splat set: it needs points, SplatDegree in the field data "
                      "and the SplatNormal, SplatTangent, SplatFeatureSize, SplatRadius and "
                      "SplatCoefficients point arrays.");
     return 1;
   }
+  vtkPointData* spd = splats->GetPointData();
+  Fetch(spd, vtkSplatDataModel::NormalName(), 3, m, normal);
+  Fetch(spd, vtkSplatDataModel::TangentName(), 3, m, tangent);
+  Fetch(spd, vtkSplatDataModel::FeatureSizeName(), 1, m, scale);
+  Fetch(spd, vtkSplatDataModel::RadiusName(), 1, m, radius);
+  Fetch(
+    spd, vtkSplatDataModel::CoefficientsName(), pointsurfaces::MonomialCount(degree), m, coeffs);
   origin.resize(3 * m);
   for (vtkIdType j = 0; j < m; ++j)
   {
@@ -143,20 +139,7 @@ int vtkSplatErrorMetric::RequestData(vtkInformation*,
   vtkNew<vtkPoints> outPoints;
   outPoints->ShallowCopy(points->GetPoints());
   output->SetPoints(outPoints);
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  offsets->SetNumberOfValues(n + 1);
-  connectivity->SetNumberOfValues(n);
-  for (vtkIdType i = 0; i <= n; ++i)
-  {
-    offsets->SetValue(i, i);
-    if (i < n)
-    {
-      connectivity->SetValue(i, i);
-    }
-  }
-  vtkNew<vtkCellArray> verts;
-  verts->SetData(offsets, connectivity);
-  output->SetVerts(verts);
+  vtkSplatDataModel::AddVertexCells(output);
   output->GetPointData()->PassData(points->GetPointData());
   vtkNew<vtkDoubleArray> deltaArray, distanceArray;
   vtkNew<vtkIntArray> coverArray;

@@ -68,29 +68,16 @@ int RealRoots(const double* c, int degree, double* roots)
   {
     --degree;
   }
-  if (degree <= 0)
-  {
-    return 0;
-  }
-  Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(degree, degree);
-  for (int k = 0; k < degree; ++k)
-  {
-    companion(0, k) = -c[degree - 1 - k] / c[degree];
-    if (k + 1 < degree)
-    {
-      companion(k + 1, k) = 1.0;
-    }
-  }
-  Eigen::EigenSolver<Eigen::MatrixXd> solver(companion, false);
+  double re[4], im[4];
+  const int all = degree > 0 && degree <= 4 ? ComplexRoots(c, degree, re, im) : 0;
   int count = 0;
-  for (int k = 0; k < degree; ++k)
+  for (int k = 0; k < all; ++k)
   {
-    const std::complex<double> z = solver.eigenvalues()(k);
-    if (std::abs(z.imag()) > 1e-7 * std::max(1.0, std::abs(z)))
+    if (std::abs(im[k]) > 1e-7 * std::max(1.0, std::hypot(re[k], im[k])))
     {
       continue;
     }
-    long double t = z.real();
+    long double t = re[k];
     for (int it = 0; it < 8; ++it)
     {
       const long double d = Derivative(c, degree, t);
