@@ -121,7 +121,11 @@ public:
   ///@}
 
   ///@{
-  /** Loss of the Robust mode: Huber (default) or Cauchy. */
+  /**
+   * Loss of the Robust mode: Huber or Cauchy (default). With 15 % gross
+   * outliers Cauchy recovers the curvature to 4 %, Huber only to 80 %
+   * (TestSplatFit).
+   */
   vtkSetClampMacro(RobustLoss, int, Huber, Cauchy);
   vtkGetMacro(RobustLoss, int);
   ///@}
@@ -234,7 +238,7 @@ protected:
   int FeatureSizeNeighbors = 120;
   double WeightScale = 1.0;
   int FitMode = Linear;
-  int RobustLoss = Huber;
+  int RobustLoss = Cauchy;
   double RobustLossScale = 0.05;
   int SelectionMode = Quality;
   double QualityFactor = 1.0;

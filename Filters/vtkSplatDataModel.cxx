@@ -43,8 +43,10 @@ int vtkSplatDataModel::GetSplatDegree(vtkPolyData* pd)
     return -1;
   }
   const vtkIdType n = pd->GetNumberOfPoints();
-  const std::pair<const char*, int> arrays[] = { { NormalName(), 3 }, { TangentName(), 3 },
-    { FeatureSizeName(), 1 }, { RadiusName(), 1 },
+  const std::pair<const char*, int> arrays[] = { { NormalName(), 3 },
+    { TangentName(), 3 },
+    { FeatureSizeName(), 1 },
+    { RadiusName(), 1 },
     { CoefficientsName(), pointsurfaces::MonomialCount(degree) } };
   for (const auto& a : arrays)
   {

@@ -25,7 +25,7 @@ if [ "${#files[@]}" -eq 0 ]; then
   if [ -n "$base" ]; then
     mapfile -t files < <(git diff --name-only --diff-filter=ACMR "$base" -- '*.h' '*.cxx' '*.cpp' '*.hpp')
   else
-    mapfile -t files < <(git ls-files -- '*.h' '*.cxx' '*.cpp' '*.hpp')
+    mapfile -t files < <(git ls-files -co --exclude-standard -- '*.h' '*.cxx' '*.cpp' '*.hpp')
   fi
 fi
 [ "${#files[@]}" -gt 0 ] || { echo "check-format.sh: no C/C++ files to check"; exit 0; }

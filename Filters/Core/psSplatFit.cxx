@@ -122,12 +122,16 @@ Splat FitSplat(const double q[3],
       {
         moved[c] = splat.Frame.Origin[c] + g0 * h * splat.Frame.Normal[c];
       }
+      // Weights around the surface point, a new reference plane, and the
+      // frame's origin at the surface point itself (not its projection onto
+      // the plane), so that g(0, 0) measures what is left to move.
       Weigh(moved, nbrs, m, h, params.WeightScale, w.data());
       LocalFrame next = splat.Frame;
       if (PlaneAt(moved, nbrs, m, w.data(), splat.Frame.Normal, next) != FitStatus::Ok)
       {
         break;
       }
+      std::copy(moved, moved + 3, next.Origin);
       const PolynomialFit fit = FitPolynomial(nbrs, w.data(), m, next, params.Degree);
       if (fit.Degree == 0)
       {

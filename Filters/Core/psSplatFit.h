@@ -48,7 +48,7 @@ struct SplatFitParameters
   int FeatureSizeNeighbors = 100; ///< neighbours whose mean in-plane distance is h
   double WeightScale = 1.0;       ///< Gaussian width, in units of h
   FitMode Mode = FitMode::Linear;
-  RobustLoss Loss = RobustLoss::Huber;
+  RobustLoss Loss = RobustLoss::Cauchy;
   double LossScale = 0.05;    ///< where the robust loss bends, in units of h
   int MaximumIterations = 10; ///< Projected: projection steps; Robust: solver iterations x 10
   double Tolerance = 1e-7;    ///< Projected: stop when |g(0,0)| < Tolerance (units of h)

@@ -222,6 +222,67 @@ void TestInvariance()
   }
 }
 
+void TestFitModes()
+{
+  // A sphere patch with 15 % gross outliers: the Robust mode must recover the
+  // curvature that the Linear mode loses; the Projected mode must put the
+  // origin on the surface it fits (g(0, 0) = 0).
+  const std::vector<double> sphere = FibonacciSphere(20000);
+  PointIndex index(sphere.data(), 20000);
+  const double q[3] = { 0.0, 0.0, 1.0 };
+  std::vector<int> ids;
+  std::vector<double> d2, c;
+  index.Nearest(q, 121, ids, d2);
+  c.resize(3 * ids.size());
+  std::mt19937 gen(5);
+  for (size_t j = 0; j < ids.size(); ++j)
+  {
+    std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &c[3 * j]);
+    if (j > 0 && gen() % 100 < 15)
+    {
+      c[3 * j + 2] += 0.02; // far above the surface: 1.2 point spacings
+    }
+  }
+  SplatFitParameters par;
+  par.FeatureSizeNeighbors = 120;
+  const Splat linear = FitSplat(q, c.data(), static_cast<int>(ids.size()), par);
+  par.Mode = FitMode::Robust;
+  par.Loss = RobustLoss::Cauchy;
+  par.LossScale = 0.02;
+  const Splat robust = FitSplat(q, c.data(), static_cast<int>(ids.size()), par);
+  // Exact curvature of the unit sphere in units of h: g ~ -(h / 2)(u^2 + v^2).
+  const double expectedL = -0.5 * linear.Frame.Scale, expectedR = -0.5 * robust.Frame.Scale;
+  const double errLinear = std::abs(linear.Fit.Coefficients[3] - expectedL) / std::abs(expectedL);
+  const double errRobust = std::abs(robust.Fit.Coefficients[3] - expectedR) / std::abs(expectedR);
+  std::cout << "outliers: curvature error linear " << errLinear << ", robust " << errRobust << " ("
+            << robust.Iterations << " iterations)\n";
+  Check(errRobust < 0.5 * errLinear && errRobust < 0.1, "the Robust mode resists outliers");
+
+  // Projected: on a clean off-surface query the origin moves onto the fit.
+  const double off[3] = { 0.0, 0.01, 1.02 };
+  index.Nearest(off, 121, ids, d2);
+  c.resize(3 * ids.size());
+  for (size_t j = 0; j < ids.size(); ++j)
+  {
+    std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &c[3 * j]);
+  }
+  par.Mode = FitMode::Linear;
+  const Splat plain = FitSplat(off, c.data(), static_cast<int>(ids.size()), par);
+  par.Mode = FitMode::Projected;
+  const Splat projected = FitSplat(off, c.data(), static_cast<int>(ids.size()), par);
+  const double* o = projected.Frame.Origin;
+  std::cout << "projection: |g(0,0)| linear " << std::abs(plain.Fit.Coefficients[0])
+            << ", projected " << std::abs(projected.Fit.Coefficients[0]) << " after "
+            << projected.Iterations
+            << " steps; |o| - 1 = " << std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]) - 1.0
+            << "\n";
+  Check(std::abs(projected.Fit.Coefficients[0]) < 1e-6 &&
+      std::abs(projected.Fit.Coefficients[0]) < std::abs(plain.Fit.Coefficients[0]),
+    "the Projected mode puts the origin on its surface");
+  Check(std::abs(std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]) - 1.0) < 1e-5,
+    "the projected origin lies on the sphere");
+}
+
 void TestThreadIndependence()
 {
   // The parallel selection must not depend on the number of threads.
@@ -408,6 +469,7 @@ int TestSplatFit(int, char*[])
   TestConvergenceOrder();
   TestInvariance();
   TestThreadIndependence();
+  TestFitModes();
   TestLOP();
   TestOctree();
   TestErrorMetric();
