@@ -1,0 +1,53 @@
+//VTK::System::Dec
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+//
+// Vertex shader of vtkAlgebraicSplatMapper: one vertex per splat. Passes the
+// splat's frame, scaled by its feature size h, and its polynomial to the
+// geometry shader in view coordinates.
+
+in vec4 vertexMC;
+in vec3 splatNormalMC;
+in vec3 splatTangentMC;
+in vec2 splatSizeMC; // h, disc radius R
+in vec4 splatC0;
+in vec4 splatC1;
+in vec4 splatC2;
+in vec4 splatC3;
+
+out vec3 splatAxisUVSOutput;
+out vec3 splatAxisVVSOutput;
+out vec3 splatAxisNVSOutput;
+out float splatRadiusVSOutput; // R / h
+out vec4 splatC0VSOutput;
+out vec4 splatC1VSOutput;
+out vec4 splatC2VSOutput;
+out vec4 splatC3VSOutput;
+
+//VTK::Color::Dec
+
+//VTK::Camera::Dec
+
+//VTK::Picking::Dec
+
+void main()
+{
+  //VTK::Color::Impl
+
+  mat3 mcvc = mat3(MCVCMatrix);
+  vec3 n = normalize(splatNormalMC);
+  vec3 t = normalize(splatTangentMC - dot(splatTangentMC, n) * n);
+  vec3 b = cross(n, t);
+  float h = splatSizeMC.x;
+  splatAxisUVSOutput = mcvc * (t * h);
+  splatAxisVVSOutput = mcvc * (b * h);
+  splatAxisNVSOutput = mcvc * (n * h);
+  splatRadiusVSOutput = splatSizeMC.y / h;
+  splatC0VSOutput = splatC0;
+  splatC1VSOutput = splatC1;
+  splatC2VSOutput = splatC2;
+  splatC3VSOutput = splatC3;
+  gl_Position = MCVCMatrix * vertexMC;
+
+  //VTK::Picking::Impl
+}
