@@ -1,14 +1,17 @@
 #!/usr/bin/env python3
 # SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 # SPDX-License-Identifier: BSD-3-Clause
-"""Render a point scan headless to a PNG and report what it cost.
+"""Fit a point scan with algebraic splats, render it headless to a PNG, and
+report what it cost.
 
     render_scan.py [input.{ply,vtp,pcd,xyz}] [output.png] [--size N]
+                   [--degree D] [--quality S] [--points]
 
-Until the algebraic-splat mapper lands, the points are drawn as shaded discs
-with VTK's vtkPointGaussianMapper (the linear-splat baseline that the splats
-will be measured against). Rendering goes through PointSurfaces' EGL window
-when there is no X display.
+The splats are fitted with vtkAlgebraicSplatFitter (degree D, quality s),
+measured against the scan with vtkSplatErrorMetric and ray cast with
+vtkAlgebraicSplatMapper. --points draws the raw points as shaded discs with
+VTK's vtkPointGaussianMapper instead, the linear-splat baseline. Rendering
+goes through PointSurfaces' EGL window when there is no X display.
 """
 import argparse
 import math
@@ -57,6 +60,9 @@ def main():
     parser.add_argument("input", nargs="?", default=DEFAULT_INPUT)
     parser.add_argument("output", nargs="?", default="scan.png")
     parser.add_argument("--size", type=int, default=800)
+    parser.add_argument("--degree", type=int, default=3)
+    parser.add_argument("--quality", type=float, default=1.0)
+    parser.add_argument("--points", action="store_true", help="draw the raw points instead")
     args = parser.parse_args()
 
     t0 = time.perf_counter()
@@ -66,19 +72,46 @@ def main():
     if n == 0:
         sys.exit("render_scan.py: no points in " + args.input)
 
-    spacing = poly.GetLength() / math.sqrt(n)
-    mapper = vtkOpenGLPointGaussianMapper()
-    mapper.SetInputData(poly)
-    mapper.SetScaleFactor(1.4 * spacing)
-    mapper.EmissiveOff()
-    mapper.SetScalarVisibility(poly.GetPointData().GetScalars() is not None)
-    mapper.SetSplatShaderCode(
-        "//VTK::Color::Impl\n"
-        "float dist = dot(offsetVCVSOutput.xy, offsetVCVSOutput.xy);\n"
-        "if (dist > 1.0) { discard; }\n"
-        "float shade = sqrt(1.0 - dist);\n"
-        "ambientColor *= shade;\n"
-        "diffuseColor *= shade;\n")
+    report = []
+    if args.points:
+        spacing = poly.GetLength() / math.sqrt(n)
+        mapper = vtkOpenGLPointGaussianMapper()
+        mapper.SetInputData(poly)
+        mapper.SetScaleFactor(1.4 * spacing)
+        mapper.EmissiveOff()
+        mapper.SetScalarVisibility(poly.GetPointData().GetScalars() is not None)
+        mapper.SetSplatShaderCode(
+            "//VTK::Color::Impl\n"
+            "float dist = dot(offsetVCVSOutput.xy, offsetVCVSOutput.xy);\n"
+            "if (dist > 1.0) { discard; }\n"
+            "float shade = sqrt(1.0 - dist);\n"
+            "ambientColor *= shade;\n"
+            "diffuseColor *= shade;\n")
+    else:
+        fitter = pointsurfaces.vtkAlgebraicSplatFitter()
+        fitter.SetInputData(poly)
+        fitter.SetDegree(args.degree)
+        fitter.SetQualityFactor(args.quality)
+        t0 = time.perf_counter()
+        fitter.Update()
+        fit_ms = 1000 * (time.perf_counter() - t0)
+        metric = pointsurfaces.vtkSplatErrorMetric()
+        metric.SetInputData(poly)
+        metric.SetSplatConnection(fitter.GetOutputPort())
+        metric.Update()
+        diagonal = poly.GetLength()
+        splats = fitter.GetOutput().GetNumberOfPoints()
+        report = [
+            "splats:       %d (degree %d, s = %g, %.1f %% of the points)"
+            % (splats, args.degree, args.quality, 100.0 * splats / n),
+            "fit:          %.1f ms" % fit_ms,
+            "error:        RMS %.2e, max %.2e of the bounding-box diagonal, %d points uncovered"
+            % (metric.GetRMSDistance() / diagonal, metric.GetMaximumDistance() / diagonal,
+               metric.GetNumberOfUncoveredPoints()),
+        ]
+        mapper = pointsurfaces.vtkAlgebraicSplatMapper()
+        mapper.SetInputConnection(fitter.GetOutputPort())
+        mapper.SetScalarVisibility(poly.GetPointData().GetScalars() is not None)
     actor = vtkActor()
     actor.SetMapper(mapper)
     actor.GetProperty().SetColor(0.85, 0.75, 0.6)
@@ -111,6 +144,8 @@ def main():
     writer.Write()
     print("input:        %s" % os.path.relpath(args.input))
     print("points:       %d" % n)
+    for line in report:
+        print(line)
     print("window:       %s" % window.GetClassName())
     print("load:         %.1f ms" % (1000 * load_s))
     print("first frame:  %.1f ms (context, shaders, upload)" % first_ms)

@@ -10,7 +10,8 @@ from vtkmodules.vtkRenderingCore import vtkRenderWindow
 
 for name in ("vtkEGLHeadlessRenderWindow", "vtkPointSurfacesRenderWindowFactory",
              "vtkComputeShaderProgram", "vtkShaderStorageBuffer", "vtkAlgebraicSplatFitter",
-             "vtkSplatErrorMetric", "vtkPCDReader", "vtkMultiResolutionSplatBuilder"):
+             "vtkSplatErrorMetric", "vtkPCDReader", "vtkMultiResolutionSplatBuilder",
+             "vtkAlgebraicSplatMapper"):
     if not hasattr(pointsurfaces, name):
         fail("pointsurfaces has no " + name)
 
