@@ -5,6 +5,7 @@
 #include "vtkEGLHeadlessRenderWindow.h"
 
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLState.h"
 #include "vtkRenderer.h"
 #include "vtkRendererCollection.h"
@@ -507,6 +508,51 @@ int vtkEGLHeadlessRenderWindow::ReadPixels(const vtkRecti& rect,
     return VTK_ERROR;
   }
   return this->Superclass::ReadPixels(rect, front, glFormat, glType, data, right);
+}
+
+//------------------------------------------------------------------------------
+namespace
+{
+// Run `query` with VTK's render framebuffer as the draw framebuffer when the
+// (surfaceless, empty) default framebuffer is bound.
+template<typename Query>
+int OnRenderFramebuffer(vtkOpenGLRenderWindow* win, vtkOpenGLFramebufferObject* fbo, Query query)
+{
+  GLint bound = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &bound);
+  if (bound != 0 || !fbo || fbo->GetFBOIndex() == 0)
+  {
+    return query();
+  }
+  win->GetState()->PushDrawFramebufferBinding();
+  fbo->Bind(GL_DRAW_FRAMEBUFFER);
+  fbo->ActivateDrawBuffer(0);
+  const int result = query();
+  win->GetState()->PopDrawFramebufferBinding();
+  return result;
+}
+} // namespace
+
+int vtkEGLHeadlessRenderWindow::GetColorBufferSizes(int* rgba)
+{
+  if (!this->Initialized)
+  {
+    return this->Superclass::GetColorBufferSizes(rgba);
+  }
+  this->MakeCurrent();
+  return OnRenderFramebuffer(
+    this, this->RenderFramebuffer, [&] { return this->Superclass::GetColorBufferSizes(rgba); });
+}
+
+int vtkEGLHeadlessRenderWindow::GetDepthBufferSize()
+{
+  if (!this->Initialized)
+  {
+    return this->Superclass::GetDepthBufferSize();
+  }
+  this->MakeCurrent();
+  return OnRenderFramebuffer(
+    this, this->RenderFramebuffer, [&] { return this->Superclass::GetDepthBufferSize(); });
 }
 
 //------------------------------------------------------------------------------

@@ -62,6 +62,16 @@ public:
   void* GetGenericDisplayId() override;
   vtkTypeBool GetEventPending() override { return 0; }
 
+  ///@{
+  /**
+   * There is no default framebuffer: these report VTK's own render
+   * framebuffer when the default one is bound (vtkHardwareSelector checks
+   * them before picking).
+   */
+  int GetColorBufferSizes(int* rgba) override;
+  int GetDepthBufferSize() override;
+  ///@}
+
   /** True when an EGL context exists and VTK's GL state is initialised. */
   bool IsInitialized() const { return this->Initialized; }
 

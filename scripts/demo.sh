@@ -6,7 +6,9 @@
 #   default input: Testing/Data/bunny.vtp (the Stanford Bunny), output: bunny.png
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-input=$(realpath "${1:-$root/Testing/Data/bunny.vtp}")
+input="${1:-$root/Testing/Data/bunny.vtp}"
+[ -f "$input" ] || { echo "demo.sh: no such file: $input" >&2; exit 2; }
+input=$(realpath "$input")
 output=$(realpath -m "${2:-bunny.png}")
 
 "$root/scripts/install-deps.sh" >&2
