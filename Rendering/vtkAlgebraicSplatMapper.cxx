@@ -10,8 +10,11 @@
 #include "vtkSplatRoots.h"
 
 #include "vtkActor.h"
+#include "vtkCamera.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -29,9 +32,26 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
+#include <vector>
 
 vtkStandardNewMacro(vtkAlgebraicSplatMapper);
+
+// The octree of the input's field data (see vtkAlgebraicSplatFitter).
+struct vtkAlgebraicSplatMapper::Octree
+{
+  struct Node
+  {
+    double Sphere[4];
+    vtkIdType FirstChild, ChildCount, Begin, End;
+  };
+  std::vector<Node> Nodes;
+  std::vector<vtkIdType> LevelEnds; // Levels per node
+  std::vector<double> LevelQuality; // s of each level
+  std::vector<double> MeanRadius;   // per node: mean R / s over its splats
+  int Levels = 1;
+};
 
 namespace
 {
@@ -121,9 +141,10 @@ bool vtkAlgebraicSplatMapper::GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO,
   vtkRenderer* ren,
   vtkActor* act)
 {
-  // The degree is compiled into the fragment shader.
-  return this->ShaderDegree != this->Degree ||
-    this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act);
+  // The superclass must always run: it records the lighting complexity that
+  // the shader is then built for. The degree is compiled into the shader.
+  const bool changed = this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act);
+  return changed || this->ShaderDegree != this->Degree;
 }
 
 //------------------------------------------------------------------------------
@@ -186,8 +207,10 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
   vtkDataArray* coeffs = pd->GetArray(vtkSplatDataModel::CoefficientsName());
   vtkDataArray* size = pd->GetArray(vtkSplatDataModel::FeatureSizeName());
   vtkDataArray* radius = pd->GetArray(vtkSplatDataModel::RadiusName());
+  vtkDataArray* lod = pd->GetArray(vtkSplatDataModel::LODName());
+  vtkDataArray* quality = poly->GetFieldData()->GetArray("SplatLODQuality");
   vtkNew<vtkFloatArray> sizes;
-  sizes->SetNumberOfComponents(2);
+  sizes->SetNumberOfComponents(3);
   sizes->SetNumberOfTuples(n);
   vtkNew<vtkFloatArray> c[4];
   for (auto& a : c)
@@ -200,6 +223,11 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
   {
     sizes->SetTypedComponent(i, 0, static_cast<float>(size->GetTuple1(i)));
     sizes->SetTypedComponent(i, 1, static_cast<float>(radius->GetTuple1(i)));
+    const int level = lod ? static_cast<int>(lod->GetTuple1(i)) : 0;
+    const double s = quality && level >= 0 && level < quality->GetNumberOfTuples()
+      ? quality->GetTuple1(level)
+      : 1.0;
+    sizes->SetTypedComponent(i, 2, static_cast<float>(radius->GetTuple1(i) / s));
     for (int k = 0; k < 16; ++k)
     {
       c[k / 4]->SetTypedComponent(
@@ -223,19 +251,173 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
   this->VBOs->CacheDataArray("scalarColor", this->Colors, ren, VTK_UNSIGNED_CHAR);
   this->VBOs->BuildAllVBOs(ren);
   this->Primitives[PrimitiveTris].IBO->IndexCount = n;
+  this->ReadOctree(poly);
   this->VBOBuildTime.Modified();
   (void)act;
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
+{
+  this->Nodes.reset();
+  vtkFieldData* fd = poly->GetFieldData();
+  vtkDataArray* sphere = fd->GetArray("OctreeNodeSphere");
+  vtkDataArray* children = fd->GetArray("OctreeNodeChildren");
+  vtkDataArray* range = fd->GetArray("OctreeNodeRange");
+  vtkDataArray* ends = fd->GetArray("OctreeNodeLevelEnds");
+  vtkDataArray* quality = fd->GetArray("SplatLODQuality");
+  vtkDataArray* radius = poly->GetPointData()->GetArray(vtkSplatDataModel::RadiusName());
+  vtkDataArray* lod = poly->GetPointData()->GetArray(vtkSplatDataModel::LODName());
+  const vtkIdType count = sphere ? sphere->GetNumberOfTuples() : 0;
+  if (!count || !children || !range || !ends || !quality || !radius || !lod ||
+    children->GetNumberOfTuples() != count || range->GetNumberOfTuples() != count ||
+    ends->GetNumberOfTuples() != count ||
+    ends->GetNumberOfComponents() != quality->GetNumberOfTuples())
+  {
+    return; // no (usable) octree: draw everything
+  }
+  auto tree = std::make_shared<Octree>();
+  tree->Levels = ends->GetNumberOfComponents();
+  for (int l = 0; l < tree->Levels; ++l)
+  {
+    tree->LevelQuality.push_back(quality->GetTuple1(l));
+  }
+  tree->Nodes.resize(count);
+  tree->LevelEnds.resize(count * tree->Levels);
+  tree->MeanRadius.resize(count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    Octree::Node& node = tree->Nodes[i];
+    sphere->GetTuple(i, node.Sphere);
+    node.FirstChild = static_cast<vtkIdType>(children->GetComponent(i, 0));
+    node.ChildCount = static_cast<vtkIdType>(children->GetComponent(i, 1));
+    node.Begin = static_cast<vtkIdType>(range->GetComponent(i, 0));
+    node.End = static_cast<vtkIdType>(range->GetComponent(i, 1));
+    for (int l = 0; l < tree->Levels; ++l)
+    {
+      tree->LevelEnds[i * tree->Levels + l] = static_cast<vtkIdType>(ends->GetComponent(i, l));
+    }
+    // R / s is the splats' feature size scale: R at level l is about s_l times it.
+    double sum = 0.0, largest = 0.0;
+    for (vtkIdType k = node.Begin; k < node.End; ++k)
+    {
+      sum += radius->GetTuple1(k) / tree->LevelQuality[static_cast<int>(lod->GetTuple1(k))];
+      largest = std::max(largest, radius->GetTuple1(k));
+    }
+    // The sphere holds the discs; a patch may also rise up to R above its
+    // disc, so the cylinder reaches sqrt(2) R from the origin.
+    node.Sphere[3] += (std::sqrt(2.0) - 1.0) * largest;
+    tree->MeanRadius[i] = node.End > node.Begin ? sum / (node.End - node.Begin) : 0.0;
+  }
+  this->Nodes = tree;
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatMapper::DrawOctree(vtkRenderer* ren, vtkActor* act)
+{
+  const Octree& tree = *this->Nodes;
+  vtkShaderProgram* program = this->Primitives[PrimitiveTris].Program;
+  vtkCamera* cam = ren->GetActiveCamera();
+  double planes[24];
+  cam->GetFrustumPlanes(ren->GetTiledAspectRatio(), planes);
+  int size[2];
+  ren->GetTiledSize(&size[0], &size[1]);
+  double eye[3];
+  cam->GetPosition(eye);
+  const double tanHalf = std::tan(0.5 * vtkMath::RadiansFromDegrees(cam->GetViewAngle()));
+  vtkMatrix4x4* mcwc = act->GetMatrix();
+  const bool identity = act->GetIsIdentity();
+  // Pixels per world unit at distance d.
+  auto pixelsPerUnit = [&](double d)
+  {
+    return cam->GetParallelProjection() ? size[1] / (2.0 * cam->GetParallelScale())
+                                        : size[1] / (2.0 * std::max(d, 1e-30) * tanHalf);
+  };
+  std::vector<vtkIdType> stack{ 0 };
+  this->NumberOfRenderedSplats = 0;
+  while (!stack.empty())
+  {
+    const vtkIdType id = stack.back();
+    stack.pop_back();
+    const Octree::Node& node = tree.Nodes[id];
+    double c[4] = { node.Sphere[0], node.Sphere[1], node.Sphere[2], 1.0 };
+    double r = node.Sphere[3];
+    if (!identity)
+    {
+      mcwc->MultiplyPoint(c, c);
+      double scale = 0.0; // the largest axis scale of the actor
+      for (int a = 0; a < 3; ++a)
+      {
+        scale = std::max(scale,
+          std::sqrt(mcwc->GetElement(0, a) * mcwc->GetElement(0, a) +
+            mcwc->GetElement(1, a) * mcwc->GetElement(1, a) +
+            mcwc->GetElement(2, a) * mcwc->GetElement(2, a)));
+      }
+      r *= scale;
+    }
+    bool outside = false;
+    for (int p = 0; this->Culling && p < 6 && !outside; ++p)
+    {
+      const double* e = planes + 4 * p;
+      outside = e[0] * c[0] + e[1] * c[1] + e[2] * c[2] + e[3] < -r;
+    }
+    if (outside)
+    {
+      continue;
+    }
+    if (node.ChildCount > 0)
+    {
+      for (vtkIdType k = 0; k < node.ChildCount; ++k)
+      {
+        stack.push_back(node.FirstChild + k);
+      }
+      continue;
+    }
+    // Continuous LOD: levels down to the first whose splats are small enough.
+    int level = tree.Levels - 1;
+    if (this->LODPixelError > 0.0)
+    {
+      const double d = std::max(std::sqrt(vtkMath::Distance2BetweenPoints(c, eye)) - r, 1e-30);
+      const double ppu = pixelsPerUnit(d);
+      for (int l = 0; l < tree.Levels; ++l)
+      {
+        if (2.0 * tree.LevelQuality[l] * tree.MeanRadius[id] * ppu <= this->LODPixelError)
+        {
+          level = l;
+          break;
+        }
+      }
+    }
+    const vtkIdType end = tree.LevelEnds[id * tree.Levels + level];
+    if (end > node.Begin)
+    {
+      program->SetUniformf("lodQuality", static_cast<float>(tree.LevelQuality[level]));
+      glDrawArrays(
+        GL_POINTS, static_cast<GLint>(node.Begin), static_cast<GLsizei>(end - node.Begin));
+      this->NumberOfRenderedSplats += end - node.Begin;
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
 void vtkAlgebraicSplatMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
 {
   const int n = this->VBOs->GetNumberOfTuples("vertexMC");
-  if (n > 0 && this->Degree > 0)
+  this->NumberOfRenderedSplats = 0;
+  if (n <= 0 || this->Degree <= 0)
   {
-    this->UpdateShaders(this->Primitives[PrimitiveTris], ren, act);
-    glDrawArrays(GL_POINTS, 0, static_cast<GLuint>(n));
+    return;
   }
+  this->UpdateShaders(this->Primitives[PrimitiveTris], ren, act);
+  this->Primitives[PrimitiveTris].Program->SetUniformf("lodQuality", 0.0f);
+  // Picking numbers primitives per draw call: draw everything in one.
+  if (this->Nodes && !ren->GetSelector())
+  {
+    this->DrawOctree(ren, act);
+    return;
+  }
+  glDrawArrays(GL_POINTS, 0, static_cast<GLuint>(n));
+  this->NumberOfRenderedSplats = n;
 }
 
 //------------------------------------------------------------------------------
@@ -243,4 +425,6 @@ void vtkAlgebraicSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Degree: " << this->Degree << "\n";
+  os << indent << "Culling: " << this->Culling << "\n";
+  os << indent << "LODPixelError: " << this->LODPixelError << "\n";
 }

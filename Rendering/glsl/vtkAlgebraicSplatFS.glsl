@@ -175,5 +175,11 @@ float psSplatG(vec2 p, out vec2 grad)
   vertexVC = vec4(hitVC, 1.0);
   normalVCVSOutput = nVC;
   vec4 clipPos = VCDCMatrix * vertexVC;
+  // The quad is clamped into the depth range, the hit is not: clip it
+  // against the near and far planes as rasterised geometry would be.
+  if (clipPos.z < -clipPos.w || clipPos.z > clipPos.w)
+  {
+    discard;
+  }
   gl_FragDepth = 0.5 * (clipPos.z / clipPos.w) + 0.5;
 //VTK::SplatImpl::End

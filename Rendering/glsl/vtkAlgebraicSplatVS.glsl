@@ -9,7 +9,8 @@
 in vec4 vertexMC;
 in vec3 splatNormalMC;
 in vec3 splatTangentMC;
-in vec2 splatSizeMC; // h, disc radius R
+in vec3 splatSizeMC; // h, disc radius R, R / s of the splat's level
+uniform float lodQuality; // > 0: the quality s of the finest level drawn
 in vec4 splatC0;
 in vec4 splatC1;
 in vec4 splatC2;
@@ -42,7 +43,9 @@ void main()
   splatAxisUVSOutput = mcvc * (t * h);
   splatAxisVVSOutput = mcvc * (b * h);
   splatAxisNVSOutput = mcvc * (n * h);
-  splatRadiusVSOutput = splatSizeMC.y / h;
+  // With LOD, a splat's disc follows the finest level drawn around it
+  // (thesis 3.2: R is chosen at run time from h and s).
+  splatRadiusVSOutput = (lodQuality > 0.0 ? lodQuality * splatSizeMC.z : splatSizeMC.y) / h;
   splatC0VSOutput = splatC0;
   splatC1VSOutput = splatC1;
   splatC2VSOutput = splatC2;
