@@ -141,23 +141,17 @@ PolynomialFit FitPolynomial(const double* points,
     fit.Status = FitStatus::NonFinite;
     return fit;
   }
-  const Eigen::Vector3d o(frame.Origin[0], frame.Origin[1], frame.Origin[2]);
-  const Eigen::Vector3d nrm(frame.Normal[0], frame.Normal[1], frame.Normal[2]);
-  const Eigen::Vector3d t(frame.Tangent[0], frame.Tangent[1], frame.Tangent[2]);
-  const Eigen::Vector3d b(frame.Bitangent[0], frame.Bitangent[1], frame.Bitangent[2]);
-  const double inv = 1.0 / frame.Scale;
-
   // Local coordinates and square-root weights, once for all degrees tried.
   Eigen::MatrixXd uvh(n, 3);
   Eigen::VectorXd sw(n);
   int active = 0;
   for (int i = 0; i < n; ++i)
   {
-    const Eigen::Vector3d d =
-      Eigen::Vector3d(points[3 * i], points[3 * i + 1], points[3 * i + 2]) - o;
-    uvh(i, 0) = d.dot(t) * inv;
-    uvh(i, 1) = d.dot(b) * inv;
-    uvh(i, 2) = d.dot(nrm) * inv;
+    double local[3];
+    ToLocal(frame, points + 3 * i, local);
+    uvh(i, 0) = local[0];
+    uvh(i, 1) = local[1];
+    uvh(i, 2) = local[2];
     const double wi = w ? w[i] : 1.0;
     sw(i) = wi > 0.0 ? std::sqrt(wi) : 0.0;
     active += wi > 0.0 ? 1 : 0;

@@ -76,6 +76,19 @@ struct PolynomialFit
 POINTSURFACESFILTERS_EXPORT PolynomialFit
 FitPolynomial(const double* points, const double* w, int n, const LocalFrame& frame, int degree);
 
+/**
+ * Coordinates of p in the normalised frame: u = (p - o)·t / h,
+ * v = (p - o)·b / h, height = (p - o)·n / h.
+ */
+inline void ToLocal(const LocalFrame& f, const double p[3], double uvh[3])
+{
+  const double d[3] = { p[0] - f.Origin[0], p[1] - f.Origin[1], p[2] - f.Origin[2] };
+  const double inv = 1.0 / f.Scale;
+  uvh[0] = (d[0] * f.Tangent[0] + d[1] * f.Tangent[1] + d[2] * f.Tangent[2]) * inv;
+  uvh[1] = (d[0] * f.Bitangent[0] + d[1] * f.Bitangent[1] + d[2] * f.Bitangent[2]) * inv;
+  uvh[2] = (d[0] * f.Normal[0] + d[1] * f.Normal[1] + d[2] * f.Normal[2]) * inv;
+}
+
 /** The Gaussian weight exp(-d^2 / h^2) of the thesis. */
 inline double GaussianWeight(double distanceSquared, double hSquared)
 {

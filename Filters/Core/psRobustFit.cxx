@@ -83,7 +83,6 @@ PolynomialFit FitPolynomialRobust(const double* points,
   {
     rho.reset(new ceres::HuberLoss(lossScale));
   }
-  const double inv = 1.0 / frame.Scale;
   double row[MonomialCount(MaximumDegree)];
   int used = 0;
   for (int i = 0; i < n; ++i)
@@ -93,18 +92,11 @@ PolynomialFit FitPolynomialRobust(const double* points,
     {
       continue;
     }
-    const double d[3] = { points[3 * i] - frame.Origin[0],
-      points[3 * i + 1] - frame.Origin[1],
-      points[3 * i + 2] - frame.Origin[2] };
-    const double u =
-      (d[0] * frame.Tangent[0] + d[1] * frame.Tangent[1] + d[2] * frame.Tangent[2]) * inv;
-    const double v =
-      (d[0] * frame.Bitangent[0] + d[1] * frame.Bitangent[1] + d[2] * frame.Bitangent[2]) * inv;
-    const double height =
-      (d[0] * frame.Normal[0] + d[1] * frame.Normal[1] + d[2] * frame.Normal[2]) * inv;
-    Monomials(u, v, degree, row);
+    double uvh[3];
+    ToLocal(frame, points + 3 * i, uvh);
+    Monomials(uvh[0], uvh[1], degree, row);
     problem.AddResidualBlock(
-      new HeightResidual(row, m, std::sqrt(wi), height), rho.get(), c.data());
+      new HeightResidual(row, m, std::sqrt(wi), uvh[2]), rho.get(), c.data());
     ++used;
   }
   if (used < m)

@@ -88,7 +88,21 @@ int LocallyOptimalProjection(const double* p,
   const double h2 = (h / 4.0) * (h / 4.0);
   auto theta = [h2](double r2) { return std::exp(-r2 / h2); };
 
-  // WLOP's density weights of the input points, once.
+  // WLOP's density weight of a point: 1 + sum of theta over its neighbours
+  // in `index` (itself excluded).
+  auto density = [&](const PointIndex& index, const double* q)
+  {
+    thread_local std::vector<int> ids;
+    thread_local std::vector<double> d2;
+    index.Within(q, h, ids, d2);
+    double sum = 1.0;
+    for (double e : d2)
+    {
+      sum += e > 0.0 ? theta(e) : 0.0;
+    }
+    return sum;
+  };
+  // ... of the input points, once.
   std::vector<double> v(static_cast<size_t>(n), 1.0);
   if (weighted)
   {
@@ -96,17 +110,9 @@ int LocallyOptimalProjection(const double* p,
       n,
       [&](long long begin, long long end)
       {
-        std::vector<int> ids;
-        std::vector<double> d2;
         for (long long j = begin; j < end; ++j)
         {
-          data.Within(data.Point(j), h, ids, d2);
-          double s = 1.0;
-          for (double e : d2)
-          {
-            s += e > 0.0 ? theta(e) : 0.0;
-          }
-          v[j] = s;
+          v[j] = density(data, data.Point(j));
         }
       });
   }
@@ -123,17 +129,9 @@ int LocallyOptimalProjection(const double* p,
         m,
         [&](long long begin, long long end)
         {
-          std::vector<int> ids;
-          std::vector<double> d2;
-          for (long long i = begin; i < end; ++i)
+          for (long long k = begin; k < end; ++k)
           {
-            samples.Within(&x[3 * i], h, ids, d2);
-            double s = 1.0;
-            for (double e : d2)
-            {
-              s += e > 0.0 ? theta(e) : 0.0;
-            }
-            w[i] = s;
+            w[k] = density(samples, &x[3 * k]);
           }
         });
     }

@@ -19,22 +19,27 @@ namespace
 // in-plane distance to its origin.
 double PatchDistance(const SplatArrays& s, long long j, const double p[3], double& inPlane2)
 {
-  const double* o = s.Origin + 3 * j;
+  LocalFrame frame;
   const double* n = s.Normal + 3 * j;
   const double* t = s.Tangent + 3 * j;
-  const double b[3] = {
-    n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]
-  };
-  const double h = s.Scale[j];
-  const double d[3] = { p[0] - o[0], p[1] - o[1], p[2] - o[2] };
-  const double u = (d[0] * t[0] + d[1] * t[1] + d[2] * t[2]) / h;
-  const double v = (d[0] * b[0] + d[1] * b[1] + d[2] * b[2]) / h;
-  const double f = (d[0] * n[0] + d[1] * n[1] + d[2] * n[2]) / h;
-  inPlane2 = (u * u + v * v) * h * h;
+  for (int c = 0; c < 3; ++c)
+  {
+    frame.Origin[c] = s.Origin[3 * j + c];
+    frame.Normal[c] = n[c];
+    frame.Tangent[c] = t[c];
+  }
+  frame.Bitangent[0] = n[1] * t[2] - n[2] * t[1];
+  frame.Bitangent[1] = n[2] * t[0] - n[0] * t[2];
+  frame.Bitangent[2] = n[0] * t[1] - n[1] * t[0];
+  frame.Scale = s.Scale[j];
+  const double h = frame.Scale;
+  double uvh[3];
+  ToLocal(frame, p, uvh);
+  inPlane2 = (uvh[0] * uvh[0] + uvh[1] * uvh[1]) * h * h;
   double gu, gv;
-  const double g =
-    EvaluateWithGradient(s.Coefficients + MonomialCount(s.Degree) * j, s.Degree, u, v, gu, gv);
-  return (f - g) * h / std::sqrt(1.0 + gu * gu + gv * gv);
+  const double g = EvaluateWithGradient(
+    s.Coefficients + MonomialCount(s.Degree) * j, s.Degree, uvh[0], uvh[1], gu, gv);
+  return (uvh[2] - g) * h / std::sqrt(1.0 + gu * gu + gv * gv);
 }
 } // namespace
 

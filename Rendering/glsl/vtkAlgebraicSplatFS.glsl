@@ -101,32 +101,8 @@ float psSplatG(vec2 p, out vec2 grad)
       break;
     }
   }
-  vec4 roots = vec4(0.0);
-  int count = 0;
-  if (degree == 1)
-  {
-    if (a1 != 0.0)
-    {
-      roots.x = -a0 / a1;
-      count = 1;
-    }
-  }
-  else if (degree == 2)
-  {
-    vec2 r2;
-    count = psSolveQuadratic(a0, a1, a2, r2);
-    roots.xy = r2;
-  }
-  else if (degree == 3)
-  {
-    vec3 r3;
-    count = psSolveCubic(a0, a1, a2, a3, r3);
-    roots.xyz = r3;
-  }
-  else
-  {
-    count = psSolveQuartic(a0, a1, a2, a3, a4, roots);
-  }
+  vec4 roots;
+  int count = psSolvePolynomial(degree, a0, a1, a2, a3, a4, roots);
   if (degree < SPLAT_DEGREE)
   {
     for (int k = 0; k < 4; ++k)

@@ -251,3 +251,33 @@ int psSolveQuartic(float c0, float c1, float c2, float c3, float c4, out vec4 r)
   }
   return n;
 }
+
+// Roots of c0 + c1 t + ... up to `degree` (1 to 4), ascending.
+int psSolvePolynomial(int degree, float c0, float c1, float c2, float c3, float c4, out vec4 r)
+{
+  r = vec4(0.0);
+  if (degree == 1)
+  {
+    if (c1 == 0.0)
+    {
+      return 0;
+    }
+    r.x = -c0 / c1;
+    return 1;
+  }
+  if (degree == 2)
+  {
+    vec2 q;
+    int n = psSolveQuadratic(c0, c1, c2, q);
+    r.xy = q;
+    return n;
+  }
+  if (degree == 3)
+  {
+    vec3 q;
+    int n = psSolveCubic(c0, c1, c2, c3, q);
+    r.xyz = q;
+    return n;
+  }
+  return psSolveQuartic(c0, c1, c2, c3, c4, r);
+}

@@ -29,33 +29,8 @@ void main()
   float c2 = coefficients[5u * i + 2u];
   float c3 = coefficients[5u * i + 3u];
   float c4 = coefficients[5u * i + 4u];
-  int degree = degrees[i];
-  vec4 r = vec4(0.0);
-  int n = 0;
-  if (degree == 1)
-  {
-    if (c1 != 0.0)
-    {
-      r.x = -c0 / c1;
-      n = 1;
-    }
-  }
-  else if (degree == 2)
-  {
-    vec2 q;
-    n = psSolveQuadratic(c0, c1, c2, q);
-    r.xy = q;
-  }
-  else if (degree == 3)
-  {
-    vec3 q;
-    n = psSolveCubic(c0, c1, c2, c3, q);
-    r.xyz = q;
-  }
-  else
-  {
-    n = psSolveQuartic(c0, c1, c2, c3, c4, r);
-  }
+  vec4 r;
+  int n = psSolvePolynomial(degrees[i], c0, c1, c2, c3, c4, r);
   roots[i] = r;
   counts[i] = n;
 }
