@@ -4,6 +4,7 @@
 
 #include "vtkAlgebraicSplatMapper.h"
 
+#include "vtkAlgebraicSplatCompositeFS.h"
 #include "vtkAlgebraicSplatFS.h"
 #include "vtkAlgebraicSplatGS.h"
 #include "vtkAlgebraicSplatVS.h"
@@ -14,6 +15,8 @@
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkMath.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
@@ -21,18 +24,27 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLActor.h"
 #include "vtkOpenGLCamera.h"
+#include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLHelper.h"
 #include "vtkOpenGLIndexBufferObject.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderPass.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkOpenGLVertexBufferObject.h"
 #include "vtkOpenGLVertexBufferObjectGroup.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProgram.h"
 #include "vtkSplatDataModel.h"
+#include "vtkTextureObject.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -53,8 +65,99 @@ struct vtkAlgebraicSplatMapper::Octree
   int Levels = 1;
 };
 
+// The float targets of the two-pass blend, sized to the renderer's viewport.
+struct vtkAlgebraicSplatMapper::BlendTargets
+{
+  vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
+  vtkNew<vtkTextureObject> Accumulation;  // sum w C, sum w
+  vtkNew<vtkTextureObject> DepthCoverage; // min true depth, min (1 - coverage)
+  vtkNew<vtkTextureObject> Depth;         // the scene's depth, then the visibility pass
+  std::unique_ptr<vtkOpenGLQuadHelper> Composite;
+  int Width = 0;
+  int Height = 0;
+  int DepthFormat = -1; // vtkTextureObject depth format; -2: depth and stencil
+  bool Warned = false;
+
+  void Release(vtkWindow* win)
+  {
+    this->Framebuffer->ReleaseGraphicsResources(win);
+    this->Accumulation->ReleaseGraphicsResources(win);
+    this->DepthCoverage->ReleaseGraphicsResources(win);
+    this->Depth->ReleaseGraphicsResources(win);
+    if (this->Composite)
+    {
+      this->Composite->ReleaseGraphicsResources(win);
+      this->Composite.reset();
+    }
+    this->Width = this->Height = 0;
+    this->DepthFormat = -1;
+  }
+};
+
 namespace
 {
+// Is this the light's view of a vtkShadowMapBakerPass? It needs the hits'
+// depth, drawn opaque in one pass.
+bool IsShadowMapBake(vtkActor* act)
+{
+  vtkInformation* info = act->GetPropertyKeys();
+  if (!info || !info->Has(vtkOpenGLRenderPass::RenderPasses()))
+  {
+    return false;
+  }
+  const int n = info->Length(vtkOpenGLRenderPass::RenderPasses());
+  for (int i = 0; i < n; ++i)
+  {
+    vtkObjectBase* pass = info->Get(vtkOpenGLRenderPass::RenderPasses(), i);
+    if (pass && pass->IsA("vtkShadowMapBakerPass"))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+// The depth format of the framebuffer bound for reading, as a vtkTextureObject
+// depth format (-2 for depth with stencil), or -1 when it has no depth.
+int ReadDepthFormat(GLuint framebuffer)
+{
+  const GLenum attachment = framebuffer ? GL_DEPTH_ATTACHMENT : GL_DEPTH;
+  GLint type = GL_NONE;
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+  if (type == GL_NONE)
+  {
+    return -1;
+  }
+  GLint bits = 0, component = 0, stencil = 0;
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &component);
+  if (framebuffer)
+  {
+    glGetFramebufferAttachmentParameteriv(
+      GL_READ_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    if (type != GL_NONE)
+    {
+      glGetFramebufferAttachmentParameteriv(GL_READ_FRAMEBUFFER,
+        GL_STENCIL_ATTACHMENT,
+        GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE,
+        &stencil);
+    }
+  }
+  if (stencil > 0)
+  {
+    return bits == 24 && component != GL_FLOAT ? -2 : -1;
+  }
+  if (component == GL_FLOAT)
+  {
+    return vtkTextureObject::Float32;
+  }
+  return bits <= 16 ? vtkTextureObject::Fixed16
+                    : (bits <= 24 ? vtkTextureObject::Fixed24 : vtkTextureObject::Fixed32);
+}
+
 // The text between //VTK::<name>::Begin and //VTK::<name>::End of `source`.
 std::string Block(const std::string& source, const std::string& name)
 {
@@ -71,7 +174,20 @@ std::string Block(const std::string& source, const std::string& name)
 } // namespace
 
 //------------------------------------------------------------------------------
-vtkAlgebraicSplatMapper::vtkAlgebraicSplatMapper() = default;
+vtkAlgebraicSplatMapper::vtkAlgebraicSplatMapper()
+  : Targets(new BlendTargets)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkAlgebraicSplatMapper::~vtkAlgebraicSplatMapper() = default;
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatMapper::ReleaseGraphicsResources(vtkWindow* win)
+{
+  this->Targets->Release(win);
+  this->Superclass::ReleaseGraphicsResources(win);
+}
 
 //------------------------------------------------------------------------------
 void vtkAlgebraicSplatMapper::ComputeBounds()
@@ -121,19 +237,39 @@ void vtkAlgebraicSplatMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkS
   std::string declarations = Block(fs, "SplatDecl");
   vtkShaderProgram::Substitute(declarations, "//VTK::SplatRoots::Dec", vtkSplatRoots);
 
+  const std::string degree =
+    "#define SPLAT_DEGREE " + std::to_string(std::max(1, this->Degree)) + "\n";
+  vtkShaderProgram::Substitute(VSSource, "//VTK::SplatDegree::Dec", degree);
   vtkShaderProgram::Substitute(VSSource, "//VTK::Camera::Dec", "uniform mat4 MCVCMatrix;");
   vtkShaderProgram::Substitute(FSSource, "//VTK::PositionVC::Dec", "in vec4 vertexVCVSOutput;");
   vtkShaderProgram::Substitute(
     FSSource, "//VTK::PositionVC::Impl", "vec4 vertexVC = vertexVCVSOutput;\n");
-  vtkShaderProgram::Substitute(FSSource,
-    "//VTK::Normal::Dec",
-    "#define SPLAT_DEGREE " + std::to_string(std::max(1, this->Degree)) + "\n" + declarations);
+  vtkShaderProgram::Substitute(FSSource, "//VTK::Normal::Dec", degree + declarations);
   vtkShaderProgram::Substitute(FSSource, "//VTK::Depth::Impl", Block(fs, "SplatImpl"));
   vtkShaderProgram::Substitute(FSSource, "//VTK::Normal::Impl", "");
+  // The blend passes' outputs go last in main(), after VTK's lighting.
+  vtkShaderProgram::Substitute(
+    FSSource, "//VTK::Coincident::Impl", "//VTK::Coincident::Impl\n" + Block(fs, "SplatOutput"));
   shaders[vtkShader::Vertex]->SetSource(VSSource);
   shaders[vtkShader::Fragment]->SetSource(FSSource);
   this->ShaderDegree = this->Degree;
   this->Superclass::ReplaceShaderValues(shaders, ren, act);
+
+  // vtkShadowMapBakerPass stores the fragment's depth from gl_FragCoord,
+  // which is the bounding quad's: give it the ray-cast hit's.
+  FSSource = shaders[vtkShader::Fragment]->GetSource();
+  vtkShaderProgram::Substitute(FSSource, "ldepth =  gl_FragCoord.z;", "ldepth = splatDepth;");
+  vtkShaderProgram::Substitute(FSSource, "1.0/gl_FragCoord.w", "splatClipW");
+  shaders[vtkShader::Fragment]->SetSource(FSSource);
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatMapper::ReplaceShaderCoincidentOffset(std::map<vtkShader::Type, vtkShader*>,
+  vtkRenderer*,
+  vtkActor*)
+{
+  // The splats write their exact depth; a coincident-topology offset (which
+  // ParaView turns on globally) would replace it with the quad's.
 }
 
 //------------------------------------------------------------------------------
@@ -243,10 +379,12 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
   this->VBOs->CacheDataArray(
     "splatTangentMC", pd->GetArray(vtkSplatDataModel::TangentName()), ren, VTK_FLOAT);
   this->VBOs->CacheDataArray("splatSizeMC", sizes, ren, VTK_FLOAT);
+  // Degree 1 needs 3 coefficients, 2 needs 6, 3 needs 10 and 4 needs 15.
   const char* names[4] = { "splatC0", "splatC1", "splatC2", "splatC3" };
   for (int k = 0; k < 4; ++k)
   {
-    this->VBOs->CacheDataArray(names[k], c[k], ren, VTK_FLOAT);
+    this->VBOs->CacheDataArray(
+      names[k], k < this->Degree ? c[k].GetPointer() : nullptr, ren, VTK_FLOAT);
   }
   this->VBOs->CacheDataArray("scalarColor", this->Colors, ren, VTK_UNSIGNED_CHAR);
   this->VBOs->BuildAllVBOs(ren);
@@ -400,6 +538,20 @@ void vtkAlgebraicSplatMapper::DrawOctree(vtkRenderer* ren, vtkActor* act)
 }
 
 //------------------------------------------------------------------------------
+void vtkAlgebraicSplatMapper::DrawSplats(vtkRenderer* ren, vtkActor* act, bool useOctree)
+{
+  if (this->Nodes && useOctree)
+  {
+    this->DrawOctree(ren, act);
+    return;
+  }
+  const int n = this->VBOs->GetNumberOfTuples("vertexMC");
+  this->Primitives[PrimitiveTris].Program->SetUniformf("lodQuality", 0.0f);
+  glDrawArrays(GL_POINTS, 0, static_cast<GLuint>(n));
+  this->NumberOfRenderedSplats = n;
+}
+
+//------------------------------------------------------------------------------
 void vtkAlgebraicSplatMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
 {
   const int n = this->VBOs->GetNumberOfTuples("vertexMC");
@@ -409,15 +561,192 @@ void vtkAlgebraicSplatMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
     return;
   }
   this->UpdateShaders(this->Primitives[PrimitiveTris], ren, act);
-  this->Primitives[PrimitiveTris].Program->SetUniformf("lodQuality", 0.0f);
-  // Picking numbers primitives per draw call: draw everything in one.
-  if (this->Nodes && !ren->GetSelector())
+  vtkShaderProgram* program = this->Primitives[PrimitiveTris].Program;
+  program->SetUniformi("splatPass", 0);
+  program->SetUniformi("splatSamples", 1);
+  program->SetUniformf("splatSilhouetteCos", static_cast<float>(this->SilhouetteThreshold));
+  program->SetUniformi("splatShowSilhouette", this->ShowSilhouettePixels ? 1 : 0);
+  program->SetUniformf("splatBlendSharpness", static_cast<float>(this->BlendSharpness));
+  // Picking numbers primitives per draw call: draw everything in one, opaque.
+  // The light's view of a shadow map needs the hits' depth only.
+  const bool picking = ren->GetSelector() != nullptr;
+  if (picking || IsShadowMapBake(act) || (!this->Blending && this->AntiAliasing <= 1))
   {
-    this->DrawOctree(ren, act);
+    this->DrawSplats(ren, act, !picking);
     return;
   }
-  glDrawArrays(GL_POINTS, 0, static_cast<GLuint>(n));
-  this->NumberOfRenderedSplats = n;
+  this->RenderBlended(ren, act);
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
+{
+  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkShaderProgram* program = this->Primitives[PrimitiveTris].Program;
+  BlendTargets& t = *this->Targets;
+
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  const int width = viewport[2], height = viewport[3];
+  if (width <= 0 || height <= 0)
+  {
+    return;
+  }
+  GLint scene = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &scene);
+
+  ostate->Push();
+  ostate->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(scene));
+  const int depthFormat = ReadDepthFormat(static_cast<GLuint>(scene));
+  if (width != t.Width || height != t.Height || depthFormat != t.DepthFormat)
+  {
+    t.Framebuffer->SetContext(renWin);
+    t.Accumulation->SetContext(renWin);
+    t.DepthCoverage->SetContext(renWin);
+    t.Depth->SetContext(renWin);
+    t.Accumulation->Allocate2D(width, height, 4, VTK_FLOAT);
+    t.DepthCoverage->Allocate2D(width, height, 2, VTK_FLOAT);
+    if (depthFormat == -2)
+    {
+      t.Depth->AllocateDepthStencil(width, height);
+    }
+    else
+    {
+      t.Depth->AllocateDepth(
+        width, height, depthFormat >= 0 ? depthFormat : vtkTextureObject::Float32);
+    }
+    t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+    t.Framebuffer->AddColorAttachment(0, t.Accumulation);
+    t.Framebuffer->AddColorAttachment(1, t.DepthCoverage);
+    t.Framebuffer->AddDepthAttachment(t.Depth);
+    t.Width = width;
+    t.Height = height;
+    t.DepthFormat = depthFormat;
+  }
+  t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  t.Framebuffer->ActivateDrawBuffers(2);
+  ostate->vtkglDisable(GL_SCISSOR_TEST);
+  ostate->vtkglViewport(0, 0, width, height);
+
+  // The scene's depth, so that the actors drawn before hide the splats.
+  bool copied = false;
+  if (depthFormat != -1)
+  {
+    for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; ++k)
+    {
+    }
+    glBlitFramebuffer(viewport[0],
+      viewport[1],
+      viewport[0] + width,
+      viewport[1] + height,
+      0,
+      0,
+      width,
+      height,
+      GL_DEPTH_BUFFER_BIT,
+      GL_NEAREST);
+    copied = glGetError() == GL_NO_ERROR;
+  }
+  if (!copied)
+  {
+    if (!t.Warned)
+    {
+      vtkWarningMacro(<< "Cannot copy the scene's depth buffer; blended splats are drawn "
+                         "without occlusion by the actors drawn before them.");
+      t.Warned = true;
+    }
+    ostate->vtkglDepthMask(GL_TRUE);
+    ostate->vtkglClearDepth(1.0);
+    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
+  }
+  const GLfloat zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+  const GLfloat one[4] = { 1.0f, 1.0f, 1.0f, 1.0f };
+  glClearBufferfv(GL_COLOR, 0, zero);
+  glClearBufferfv(GL_COLOR, 1, one);
+
+  // Visibility: the nearest hits pushed back by delta h.
+  const float offset = static_cast<float>(this->Blending ? this->BlendDepthOffset : 1e-3);
+  program->SetUniformf("splatBlendOffset", offset);
+  program->SetUniformf(
+    "splatBlendSharpness", static_cast<float>(this->Blending ? this->BlendSharpness : 0.0));
+  program->SetUniformi("splatSamples", this->AntiAliasing);
+  program->SetUniformi("splatPass", 1);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_LESS);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglDisable(GL_BLEND);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  this->DrawSplats(ren, act, true);
+
+  // Blending: every hit in front of that depth, weighted.
+  program->SetUniformi("splatPass", 2);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglDepthFunc(GL_LEQUAL);
+  ostate->vtkglDepthMask(GL_FALSE);
+  ostate->vtkglEnable(GL_BLEND);
+  glBlendEquationi(0, GL_FUNC_ADD);
+  glBlendFunci(0, GL_ONE, GL_ONE);
+  glBlendEquationi(1, GL_MIN);
+  glBlendFunci(1, GL_ONE, GL_ONE);
+  this->DrawSplats(ren, act, true);
+  ostate->Pop(); // the scene's framebuffer, viewport, blending and program
+
+  // Normalise and composite with the true depth.
+  ostate->Push();
+  if (!t.Composite)
+  {
+    t.Composite.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkAlgebraicSplatCompositeFS, ""));
+  }
+  else
+  {
+    renWin->GetShaderCache()->ReadyShaderProgram(t.Composite->Program);
+  }
+  if (!t.Composite->Program)
+  {
+    ostate->Pop();
+    vtkErrorMacro(<< "The splat compositing shader did not compile.");
+    return;
+  }
+  t.Accumulation->Activate();
+  t.DepthCoverage->Activate();
+  t.Composite->Program->SetUniformi("accumulation", t.Accumulation->GetTextureUnit());
+  t.Composite->Program->SetUniformi("depthCoverage", t.DepthCoverage->GetTextureUnit());
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_ALWAYS);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglEnable(GL_BLEND);
+  ostate->vtkglBlendEquation(GL_FUNC_ADD);
+  ostate->vtkglBlendFuncSeparate(
+    GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  t.Composite->Render();
+  t.Accumulation->Deactivate();
+  t.DepthCoverage->Deactivate();
+  ostate->Pop();
+}
+
+//------------------------------------------------------------------------------
+int vtkAlgebraicSplatMapper::GetGPUBytesPerSplat()
+{
+  std::set<vtkOpenGLVertexBufferObject*> buffers;
+  int bytes = 0;
+  for (const char* name : { "vertexMC",
+         "splatNormalMC",
+         "splatTangentMC",
+         "splatSizeMC",
+         "splatC0",
+         "splatC1",
+         "splatC2",
+         "splatC3",
+         "scalarColor" })
+  {
+    vtkOpenGLVertexBufferObject* vbo = this->VBOs->GetVBO(name);
+    if (vbo && buffers.insert(vbo).second)
+    {
+      bytes += static_cast<int>(vbo->GetStride());
+    }
+  }
+  return bytes;
 }
 
 //------------------------------------------------------------------------------
@@ -427,4 +756,10 @@ void vtkAlgebraicSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Degree: " << this->Degree << "\n";
   os << indent << "Culling: " << this->Culling << "\n";
   os << indent << "LODPixelError: " << this->LODPixelError << "\n";
+  os << indent << "Blending: " << this->Blending << "\n";
+  os << indent << "BlendDepthOffset: " << this->BlendDepthOffset << "\n";
+  os << indent << "BlendSharpness: " << this->BlendSharpness << "\n";
+  os << indent << "AntiAliasing: " << this->AntiAliasing << "\n";
+  os << indent << "SilhouetteThreshold: " << this->SilhouetteThreshold << "\n";
+  os << indent << "ShowSilhouettePixels: " << this->ShowSilhouettePixels << "\n";
 }

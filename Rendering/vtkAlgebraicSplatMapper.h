@@ -23,8 +23,26 @@
  * while a vtkHardwareSelector picks (its ids need one draw), every splat is
  * drawn.
  *
- * Not implemented yet: two-pass blending, adaptive anti-aliasing and
- * shadows (thesis 4.2-4.3); splats are drawn opaque.
+ * Two-pass blending (thesis 4.2, on by default): a visibility pass writes
+ * each pixel's nearest hit pushed back along the ray by BlendDepthOffset
+ * times the splat's feature size; a blending pass accumulates the shaded
+ * colours of every hit in front of that depth, weighted by a Gaussian of
+ * the hit's distance from its splat's centre, in a float target; the
+ * normalised colour is composited into VTK's framebuffer with the nearest
+ * hit's true depth. Overlapping splats thus blend smoothly, and the splats
+ * still intersect correctly with other actors drawn before or after them.
+ *
+ * Adaptive anti-aliasing (thesis 4.3): with AntiAliasing n = 2 or 3, the
+ * pixels where a splat is seen at a grazing angle (or missed by less than
+ * a pixel near such an angle) cast n x n sub-pixel rays; all other pixels
+ * cast one. ShowSilhouettePixels paints those pixels magenta.
+ *
+ * Shadows (thesis 4.3.2) work through VTK's vtkShadowMapBakerPass and
+ * vtkShadowMapPass: the light's depth map is drawn from the ray-cast hits,
+ * and the shadow lookup uses the hit point.
+ *
+ * Hardware picking (vtkHardwareSelector) and the shadow map are drawn in
+ * one opaque pass, without blending.
  */
 #ifndef vtkAlgebraicSplatMapper_h
 #define vtkAlgebraicSplatMapper_h
@@ -64,9 +82,71 @@ public:
   /** Splats drawn by the last render (after culling and LOD). */
   vtkGetMacro(NumberOfRenderedSplats, vtkIdType);
 
+  ///@{
+  /**
+   * Two-pass blending of overlapping splats (thesis 4.2). Default on; off
+   * draws each pixel's nearest splat opaque, in one pass.
+   */
+  vtkSetMacro(Blending, bool);
+  vtkGetMacro(Blending, bool);
+  vtkBooleanMacro(Blending, bool);
+  ///@}
+
+  ///@{
+  /**
+   * delta of the visibility pass, in units of each splat's feature size h:
+   * hits up to delta h behind the nearest one are blended. Default 0.5.
+   */
+  vtkSetClampMacro(BlendDepthOffset, double, 0.0, 100.0);
+  vtkGetMacro(BlendDepthOffset, double);
+  ///@}
+
+  ///@{
+  /**
+   * k of the blending weight exp(-k r^2 / R^2), r the hit's distance from
+   * the splat's centre in its plane and R the disc radius; 0 weights all
+   * hits equally. Default 3 (a weight of 0.05 at the disc's rim).
+   */
+  vtkSetClampMacro(BlendSharpness, double, 0.0, 100.0);
+  vtkGetMacro(BlendSharpness, double);
+  ///@}
+
+  ///@{
+  /**
+   * Adaptive anti-aliasing: silhouette pixels cast n x n rays, n = 2 or 3;
+   * 1 turns it off. Default 1.
+   */
+  vtkSetClampMacro(AntiAliasing, int, 1, 3);
+  vtkGetMacro(AntiAliasing, int);
+  ///@}
+
+  ///@{
+  /**
+   * A hit is a silhouette pixel when the cosine between its normal and the
+   * ray is below this value. Default 0.25.
+   */
+  vtkSetClampMacro(SilhouetteThreshold, double, 0.0, 1.0);
+  vtkGetMacro(SilhouetteThreshold, double);
+  ///@}
+
+  ///@{
+  /** Paint the silhouette pixels magenta, as in the thesis's Figure 4.4. Default off. */
+  vtkSetMacro(ShowSilhouettePixels, bool);
+  vtkGetMacro(ShowSilhouettePixels, bool);
+  vtkBooleanMacro(ShowSilhouettePixels, bool);
+  ///@}
+
+  /**
+   * Bytes per splat in the GPU's vertex buffers after the last render:
+   * origin, frame, sizes, colour and only the coefficients the degree needs.
+   */
+  int GetGPUBytesPerSplat();
+
+  void ReleaseGraphicsResources(vtkWindow* win) override;
+
 protected:
   vtkAlgebraicSplatMapper();
-  ~vtkAlgebraicSplatMapper() override = default;
+  ~vtkAlgebraicSplatMapper() override;
 
   void ComputeBounds() override;
   void GetShaderTemplate(std::map<vtkShader::Type, vtkShader*> shaders,
@@ -80,18 +160,32 @@ protected:
   void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
   void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
 
+  void ReplaceShaderCoincidentOffset(std::map<vtkShader::Type, vtkShader*> shaders,
+    vtkRenderer* ren,
+    vtkActor* act) override;
+
   void ReadOctree(vtkPolyData* poly);
+  void DrawSplats(vtkRenderer* ren, vtkActor* act, bool useOctree);
   void DrawOctree(vtkRenderer* ren, vtkActor* act);
+  void RenderBlended(vtkRenderer* ren, vtkActor* act);
 
   int Degree = -1;
   int ShaderDegree = -1;
   bool Culling = true;
   double LODPixelError = 0.0;
   vtkIdType NumberOfRenderedSplats = 0;
+  bool Blending = true;
+  double BlendDepthOffset = 0.5;
+  double BlendSharpness = 3.0;
+  int AntiAliasing = 1;
+  double SilhouetteThreshold = 0.25;
+  bool ShowSilhouettePixels = false;
 
 private:
   struct Octree;
   std::shared_ptr<Octree> Nodes;
+  struct BlendTargets;
+  std::unique_ptr<BlendTargets> Targets;
 
   vtkAlgebraicSplatMapper(const vtkAlgebraicSplatMapper&) = delete;
   void operator=(const vtkAlgebraicSplatMapper&) = delete;

@@ -2,22 +2,46 @@
 // SPDX-License-Identifier: BSD-3-Clause
 //
 // Ray casting of one algebraic splat, substituted by vtkAlgebraicSplatMapper
-// at the //VTK::Depth::Impl hook of VTK's polydata fragment shader (the
-// declarations go to //VTK::Normal::Dec). In the splat's normalised frame
-// (u, v, w) = M^-1 (x - centre), with M = [h t, h b, h n], the ray meets
-// F(s) = g(u(s), v(s)) - w(s) = 0. The ray is re-centred at its closest
-// approach to the splat and scaled so that the volume spans |tau| <= 2;
-// F is sampled at tau = -2..2, which gives its (at most quartic)
-// coefficients exactly, and solved in closed form. The nearest root inside
-// the splat's cylinder (the disc, at most R above or below it, as in the
-// thesis's Figure 3.1) is the hit: its normal comes from the gradient of g, its depth
-// goes to gl_FragDepth, and VTK's lighting shades it.
+// into VTK's polydata fragment shader: SplatDecl at //VTK::Normal::Dec,
+// SplatImpl at //VTK::Depth::Impl and SplatOutput after
+// //VTK::Coincident::Impl, the last hook of main().
+//
+// In the splat's normalised frame (u, v, w) = M^-1 (x - centre), with
+// M = [h t, h b, h n], the ray meets F(s) = g(u(s), v(s)) - w(s) = 0. The ray
+// is re-centred at its closest approach to the splat and scaled so that the
+// volume spans |tau| <= 2; F is sampled at tau = -2..2, which gives its (at
+// most quartic) coefficients exactly, and solved in closed form. The nearest
+// root inside the splat's cylinder (the disc, at most R above or below it,
+// as in the thesis's Figure 3.1) is the hit: its normal comes from the
+// gradient of g, its depth goes to gl_FragDepth, and VTK's lighting shades
+// it.
+//
+// Adaptive anti-aliasing (thesis 4.3): a pixel is a silhouette pixel of the
+// splat when its ray hits the patch at a grazing angle (|cos| between the
+// normal and the ray below splatSilhouetteCos, i.e. dF/dt is small), or
+// misses it by less than the pixel's footprint at an extremum of F inside
+// the disc. Only those pixels cast splatSamples x splatSamples sub-pixel rays;
+// the fragment then carries the mean normal of the rays that hit, the
+// nearest hit's depth, and their fraction as coverage.
+//
+// Passes (uniform splatPass): 0 draws the splat opaque; 1 is the visibility
+// pass of the two-pass blend (thesis 4.2), which writes only the depth
+// pushed back along the ray by splatBlendOffset h; 2 is the blending pass,
+// which writes (w C, w) to target 0 for the Gaussian weight w of the hit's
+// distance from the splat centre (times its coverage), and (true depth,
+// 1 - coverage) to target 1, blended with MIN.
 //
 // SPLAT_DEGREE (1 to 4) is defined by the mapper.
 
 //VTK::SplatDecl::Begin
 
 uniform mat4 VCDCMatrix;
+uniform int splatPass;
+uniform float splatBlendOffset;
+uniform float splatBlendSharpness;
+uniform int splatSamples;
+uniform float splatSilhouetteCos;
+uniform int splatShowSilhouette;
 in vec3 splatCenterVCVSOutput;
 in vec3 splatAxisUVSOutput;
 in vec3 splatAxisVVSOutput;
@@ -54,18 +78,21 @@ float psSplatG(vec2 p, out vec2 grad)
 #endif
   return g;
 }
-//VTK::SplatDecl::End
 
-//VTK::SplatImpl::Begin
-  vec3 normalVCVSOutput;
-  mat3 M = mat3(splatAxisUVSOutput, splatAxisVVSOutput, splatAxisNVSOutput);
-  mat3 Minv = inverse(M);
-  vec3 rayO = cameraParallel != 0 ? vertexVC.xyz : vec3(0.0);
-  vec3 rayD = cameraParallel != 0 ? vec3(0.0, 0.0, -1.0) : normalize(vertexVC.xyz);
+// Casts the ray rayO + s rayD (view coordinates, |rayD| = 1) at the splat.
+// Returns true on a hit, with the hit point in the splat's normalised frame.
+// With probe set, `silhouette` tells whether the pixel is a silhouette pixel
+// (see above); `footprint` is the pixel's size in local units at distance
+// s along the ray: footprint.x + footprint.y s.
+bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, out vec3 local,
+  out bool silhouette)
+{
+  silhouette = false;
+  local = vec3(0.0);
   vec3 o = Minv * (rayO - splatCenterVCVSOutput);
   vec3 d = Minv * rayD;
   float dd = dot(d, d);
-  float sc = -dot(o, d) / dd;            // closest approach to the centre
+  float sc = -dot(o, d) / dd; // closest approach to the centre
   vec3 oc = o + sc * d;
   float len = sqrt(dd);
   float rho = splatRadiusVSOutput;
@@ -73,11 +100,11 @@ float psSplatG(vec2 p, out vec2 grad)
   float halfSpan = (2.0 * rho + 2.0 * length(oc)) / len + 1e-6;
   float step = 0.5 * halfSpan;
   float f[5];
-  vec2 gradUnused;
+  vec2 grad;
   for (int k = 0; k < 5; ++k)
   {
     vec3 p = oc + d * (step * float(k - 2));
-    f[k] = psSplatG(p.xy, gradUnused) - p.z;
+    f[k] = psSplatG(p.xy, grad) - p.z;
   }
   float a0 = f[2];
   float a1 = (f[0] - 8.0 * f[1] + 8.0 * f[3] - f[4]) / 12.0;
@@ -113,41 +140,130 @@ float psSplatG(vec2 p, out vec2 grad)
       }
     }
   }
-  bool hit = false;
-  vec3 local = vec3(0.0);
   // Roots ascend along the ray: the first one inside the disc and in front
   // of the eye is the visible surface.
   float sEye = -sc / step; // tau of the ray origin
+  bool perspective = cameraParallel == 0;
   for (int k = 0; k < 4; ++k)
   {
-    if (k >= count || hit)
-    {
-      continue;
-    }
-    float tau = roots[k];
-    if (cameraParallel == 0 && tau <= sEye)
+    float tau = roots[min(k, 3)];
+    if (k >= count || (perspective && tau <= sEye))
     {
       continue;
     }
     vec3 p = oc + d * (step * tau);
     if (dot(p.xy, p.xy) <= rho * rho && abs(p.z) <= rho)
     {
-      hit = true;
       local = p;
+      if (probe)
+      {
+        psSplatG(p.xy, grad);
+        vec3 n = vec3(grad, -1.0);
+        // M is a scaled rotation: the local angle is the view angle.
+        silhouette = abs(dot(n, d)) < splatSilhouetteCos * length(n) * len;
+      }
+      return true;
     }
+  }
+  if (probe && SPLAT_DEGREE >= 2)
+  {
+    // A grazing miss: F comes close to zero at one of its extrema on the ray.
+    vec4 extrema;
+    int e = psSolvePolynomial(max(degree - 1, 1), a1, 2.0 * a2, 3.0 * a3, 4.0 * a4, 0.0, extrema);
+    for (int k = 0; k < 3; ++k)
+    {
+      float tau = extrema[min(k, 3)];
+      if (k >= e || abs(tau) > 2.0 || (perspective && tau <= sEye))
+      {
+        continue;
+      }
+      vec3 p = oc + d * (step * tau);
+      if (dot(p.xy, p.xy) > rho * rho || abs(p.z) > rho)
+      {
+        continue;
+      }
+      float F = psSplatG(p.xy, grad) - p.z;
+      float distance = abs(F) / length(vec3(grad, -1.0));
+      silhouette = silhouette ||
+        distance < footprint.x + footprint.y * (sc + step * tau);
+    }
+  }
+  return false;
+}
+
+// The unit normal, in view coordinates and facing the ray, at a local hit.
+vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
+{
+  vec2 grad;
+  psSplatG(local.xy, grad);
+  vec3 n = normalize(transpose(Minv) * vec3(grad, -1.0));
+  return dot(n, rayD) > 0.0 ? -n : n;
+}
+//VTK::SplatDecl::End
+
+//VTK::SplatImpl::Begin
+  vec3 normalVCVSOutput;
+  mat3 M = mat3(splatAxisUVSOutput, splatAxisVVSOutput, splatAxisNVSOutput);
+  mat3 Minv = inverse(M);
+  float splatH = length(splatAxisNVSOutput);
+  // The pixel's extent on the quad (a plane of constant view depth).
+  vec3 pixelDX = dFdx(vertexVCVSOutput.xyz);
+  vec3 pixelDY = dFdy(vertexVCVSOutput.xyz);
+  float pixelSize = max(length(pixelDX), length(pixelDY));
+  vec2 footprint = cameraParallel != 0
+    ? vec2(pixelSize / splatH, 0.0)
+    : vec2(0.0, pixelSize / (length(vertexVCVSOutput.xyz) * splatH));
+  vec3 rayO = cameraParallel != 0 ? vertexVC.xyz : vec3(0.0);
+  vec3 rayD = cameraParallel != 0 ? vec3(0.0, 0.0, -1.0) : normalize(vertexVC.xyz);
+  bool probe = splatSamples > 1 || splatShowSilhouette != 0;
+  vec3 local;
+  bool splatSilhouette;
+  bool hit = psCastSplat(rayO, rayD, Minv, probe, footprint, local, splatSilhouette);
+  float splatCoverage = 1.0;
+  vec3 nVC = vec3(0.0);
+  if (hit)
+  {
+    nVC = psSplatNormal(local, Minv, rayD);
+  }
+  if (splatSilhouette && splatSamples > 1)
+  {
+    // Supersample the silhouette pixel on an n x n grid.
+    int hits = 0;
+    float nearest = 1e30;
+    vec3 normalSum = vec3(0.0);
+    for (int i = 0; i < splatSamples; ++i)
+    {
+      for (int j = 0; j < splatSamples; ++j)
+      {
+        vec2 offset = (vec2(i, j) + 0.5) / float(splatSamples) - 0.5;
+        vec3 q = vertexVCVSOutput.xyz + offset.x * pixelDX + offset.y * pixelDY;
+        vec3 subO = cameraParallel != 0 ? q : vec3(0.0);
+        vec3 subD = cameraParallel != 0 ? vec3(0.0, 0.0, -1.0) : normalize(q);
+        vec3 subLocal;
+        bool unused;
+        if (psCastSplat(subO, subD, Minv, false, footprint, subLocal, unused))
+        {
+          ++hits;
+          normalSum += psSplatNormal(subLocal, Minv, subD);
+          float distance = length(splatCenterVCVSOutput + M * subLocal - subO);
+          if (distance < nearest)
+          {
+            nearest = distance;
+            local = subLocal;
+            rayD = subD;
+          }
+        }
+      }
+    }
+    hit = hits > 0;
+    splatCoverage = float(hits) / float(splatSamples * splatSamples);
+    nVC = hits > 0 ? normalize(normalSum) : nVC;
   }
   if (!hit)
   {
     discard;
   }
-  vec2 grad;
-  psSplatG(local.xy, grad);
   vec3 hitVC = splatCenterVCVSOutput + M * local;
-  vec3 nVC = normalize(transpose(Minv) * vec3(grad, -1.0));
-  if (dot(nVC, rayD) > 0.0)
-  {
-    nVC = -nVC;
-  }
   vertexVC = vec4(hitVC, 1.0);
   normalVCVSOutput = nVC;
   vec4 clipPos = VCDCMatrix * vertexVC;
@@ -157,5 +273,29 @@ float psSplatG(vec2 p, out vec2 grad)
   {
     discard;
   }
-  gl_FragDepth = 0.5 * (clipPos.z / clipPos.w) + 0.5;
+  float splatDepth = 0.5 * (clipPos.z / clipPos.w) + 0.5;
+  float splatClipW = clipPos.w;
+  gl_FragDepth = splatDepth;
+  if (splatPass == 1)
+  {
+    // Visibility pass: the depth pushed back by delta h along the ray.
+    vec4 shifted = VCDCMatrix * vec4(hitVC + rayD * (splatBlendOffset * splatH), 1.0);
+    gl_FragDepth = clamp(0.5 * (shifted.z / shifted.w) + 0.5, 0.0, 1.0);
+    return;
+  }
+  float splatWeight = exp(-splatBlendSharpness * dot(local.xy, local.xy) /
+    (splatRadiusVSOutput * splatRadiusVSOutput));
 //VTK::SplatImpl::End
+
+//VTK::SplatOutput::Begin
+  if (splatShowSilhouette != 0 && splatSilhouette)
+  {
+    gl_FragData[0].rgb = vec3(1.0, 0.0, 1.0);
+  }
+  if (splatPass == 2)
+  {
+    float weight = splatWeight * splatCoverage;
+    gl_FragData[0] = vec4(gl_FragData[0].rgb * weight, weight);
+    gl_FragData[1] = vec4(splatDepth, 1.0 - splatCoverage, 0.0, 1.0);
+  }
+//VTK::SplatOutput::End

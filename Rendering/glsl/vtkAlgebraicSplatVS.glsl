@@ -4,7 +4,10 @@
 //
 // Vertex shader of vtkAlgebraicSplatMapper: one vertex per splat. Passes the
 // splat's frame, scaled by its feature size h, and its polynomial to the
-// geometry shader in view coordinates.
+// geometry shader in view coordinates. Only the coefficients that the
+// degree needs are vertex attributes (SPLAT_DEGREE is defined by the mapper).
+
+//VTK::SplatDegree::Dec
 
 in vec4 vertexMC;
 in vec3 splatNormalMC;
@@ -12,9 +15,15 @@ in vec3 splatTangentMC;
 in vec3 splatSizeMC; // h, disc radius R, R / s of the splat's level
 uniform float lodQuality; // > 0: the quality s of the finest level drawn
 in vec4 splatC0;
+#if SPLAT_DEGREE >= 2
 in vec4 splatC1;
+#endif
+#if SPLAT_DEGREE >= 3
 in vec4 splatC2;
+#endif
+#if SPLAT_DEGREE >= 4
 in vec4 splatC3;
+#endif
 
 out vec3 splatAxisUVSOutput;
 out vec3 splatAxisVVSOutput;
@@ -47,9 +56,18 @@ void main()
   // (thesis 3.2: R is chosen at run time from h and s).
   splatRadiusVSOutput = (lodQuality > 0.0 ? lodQuality * splatSizeMC.z : splatSizeMC.y) / h;
   splatC0VSOutput = splatC0;
+  splatC1VSOutput = vec4(0.0);
+  splatC2VSOutput = vec4(0.0);
+  splatC3VSOutput = vec4(0.0);
+#if SPLAT_DEGREE >= 2
   splatC1VSOutput = splatC1;
+#endif
+#if SPLAT_DEGREE >= 3
   splatC2VSOutput = splatC2;
+#endif
+#if SPLAT_DEGREE >= 4
   splatC3VSOutput = splatC3;
+#endif
   gl_Position = MCVCMatrix * vertexMC;
 
   //VTK::Picking::Impl
