@@ -244,7 +244,16 @@ void vtkAlgebraicSplatMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkS
   vtkShaderProgram::Substitute(FSSource, "//VTK::PositionVC::Dec", "in vec4 vertexVCVSOutput;");
   vtkShaderProgram::Substitute(
     FSSource, "//VTK::PositionVC::Impl", "vec4 vertexVC = vertexVCVSOutput;\n");
-  vtkShaderProgram::Substitute(FSSource, "//VTK::Normal::Dec", degree + declarations);
+  // The quad lies at the nearest depth of the splat's volume, so the hit is
+  // never nearer: conservative depth keeps early depth rejection working.
+  vtkShaderProgram::Substitute(FSSource,
+    "//VTK::System::Dec",
+    "//VTK::System::Dec\n#extension GL_ARB_conservative_depth : enable\n");
+  vtkShaderProgram::Substitute(FSSource,
+    "//VTK::Normal::Dec",
+    degree +
+      "#ifdef GL_ARB_conservative_depth\nlayout(depth_greater) out float gl_FragDepth;\n#endif\n" +
+      declarations);
   vtkShaderProgram::Substitute(FSSource, "//VTK::Depth::Impl", Block(fs, "SplatImpl"));
   vtkShaderProgram::Substitute(FSSource, "//VTK::Normal::Impl", "");
   // The blend passes' outputs go last in main(), after VTK's lighting.
@@ -670,7 +679,9 @@ void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
   program->SetUniformf("splatBlendOffset", offset);
   program->SetUniformf(
     "splatBlendSharpness", static_cast<float>(this->Blending ? this->BlendSharpness : 0.0));
-  program->SetUniformi("splatSamples", this->AntiAliasing);
+  // The nearest hit of the pixel centre's ray is enough here: no supersampling.
+  program->SetUniformi("splatSamples", 1);
+  program->SetUniformi("splatShowSilhouette", 0);
   program->SetUniformi("splatPass", 1);
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_LESS);
@@ -681,6 +692,8 @@ void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
 
   // Blending: every hit in front of that depth, weighted.
   program->SetUniformi("splatPass", 2);
+  program->SetUniformi("splatSamples", this->AntiAliasing);
+  program->SetUniformi("splatShowSilhouette", this->ShowSilhouettePixels ? 1 : 0);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   ostate->vtkglDepthFunc(GL_LEQUAL);
   ostate->vtkglDepthMask(GL_FALSE);

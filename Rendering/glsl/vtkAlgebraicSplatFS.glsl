@@ -42,15 +42,16 @@ uniform float splatBlendSharpness;
 uniform int splatSamples;
 uniform float splatSilhouetteCos;
 uniform int splatShowSilhouette;
-in vec3 splatCenterVCVSOutput;
-in vec3 splatAxisUVSOutput;
-in vec3 splatAxisVVSOutput;
-in vec3 splatAxisNVSOutput;
-in float splatRadiusVSOutput;
-in vec4 splatC0VSOutput;
-in vec4 splatC1VSOutput;
-in vec4 splatC2VSOutput;
-in vec4 splatC3VSOutput;
+flat in vec3 splatCenterVCVSOutput;
+flat in vec3 splatAxisUVSOutput;
+flat in vec3 splatAxisVVSOutput;
+flat in vec3 splatAxisNVSOutput;
+flat in mat3 splatInverseVSOutput;
+flat in float splatRadiusVSOutput;
+flat in vec4 splatC0VSOutput;
+flat in vec4 splatC1VSOutput;
+flat in vec4 splatC2VSOutput;
+flat in vec4 splatC3VSOutput;
 
 //VTK::SplatRoots::Dec
 
@@ -96,6 +97,43 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
   vec3 oc = o + sc * d;
   float len = sqrt(dd);
   float rho = splatRadiusVSOutput;
+  // Most of the quad's rays miss the splat's cylinder (|(u, v)| <= rho,
+  // |w| <= rho) altogether: skip them before sampling F.
+  {
+    float a = dot(d.xy, d.xy);
+    float b = dot(o.xy, d.xy);
+    float c = dot(o.xy, o.xy) - rho * rho;
+    float disc = b * b - a * c;
+    float s0 = -1e30, s1 = 1e30;
+    if (a > 0.0)
+    {
+      if (disc < 0.0)
+      {
+        return false;
+      }
+      float root = sqrt(disc);
+      s0 = (-b - root) / a;
+      s1 = (-b + root) / a;
+    }
+    else if (c > 0.0)
+    {
+      return false;
+    }
+    if (abs(d.z) > 0.0)
+    {
+      float z0 = (-rho - o.z) / d.z, z1 = (rho - o.z) / d.z;
+      s0 = max(s0, min(z0, z1));
+      s1 = min(s1, max(z0, z1));
+    }
+    else if (abs(o.z) > rho)
+    {
+      return false;
+    }
+    if (s0 > s1 || (cameraParallel == 0 && s1 < 0.0))
+    {
+      return false;
+    }
+  }
   // Half the volume's extent along the ray, in local units: |tau| <= 2 spans it.
   float halfSpan = (2.0 * rho + 2.0 * length(oc)) / len + 1e-6;
   float step = 0.5 * halfSpan;
@@ -118,12 +156,13 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
   int degree = SPLAT_DEGREE;
   for (; degree > 1; --degree)
   {
-    float lower = 0.0;
+    float lower = 0.0, scale = 1.0;
     for (int k = 0; k < degree; ++k)
     {
-      lower += abs(a[k]) * pow(2.0, float(k));
+      lower += abs(a[k]) * scale;
+      scale *= 2.0;
     }
-    if (abs(a[degree]) * pow(2.0, float(degree)) > 1e-4 * lower)
+    if (abs(a[degree]) * scale > 1e-4 * lower)
     {
       break;
     }
@@ -204,7 +243,7 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
 //VTK::SplatImpl::Begin
   vec3 normalVCVSOutput;
   mat3 M = mat3(splatAxisUVSOutput, splatAxisVVSOutput, splatAxisNVSOutput);
-  mat3 Minv = inverse(M);
+  mat3 Minv = splatInverseVSOutput;
   float splatH = length(splatAxisNVSOutput);
   // The pixel's extent on the quad (a plane of constant view depth).
   vec3 pixelDX = dFdx(vertexVCVSOutput.xyz);

@@ -27,15 +27,17 @@ in vec4 splatC2VSOutput[];
 in vec4 splatC3VSOutput[];
 
 out vec4 vertexVCGSOutput;
-out vec3 splatCenterVCGSOutput;
-out vec3 splatAxisUGSOutput;
-out vec3 splatAxisVGSOutput;
-out vec3 splatAxisNGSOutput;
-out float splatRadiusGSOutput;
-out vec4 splatC0GSOutput;
-out vec4 splatC1GSOutput;
-out vec4 splatC2GSOutput;
-out vec4 splatC3GSOutput;
+// Per splat, constant over the quad: flat, so nothing is interpolated.
+flat out vec3 splatCenterVCGSOutput;
+flat out vec3 splatAxisUGSOutput;
+flat out vec3 splatAxisVGSOutput;
+flat out vec3 splatAxisNGSOutput;
+flat out mat3 splatInverseGSOutput; // view coordinates to the normalised frame
+flat out float splatRadiusGSOutput;
+flat out vec4 splatC0GSOutput;
+flat out vec4 splatC1GSOutput;
+flat out vec4 splatC2GSOutput;
+flat out vec4 splatC3GSOutput;
 
 //VTK::Picking::Dec
 
@@ -96,6 +98,7 @@ void main()
   hi = min(hi, vec2(1.0));
   nearest = clamp(nearest, -1.0, 1.0);
   mat4 dcvc = inverse(VCDCMatrix);
+  mat3 toLocal = inverse(mat3(splatAxisUVSOutput[0], splatAxisVVSOutput[0], splatAxisNVSOutput[0]));
   for (int k = 0; k < 4; ++k)
   {
     vec4 ndc = vec4((k & 1) != 0 ? hi.x : lo.x, (k & 2) != 0 ? hi.y : lo.y, nearest, 1.0);
@@ -105,6 +108,7 @@ void main()
     splatAxisUGSOutput = splatAxisUVSOutput[0];
     splatAxisVGSOutput = splatAxisVVSOutput[0];
     splatAxisNGSOutput = splatAxisNVSOutput[0];
+    splatInverseGSOutput = toLocal;
     splatRadiusGSOutput = rho;
     splatC0GSOutput = c0;
     splatC1GSOutput = c1;
