@@ -37,12 +37,14 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
+#include "vtkSMPTools.h"
 #include "vtkShaderProgram.h"
 #include "vtkSplatDataModel.h"
 #include "vtkTextureObject.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <set>
 #include <string>
@@ -310,18 +312,25 @@ void vtkAlgebraicSplatMapper::SetCameraShaderParameters(vtkOpenGLHelper& cellBO,
   }
   if (program->IsUniformUsed("MCVCMatrix"))
   {
+    // VTK's key matrices are transposed: the shift goes first, in the last row.
+    vtkNew<vtkMatrix4x4> shift;
+    for (int k = 0; k < 3; ++k)
+    {
+      shift->SetElement(3, k, this->Shift[k]);
+    }
     if (!act->GetIsIdentity())
     {
       vtkMatrix4x4* mcwc;
       vtkMatrix3x3* anorms;
       static_cast<vtkOpenGLActor*>(act)->GetKeyMatrices(mcwc, anorms);
-      vtkMatrix4x4::Multiply4x4(mcwc, wcvc, this->TempMatrix4);
-      program->SetUniformMatrix("MCVCMatrix", this->TempMatrix4);
+      vtkMatrix4x4::Multiply4x4(shift, mcwc, this->TempMatrix4);
+      vtkMatrix4x4::Multiply4x4(this->TempMatrix4, wcvc, this->TempMatrix4);
     }
     else
     {
-      program->SetUniformMatrix("MCVCMatrix", wcvc);
+      vtkMatrix4x4::Multiply4x4(shift, wcvc, this->TempMatrix4);
     }
+    program->SetUniformMatrix("MCVCMatrix", this->TempMatrix4);
   }
   if (program->IsUniformUsed("cameraParallel"))
   {
@@ -354,6 +363,23 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
   vtkDataArray* radius = pd->GetArray(vtkSplatDataModel::RadiusName());
   vtkDataArray* lod = pd->GetArray(vtkSplatDataModel::LODName());
   vtkDataArray* quality = poly->GetFieldData()->GetArray("SplatLODQuality");
+  vtkDataArray* normals = pd->GetArray(vtkSplatDataModel::NormalName());
+  vtkDataArray* tangents = pd->GetArray(vtkSplatDataModel::TangentName());
+  vtkDataArray* points = poly->GetPoints()->GetData();
+  // Positions go to the GPU relative to the bounds' centre, in double first,
+  // so that float keeps their precision at any offset (1e7 and beyond);
+  // SetCameraShaderParameters adds the shift back into MCVCMatrix.
+  double bounds[6];
+  poly->GetPoints()->GetBounds(bounds);
+  for (int k = 0; k < 3; ++k)
+  {
+    this->Shift[k] = std::isfinite(bounds[2 * k] + bounds[2 * k + 1])
+      ? 0.5 * (bounds[2 * k] + bounds[2 * k + 1])
+      : 0.0;
+  }
+  vtkNew<vtkFloatArray> positions;
+  positions->SetNumberOfComponents(3);
+  positions->SetNumberOfTuples(n);
   vtkNew<vtkFloatArray> sizes;
   sizes->SetNumberOfComponents(3);
   sizes->SetNumberOfTuples(n);
@@ -364,29 +390,57 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
     a->SetNumberOfTuples(n);
   }
   const int m = coeffs->GetNumberOfComponents();
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    sizes->SetTypedComponent(i, 0, static_cast<float>(size->GetTuple1(i)));
-    sizes->SetTypedComponent(i, 1, static_cast<float>(radius->GetTuple1(i)));
-    const int level = lod ? static_cast<int>(lod->GetTuple1(i)) : 0;
-    const double s = quality && level >= 0 && level < quality->GetNumberOfTuples()
-      ? quality->GetTuple1(level)
-      : 1.0;
-    sizes->SetTypedComponent(i, 2, static_cast<float>(radius->GetTuple1(i) / s));
-    for (int k = 0; k < 16; ++k)
+  std::atomic<vtkIdType> invalid(0);
+  vtkSMPTools::For(0,
+    n,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      c[k / 4]->SetTypedComponent(
-        i, k % 4, k < m ? static_cast<float>(coeffs->GetComponent(i, k)) : 0.0f);
-    }
+      vtkIdType bad = 0;
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        double p[3], nn[3], t[3];
+        points->GetTuple(i, p);
+        normals->GetTuple(i, nn);
+        tangents->GetTuple(i, t);
+        const double h = size->GetTuple1(i), r = radius->GetTuple1(i);
+        bool ok = h > 0.0 && r > 0.0 && std::isfinite(h) && std::isfinite(r) &&
+          vtkMath::Norm(nn) > 0.0 && vtkMath::Norm(t) > 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+          ok = ok && std::isfinite(p[k]) && std::isfinite(nn[k]) && std::isfinite(t[k]);
+          positions->SetTypedComponent(i, k, static_cast<float>(p[k] - this->Shift[k]));
+        }
+        for (int k = 0; k < 16; ++k)
+        {
+          const double value = k < m ? coeffs->GetComponent(i, k) : 0.0;
+          ok = ok && std::isfinite(value);
+          c[k / 4]->SetTypedComponent(i, k % 4, static_cast<float>(value));
+        }
+        const int level = lod ? static_cast<int>(lod->GetTuple1(i)) : 0;
+        const double s = quality && level >= 0 && level < quality->GetNumberOfTuples()
+          ? quality->GetTuple1(level)
+          : 1.0;
+        // An invalid splat gets a zero radius: the geometry shader drops it.
+        sizes->SetTypedComponent(i, 0, ok ? static_cast<float>(h) : 1.0f);
+        sizes->SetTypedComponent(i, 1, ok ? static_cast<float>(r) : 0.0f);
+        sizes->SetTypedComponent(i, 2, ok && s > 0.0 ? static_cast<float>(r / s) : 0.0f);
+        bad += ok ? 0 : 1;
+      }
+      invalid += bad;
+    });
+  this->NumberOfInvalidSplats = invalid;
+  if (invalid > 0)
+  {
+    vtkWarningMacro(<< invalid << " of " << n
+                    << " splats have a NaN or infinite value, or a zero radius, feature size, "
+                       "normal or tangent: they are not drawn.");
   }
 
   // Colours through the usual mapper colouring, or the actor's colour.
   this->MapScalars(1.0);
-  this->VBOs->CacheDataArray("vertexMC", poly->GetPoints()->GetData(), ren, VTK_FLOAT);
-  this->VBOs->CacheDataArray(
-    "splatNormalMC", pd->GetArray(vtkSplatDataModel::NormalName()), ren, VTK_FLOAT);
-  this->VBOs->CacheDataArray(
-    "splatTangentMC", pd->GetArray(vtkSplatDataModel::TangentName()), ren, VTK_FLOAT);
+  this->VBOs->CacheDataArray("vertexMC", positions, ren, VTK_FLOAT);
+  this->VBOs->CacheDataArray("splatNormalMC", normals, ren, VTK_FLOAT);
+  this->VBOs->CacheDataArray("splatTangentMC", tangents, ren, VTK_FLOAT);
   this->VBOs->CacheDataArray("splatSizeMC", sizes, ren, VTK_FLOAT);
   // Degree 1 needs 3 coefficients, 2 needs 6, 3 needs 10 and 4 needs 15.
   const char* names[4] = { "splatC0", "splatC1", "splatC2", "splatC3" };
@@ -422,6 +476,28 @@ void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
     ends->GetNumberOfComponents() != quality->GetNumberOfTuples())
   {
     return; // no (usable) octree: draw everything
+  }
+  // A filter that moved the points after fitting (a transform, say) leaves
+  // the octree behind: culling by it would hide the splats. Check that the
+  // root's sphere still holds every splat.
+  {
+    double root[4];
+    sphere->GetTuple(0, root);
+    const vtkIdType n = poly->GetNumberOfPoints();
+    const double r2 = root[3] * root[3] * (1.0 + 1e-6) + 1e-300;
+    vtkIdType outside = 0;
+    for (vtkIdType i = 0; i < n && outside == 0; ++i)
+    {
+      double p[3];
+      poly->GetPoint(i, p);
+      outside += vtkMath::Distance2BetweenPoints(p, root) > r2 ? 1 : 0;
+    }
+    if (outside > 0)
+    {
+      vtkWarningMacro(<< "The octree in the input's field data does not hold its splats (were "
+                         "the points moved after fitting?): it is ignored, every splat is drawn.");
+      return;
+    }
   }
   auto tree = std::make_shared<Octree>();
   tree->Levels = ends->GetNumberOfComponents();

@@ -82,6 +82,13 @@ public:
   /** Splats drawn by the last render (after culling and LOD). */
   vtkGetMacro(NumberOfRenderedSplats, vtkIdType);
 
+  /**
+   * Splats of the input that cannot be drawn (NaN or infinite values, a zero
+   * radius, feature size, normal or tangent), counted when the buffers are
+   * built; a warning names them too.
+   */
+  vtkGetMacro(NumberOfInvalidSplats, vtkIdType);
+
   ///@{
   /**
    * Two-pass blending of overlapping splats (thesis 4.2). Default on; off
@@ -174,6 +181,8 @@ protected:
   bool Culling = true;
   double LODPixelError = 0.0;
   vtkIdType NumberOfRenderedSplats = 0;
+  vtkIdType NumberOfInvalidSplats = 0;
+  double Shift[3] = { 0.0, 0.0, 0.0 }; // subtracted from the positions on the GPU
   bool Blending = true;
   double BlendDepthOffset = 0.5;
   double BlendSharpness = 3.0;

@@ -53,6 +53,10 @@ void main()
 
   vec3 centre = gl_in[0].gl_Position.xyz / gl_in[0].gl_Position.w;
   float rho = splatRadiusVSOutput[0];
+  if (!(rho > 0.0 && rho < 1e30))
+  {
+    return; // an invalid splat (zero radius), or one culled by its level
+  }
   // |g| over the disc is at most sum |c_k| rho^(total degree of monomial k).
   vec4 c0 = splatC0VSOutput[0], c1 = splatC1VSOutput[0], c2 = splatC2VSOutput[0],
        c3 = splatC3VSOutput[0];

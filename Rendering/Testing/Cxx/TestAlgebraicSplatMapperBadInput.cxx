@@ -1,0 +1,217 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+// The splat mapper on bad input and at extreme coordinates:
+// - a unit sphere's splats offset to 1e7: the positions keep their precision
+//   on the GPU (they are uploaded relative to the data's centre), so the
+//   silhouette covers the same pixels as at the origin, and the depth error
+//   stays within 1e-3 of the radius;
+// - splats with NaN positions, NaN coefficients, zero radii, zero feature
+//   sizes and zero normals mixed into a valid set: they are counted, a
+//   warning names them, the others are drawn, and GL reports no error;
+// - an empty input and an input that is not a splat set: nothing is drawn
+//   and no GL error, with an error message for the latter.
+#include "vtkActor.h"
+#include "vtkAlgebraicSplatFitter.h"
+#include "vtkAlgebraicSplatMapper.h"
+#include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkNew.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSplatDataModel.h"
+#include "vtkTransform.h"
+#include "vtkTransformFilter.h"
+#include "vtk_glew.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <limits>
+
+namespace
+{
+int Warnings = 0;
+int Errors = 0;
+void Count(vtkObject*, unsigned long event, void*, void*)
+{
+  (event == vtkCommand::WarningEvent ? Warnings : Errors)++;
+}
+
+// Covered pixels and the largest depth error against a unit sphere at `centre`.
+void Measure(vtkRenderWindow* renWin,
+  vtkRenderer* ren,
+  const double centre[3],
+  int& covered,
+  double& worst)
+{
+  const int* size = renWin->GetSize();
+  vtkNew<vtkFloatArray> z;
+  renWin->GetZbufferData(0, 0, size[0] - 1, size[1] - 1, z);
+  covered = 0;
+  worst = 0.0;
+  for (int y = 0; y < size[1]; ++y)
+  {
+    for (int x = 0; x < size[0]; ++x)
+    {
+      const float depth = z->GetValue(y * size[0] + x);
+      if (depth >= 1.0f)
+      {
+        continue;
+      }
+      ++covered;
+      ren->SetDisplayPoint(x + 0.5, y + 0.5, depth);
+      ren->DisplayToWorld();
+      double w[4];
+      ren->GetWorldPoint(w);
+      double r2 = 0.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        const double d = w[c] / w[3] - centre[c];
+        r2 += d * d;
+      }
+      worst = std::max(worst, std::abs(std::sqrt(r2) - 1.0));
+    }
+  }
+}
+} // namespace
+
+int TestAlgebraicSplatMapperBadInput(int, char*[])
+{
+  const double pi = 3.14159265358979323846;
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  const int n = 8000;
+  const double golden = pi * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i)
+  {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), t = golden * i;
+    pts->InsertNextPoint(r * std::cos(t), r * std::sin(t), z);
+  }
+  vtkNew<vtkPolyData> sphere;
+  sphere->SetPoints(pts);
+  vtkNew<vtkAlgebraicSplatFitter> fitter;
+  fitter->SetInputData(sphere);
+  fitter->SetDegree(2);
+  fitter->Update();
+
+  vtkNew<vtkCallbackCommand> counter;
+  counter->SetCallback(Count);
+  const int size = 120;
+  vtkNew<vtkRenderWindow> renWin;
+  renWin->SetSize(size, size);
+  renWin->SetMultiSamples(0);
+  vtkNew<vtkRenderer> renderer;
+  renWin->AddRenderer(renderer);
+  vtkNew<vtkAlgebraicSplatMapper> mapper;
+  mapper->AddObserver(vtkCommand::WarningEvent, counter);
+  mapper->AddObserver(vtkCommand::ErrorEvent, counter);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  renderer->AddActor(actor);
+  int failures = 0;
+  auto glOk = [&](const char* what)
+  {
+    static_cast<vtkOpenGLRenderWindow*>(renWin.GetPointer())->MakeCurrent();
+    const GLenum e = glGetError();
+    if (e != GL_NO_ERROR)
+    {
+      std::cerr << what << ": GL error " << e << "\n";
+      ++failures;
+    }
+  };
+  auto look = [&](const double c[3])
+  {
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetFocalPoint(c[0], c[1], c[2]);
+    camera->SetPosition(c[0] + 0.3, c[1] + 0.4, c[2] + 4.0);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetViewAngle(40);
+    camera->SetClippingRange(1.0, 8.0);
+  };
+
+  // The sphere at the origin, then offset to 1e7.
+  const double origin[3] = { 0, 0, 0 }, far[3] = { 1e7, -2e7, 3e7 };
+  int coveredOrigin = 0, coveredFar = 0;
+  double errorOrigin = 0.0, errorFar = 0.0;
+  mapper->SetInputData(fitter->GetOutput());
+  look(origin);
+  renWin->Render();
+  Measure(renWin, renderer, origin, coveredOrigin, errorOrigin);
+  vtkNew<vtkTransform> move;
+  move->Translate(far);
+  vtkNew<vtkTransformFilter> moved;
+  moved->SetTransform(move);
+  moved->SetInputData(fitter->GetOutput());
+  moved->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
+  moved->TransformAllInputVectorsOn();
+  moved->Update();
+  mapper->SetInputData(vtkPolyData::SafeDownCast(moved->GetOutput()));
+  look(far);
+  renWin->Render();
+  Measure(renWin, renderer, far, coveredFar, errorFar);
+  glOk("offset 1e7");
+  std::cout << "origin: " << coveredOrigin << " pixels, depth error " << errorOrigin
+            << "; at 1e7: " << coveredFar << " pixels, depth error " << errorFar << "\n";
+  if (coveredOrigin < 3000 || std::abs(coveredFar - coveredOrigin) > coveredOrigin / 100 ||
+    !(errorFar < 1e-3))
+  {
+    std::cerr << "the splats lose their precision at 1e7\n";
+    ++failures;
+  }
+
+  // Invalid splats among valid ones.
+  vtkNew<vtkPolyData> broken;
+  broken->DeepCopy(fitter->GetOutput());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  vtkPointData* pd = broken->GetPointData();
+  broken->GetPoints()->SetPoint(0, nan, 0, 0);
+  pd->GetArray(vtkSplatDataModel::CoefficientsName())->SetComponent(1, 2, nan);
+  pd->GetArray(vtkSplatDataModel::RadiusName())->SetTuple1(2, 0.0);
+  pd->GetArray(vtkSplatDataModel::FeatureSizeName())->SetTuple1(3, 0.0);
+  const double zero[3] = { 0, 0, 0 };
+  pd->GetArray(vtkSplatDataModel::NormalName())->SetTuple(4, zero);
+  Warnings = Errors = 0;
+  mapper->SetInputData(broken);
+  look(origin);
+  renWin->Render();
+  int covered = 0;
+  double error = 0.0;
+  Measure(renWin, renderer, origin, covered, error);
+  glOk("invalid splats");
+  std::cout << mapper->GetNumberOfInvalidSplats() << " invalid splats, " << Warnings
+            << " warnings, " << covered << " pixels\n";
+  if (mapper->GetNumberOfInvalidSplats() != 5 || Warnings != 1 || covered < coveredOrigin * 9 / 10)
+  {
+    std::cerr << "invalid splats are not skipped as they should be\n";
+    ++failures;
+  }
+
+  // Empty input, then points that are not splats.
+  Warnings = Errors = 0;
+  vtkNew<vtkPolyData> empty;
+  mapper->SetInputData(empty);
+  renWin->Render();
+  glOk("empty input");
+  Measure(renWin, renderer, origin, covered, error);
+  const int emptyErrors = Errors;
+  mapper->SetInputData(sphere);
+  renWin->Render();
+  glOk("not a splat set");
+  int coveredPlain = 0;
+  Measure(renWin, renderer, origin, coveredPlain, error);
+  std::cout << "empty: " << covered << " pixels, " << emptyErrors
+            << " errors; plain points: " << coveredPlain << " pixels, " << Errors - emptyErrors
+            << " errors\n";
+  if (covered != 0 || emptyErrors != 0 || coveredPlain != 0 || Errors - emptyErrors != 1)
+  {
+    std::cerr << "empty or non-splat input is not handled\n";
+    ++failures;
+  }
+  return failures ? EXIT_FAILURE : EXIT_SUCCESS;
+}
