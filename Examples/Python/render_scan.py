@@ -63,6 +63,9 @@ def main():
     parser.add_argument("--degree", type=int, default=3)
     parser.add_argument("--quality", type=float, default=1.0)
     parser.add_argument("--points", action="store_true", help="draw the raw points instead")
+    parser.add_argument("--aa", type=int, default=2, choices=(1, 2, 3),
+                        help="adaptive anti-aliasing: n x n rays at silhouette pixels")
+    parser.add_argument("--no-blend", action="store_true", help="opaque splats, one pass")
     args = parser.parse_args()
 
     t0 = time.perf_counter()
@@ -112,6 +115,8 @@ def main():
         mapper = pointsurfaces.vtkAlgebraicSplatMapper()
         mapper.SetInputConnection(fitter.GetOutputPort())
         mapper.SetScalarVisibility(poly.GetPointData().GetScalars() is not None)
+        mapper.SetAntiAliasing(args.aa)
+        mapper.SetBlending(not args.no_blend)
     actor = vtkActor()
     actor.SetMapper(mapper)
     actor.GetProperty().SetColor(0.85, 0.75, 0.6)
