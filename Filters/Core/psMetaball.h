@@ -1,0 +1,141 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file psMetaball.h
+ * @brief Metaball fields, the perspective grid and a reference ray caster (thesis chapter 5).
+ *
+ * The double-precision CPU reference for the metaball mapper's GPU work:
+ *
+ * - the field f(x) = sum_i q_i f_i(|x - p_i|) - T with finite-support kernels
+ *   of the thesis (Wyvill's sixth-order polynomial, eq. 1.4; the quartic
+ *   (1 - r^2/R^2)^2, eq. 1.3) and a truncated Gaussian, and its gradient;
+ * - the perspective grid of Algorithm 2: the view frustum cut into screen
+ *   tiles times depth slabs, each voxel listing the balls whose support
+ *   reaches into it (count, exclusive scan, scatter, sort by voxel);
+ * - a ray caster: dense sampling along the ray and bisection on the exact
+ *   field, with the analytic normal.
+ *
+ * Plain functions over spans; nothing here knows VTK's pipeline.
+ */
+#ifndef psMetaball_h
+#define psMetaball_h
+
+#include "PointSurfacesFiltersModule.h" // For export macro
+
+#include <vector> // For grid lists
+
+namespace pointsurfaces
+{
+/** Kernels, as functions of x = r^2 / R^2 in [0, 1]; zero for x >= 1. */
+enum class MetaballKernel
+{
+  Wyvill = 0,   ///< -4/9 x^3 + 17/9 x^2 - 22/9 x + 1 (eq. 1.4)
+  Quartic = 1,  ///< (1 - x)^2 (eq. 1.3)
+  Gaussian = 2, ///< (exp(-4 x) - exp(-4)) / (1 - exp(-4)): a Gaussian cut to zero at R
+};
+
+/** The kernel at x = r^2 / R^2, and its derivative d/dx in `derivative` when given. */
+POINTSURFACESFILTERS_EXPORT double KernelValue(MetaballKernel kernel,
+  double x,
+  double* derivative = nullptr);
+
+/** A set of balls: spans, not owned. */
+struct MetaballSet
+{
+  const double* Centers = nullptr;   ///< 3 per ball
+  const double* Radii = nullptr;     ///< R_i, the support radius
+  const double* Strengths = nullptr; ///< q_i; null: all 1
+  long long Count = 0;
+  MetaballKernel Kernel = MetaballKernel::Wyvill;
+  double Threshold = 0.5; ///< T
+};
+
+/** Is ball i usable: finite centre, finite radius > 0, finite strength? */
+POINTSURFACESFILTERS_EXPORT bool ValidBall(const MetaballSet& set, long long i);
+
+/**
+ * f(x) = sum q_i f_i - T over the balls `ids` (all balls when ids is null),
+ * with its gradient in `gradient` when given.
+ */
+POINTSURFACESFILTERS_EXPORT double FieldValue(const MetaballSet& set,
+  const double x[3],
+  double gradient[3] = nullptr,
+  const unsigned* ids = nullptr,
+  long long idCount = 0);
+
+/** The view for the perspective grid. Matrices are row-major, column vectors. */
+struct GridView
+{
+  double WorldToView[16]; ///< the camera's view transform
+  double ViewToClip[16];  ///< its projection (OpenGL clip space)
+  bool Parallel = false;  ///< parallel projection
+  int Width = 0;          ///< viewport, pixels
+  int Height = 0;
+  int TileSize = 16;     ///< pixels per tile side
+  int Slabs = 16;        ///< depth slabs
+  double SlabNear = 0.0; ///< first slab plane (view distance); SlabFar <= SlabNear: automatic
+  double SlabFar = 0.0;  ///< last slab plane
+};
+
+/** Tiles x slabs, each voxel listing its balls. Voxel id = (slab * tilesY + ty) * tilesX + tx. */
+struct PerspectiveGrid
+{
+  int TilesX = 0, TilesY = 0, Slabs = 0;
+  std::vector<double> SlabPlanes; ///< Slabs + 1 view distances, ascending
+  std::vector<unsigned>
+    Offsets;                   ///< voxels + 1: voxel v's balls are Balls[Offsets[v], Offsets[v+1])
+  std::vector<unsigned> Balls; ///< ball ids by voxel, ascending within a voxel
+  long long Pairs = 0;         ///< (voxel, ball) pairs
+  unsigned MaxPerVoxel = 0;
+  long long Culled = 0;  ///< balls outside the frustum
+  long long Invalid = 0; ///< NaN or non-positive radii, skipped
+};
+
+/**
+ * The voxel range a ball's support reaches: tiles [r[0], r[1]] x [r[2], r[3]]
+ * and slabs [r[4], r[5]], from its bounding sphere's projection (the sphere's
+ * view-space box for the depth; a ball reaching the eye plane covers every
+ * tile). Returns false when the ball lies outside the frustum or the slabs.
+ */
+POINTSURFACESFILTERS_EXPORT bool BallVoxels(const GridView& view,
+  const std::vector<double>& slabPlanes,
+  const double centre[3],
+  double radius,
+  int range[6]);
+
+/**
+ * The slab planes for `view`: its SlabNear/SlabFar, or, when automatic, the
+ * nearest and farthest view distance that the frustum-culled balls reach
+ * (at least the near plane of the projection), split uniformly.
+ */
+POINTSURFACESFILTERS_EXPORT std::vector<double> SlabPlanes(const MetaballSet& set,
+  const GridView& view);
+
+/** Algorithm 2 on the CPU: count, exclusive scan, scatter, sort by voxel. */
+POINTSURFACESFILTERS_EXPORT PerspectiveGrid BuildPerspectiveGrid(const MetaballSet& set,
+  const GridView& view);
+
+/** A ray's first crossing of the iso-surface f = 0 (from f < 0 to f >= 0). */
+struct RayHit
+{
+  bool Hit = false;
+  double T = 0.0;                 ///< ray parameter of the hit
+  double Point[3] = { 0, 0, 0 };  ///< origin + T direction
+  double Normal[3] = { 0, 0, 0 }; ///< unit, -grad f (outward)
+};
+
+/**
+ * Reference ray cast: samples f every `step` along origin + t direction for
+ * t in [tMin, tMax], then bisects the first bracket `bisections` times. With
+ * a step well below the smallest radius this finds the first crossing.
+ */
+POINTSURFACESFILTERS_EXPORT RayHit CastRay(const MetaballSet& set,
+  const double origin[3],
+  const double direction[3],
+  double tMin,
+  double tMax,
+  double step,
+  int bisections);
+} // namespace pointsurfaces
+
+#endif
