@@ -21,57 +21,17 @@ void Transform(const double m[16], const double x[3], double w, double y[4])
   }
 }
 
-// The near and far view distances of an OpenGL projection matrix.
-void ProjectionRange(const double p[16], bool parallel, double& nearD, double& farD)
-{
-  const double a = p[10], b = p[11];
-  if (parallel)
-  {
-    // z_clip = a z + b with a = -2 / (f - n), b = -(f + n) / (f - n)
-    nearD = (b + 1.0) / a;
-    farD = (b - 1.0) / a;
-  }
-  else
-  {
-    nearD = b / (a - 1.0);
-    farD = b / (a + 1.0);
-  }
-  if (!(nearD > -std::numeric_limits<double>::max()) || !std::isfinite(farD))
-  {
-    nearD = 0.0;
-    farD = std::numeric_limits<double>::max();
-  }
-  if (nearD > farD)
-  {
-    std::swap(nearD, farD);
-  }
-}
-
 // Is the sphere (view space) entirely outside one of the frustum's planes?
 bool OutsideFrustum(const double p[16], const double c[3], double radius)
 {
-  for (int axis = 0; axis < 3; ++axis)
+  double planes[24];
+  FrustumPlanes(p, planes);
+  for (int k = 0; k < 6; ++k)
   {
-    for (int sign = -1; sign <= 1; sign += 2)
+    const double* e = planes + 4 * k;
+    if (e[0] * c[0] + e[1] * c[1] + e[2] * c[2] + e[3] < -radius)
     {
-      // Plane: row3 + sign * row_axis >= 0 inside.
-      double plane[4];
-      for (int k = 0; k < 4; ++k)
-      {
-        plane[k] = p[12 + k] + sign * p[4 * axis + k];
-      }
-      const double norm =
-        std::sqrt(plane[0] * plane[0] + plane[1] * plane[1] + plane[2] * plane[2]);
-      if (norm == 0.0)
-      {
-        continue;
-      }
-      const double distance =
-        (plane[0] * c[0] + plane[1] * c[1] + plane[2] * c[2] + plane[3]) / norm;
-      if (distance < -radius)
-      {
-        return true;
-      }
+      return true;
     }
   }
   return false;
@@ -86,6 +46,55 @@ int SlabOf(const std::vector<double>& planes, double d)
   return std::min(std::max(k, 0), slabs - 1);
 }
 } // namespace
+
+//------------------------------------------------------------------------------
+void ProjectionRange(const double p[16], bool parallel, double& nearD, double& farD)
+{
+  const double a = p[10], b = p[11];
+  if (parallel)
+  {
+    // z_clip = a z + b with a = -2 / (f - n), b = -(f + n) / (f - n)
+    nearD = (b + 1.0) / a;
+    farD = (b - 1.0) / a;
+  }
+  else
+  {
+    nearD = b / (a - 1.0);
+    farD = b / (a + 1.0);
+  }
+  if (!std::isfinite(nearD) || !std::isfinite(farD))
+  {
+    nearD = 0.0;
+    farD = std::numeric_limits<double>::max();
+  }
+  if (nearD > farD)
+  {
+    std::swap(nearD, farD);
+  }
+}
+
+//------------------------------------------------------------------------------
+void FrustumPlanes(const double p[16], double planes[24])
+{
+  int k = 0;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    for (int sign = -1; sign <= 1; sign += 2, ++k)
+    {
+      // Inside: row3 + sign * row_axis >= 0.
+      double* e = planes + 4 * k;
+      for (int c = 0; c < 4; ++c)
+      {
+        e[c] = p[12 + c] + sign * p[4 * axis + c];
+      }
+      const double norm = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+      for (int c = 0; c < 4; ++c)
+      {
+        e[c] = norm > 0.0 ? e[c] / norm : (c == 3 ? 1.0 : 0.0);
+      }
+    }
+  }
+}
 
 //------------------------------------------------------------------------------
 double KernelValue(MetaballKernel kernel, double x, double* derivative)

@@ -91,6 +91,18 @@ struct PerspectiveGrid
   long long Invalid = 0; ///< NaN or non-positive radii, skipped
 };
 
+/** The near and far view distances of an OpenGL projection matrix (row-major). */
+POINTSURFACESFILTERS_EXPORT void ProjectionRange(const double viewToClip[16],
+  bool parallel,
+  double& nearDistance,
+  double& farDistance);
+
+/**
+ * The six view-space planes of the frustum of `viewToClip`, 4 values each
+ * (unit normal, offset), with the inside where n . x + d >= 0.
+ */
+POINTSURFACESFILTERS_EXPORT void FrustumPlanes(const double viewToClip[16], double planes[24]);
+
 /**
  * The voxel range a ball's support reaches: tiles [r[0], r[1]] x [r[2], r[3]]
  * and slabs [r[4], r[5]], from its bounding sphere's projection (the sphere's

@@ -1,0 +1,271 @@
+//VTK::System::Dec
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+//
+// The per-frame perspective grid of vtkMetaballGridBuilder (thesis
+// Algorithm 2): screen tiles times depth slabs, each voxel listing the balls
+// whose support reaches into it. One source, compiled once per pass (PASS is
+// defined by the builder):
+//
+// 0 RANGE    nearest and farthest view distance of the balls in the view
+//            (automatic slab placement), as float bits with atomicMin/Max
+// 1 COUNT    per ball: frustum cull, voxel range, number of voxels
+// 2 SCAN     exclusive scan of 1024 values per work group (Blelloch), with
+//            each group's total written out; optionally the largest value
+// 3 ADD      adds the scanned group totals back (multi-level scans)
+// 4 SCATTER  per ball: its (voxel, ball) pairs at its scanned offset, and a
+//            histogram of pairs per voxel
+// 5 PLACE    per pair: the ball id into its voxel's list (counting sort)
+//
+// The arithmetic follows pointsurfaces::BallVoxels (psMetaball.cxx), in
+// float: a ball's view-space box is projected to find its tiles.
+
+//VTK::Pass::Dec
+
+#if PASS == 2
+layout(local_size_x = 512) in;
+#else
+layout(local_size_x = 256) in;
+#endif
+
+layout(std430, binding = 0) readonly buffer Balls { vec4 balls[]; };  // centre, radius
+layout(std430, binding = 1) buffer Ranges { ivec2 ranges[]; };        // 3 per ball: x, y, z
+layout(std430, binding = 2) buffer Counts { uint counts[]; };         // per ball, + 1
+layout(std430, binding = 3) buffer Sums { uint sums[]; };             // per work group
+layout(std430, binding = 4) buffer PairVoxels { uint pairVoxels[]; };
+layout(std430, binding = 5) buffer PairBalls { uint pairBalls[]; };
+layout(std430, binding = 6) buffer Histogram { uint histogram[]; };  // per voxel, + 1
+layout(std430, binding = 7) buffer Cursor { uint cursor[]; };        // per voxel
+layout(std430, binding = 8) buffer VoxelBalls { uint voxelBalls[]; };
+layout(std430, binding = 9) buffer Stats { uint stats[]; }; // near, far bits, culled, invalid, max
+
+uniform mat4 worldToView;
+uniform mat4 viewToClip;
+uniform vec4 frustum[6]; // view-space planes, inside >= 0, unit normals
+uniform uint count;      // balls, pairs or values, by pass
+uniform int parallelProjection;
+uniform ivec2 viewport;
+uniform int tileSize;
+uniform ivec2 tiles;
+uniform int slabs;
+uniform float slabNear;
+uniform float slabFar;
+uniform vec2 projectionRange; // near and far view distance of the projection
+uniform int recordMax;
+
+bool psValid(vec4 b)
+{
+  return !any(isnan(b)) && !any(isinf(b)) && b.w > 0.0;
+}
+
+bool psOutside(vec3 c, float r)
+{
+  for (int k = 0; k < 6; ++k)
+  {
+    if (dot(frustum[k].xyz, c) + frustum[k].w < -r)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+int psSlabOf(float d)
+{
+  float s = (d - slabNear) / (slabFar - slabNear) * float(slabs);
+  return clamp(int(floor(s)), 0, slabs - 1);
+}
+
+#if PASS == 2
+shared uint scratch[1024];
+#endif
+
+void main()
+{
+#if PASS == 0
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= count)
+  {
+    return;
+  }
+  vec4 b = balls[i];
+  if (!psValid(b))
+  {
+    return;
+  }
+  vec3 c = (worldToView * vec4(b.xyz, 1.0)).xyz;
+  if (psOutside(c, b.w))
+  {
+    return;
+  }
+  float lo = clamp(-c.z - b.w, projectionRange.x, projectionRange.y);
+  float hi = clamp(-c.z + b.w, projectionRange.x, projectionRange.y);
+  atomicMin(stats[0], floatBitsToUint(max(lo, 0.0)));
+  atomicMax(stats[1], floatBitsToUint(max(hi, 0.0)));
+
+#elif PASS == 1
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= count)
+  {
+    if (i == count)
+    {
+      counts[i] = 0u; // the scan's total lands here
+    }
+    return;
+  }
+  vec4 b = balls[i];
+  counts[i] = 0u;
+  if (!psValid(b))
+  {
+    atomicAdd(stats[3], 1u);
+    return;
+  }
+  vec3 c = (worldToView * vec4(b.xyz, 1.0)).xyz;
+  float r = b.w;
+  float d = -c.z;
+  if (psOutside(c, r) || d + r < slabNear || d - r > slabFar)
+  {
+    atomicAdd(stats[2], 1u);
+    return;
+  }
+  ivec2 zr = ivec2(psSlabOf(d - r), psSlabOf(d + r));
+  vec2 lo = vec2(1e30), hi = vec2(-1e30);
+  bool everywhere = parallelProjection == 0 && d - r <= 0.0;
+  for (int k = 0; k < 8 && !everywhere; ++k)
+  {
+    vec3 corner = c + vec3((k & 1) != 0 ? r : -r, (k & 2) != 0 ? r : -r, (k & 4) != 0 ? r : -r);
+    vec4 clip = viewToClip * vec4(corner, 1.0);
+    if (!(clip.w > 0.0))
+    {
+      everywhere = true;
+    }
+    else
+    {
+      vec2 p = (0.5 * clip.xy / clip.w + 0.5) * vec2(viewport);
+      lo = min(lo, p);
+      hi = max(hi, p);
+    }
+  }
+  ivec2 xr, yr;
+  if (everywhere)
+  {
+    xr = ivec2(0, tiles.x - 1);
+    yr = ivec2(0, tiles.y - 1);
+  }
+  else
+  {
+    if (hi.x < 0.0 || hi.y < 0.0 || lo.x >= float(viewport.x) || lo.y >= float(viewport.y))
+    {
+      atomicAdd(stats[2], 1u);
+      return;
+    }
+    xr = ivec2(max(0, int(floor(lo.x / float(tileSize)))),
+      min(tiles.x - 1, int(floor(hi.x / float(tileSize)))));
+    yr = ivec2(max(0, int(floor(lo.y / float(tileSize)))),
+      min(tiles.y - 1, int(floor(hi.y / float(tileSize)))));
+  }
+  ranges[3u * i] = xr;
+  ranges[3u * i + 1u] = yr;
+  ranges[3u * i + 2u] = zr;
+  counts[i] = uint((xr.y - xr.x + 1) * (yr.y - yr.x + 1) * (zr.y - zr.x + 1));
+
+#elif PASS == 2
+  // Blelloch scan of 1024 values of `counts` from offset group * 1024.
+  uint local = gl_LocalInvocationID.x;
+  uint base = gl_WorkGroupID.x * 1024u;
+  uint a = base + 2u * local, b = a + 1u;
+  uint va = a < count ? counts[a] : 0u;
+  uint vb = b < count ? counts[b] : 0u;
+  if (recordMax != 0)
+  {
+    atomicMax(stats[4], max(va, vb));
+  }
+  scratch[2u * local] = va;
+  scratch[2u * local + 1u] = vb;
+  uint offset = 1u;
+  for (uint d = 512u; d > 0u; d >>= 1)
+  {
+    barrier();
+    if (local < d)
+    {
+      uint ai = offset * (2u * local + 1u) - 1u;
+      uint bi = offset * (2u * local + 2u) - 1u;
+      scratch[bi] += scratch[ai];
+    }
+    offset <<= 1;
+  }
+  if (local == 0u)
+  {
+    sums[gl_WorkGroupID.x] = scratch[1023];
+    scratch[1023] = 0u;
+  }
+  for (uint d = 1u; d < 1024u; d <<= 1)
+  {
+    offset >>= 1;
+    barrier();
+    if (local < d)
+    {
+      uint ai = offset * (2u * local + 1u) - 1u;
+      uint bi = offset * (2u * local + 2u) - 1u;
+      uint t = scratch[ai];
+      scratch[ai] = scratch[bi];
+      scratch[bi] += t;
+    }
+  }
+  barrier();
+  if (a < count)
+  {
+    counts[a] = scratch[2u * local];
+  }
+  if (b < count)
+  {
+    counts[b] = scratch[2u * local + 1u];
+  }
+
+#elif PASS == 3
+  uint i = gl_GlobalInvocationID.x;
+  if (i < count)
+  {
+    counts[i] += sums[i / 1024u];
+  }
+
+#elif PASS == 4
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= count)
+  {
+    return;
+  }
+  uint first = counts[i];
+  uint n = counts[i + 1u] - first;
+  if (n == 0u)
+  {
+    return;
+  }
+  ivec2 xr = ranges[3u * i], yr = ranges[3u * i + 1u], zr = ranges[3u * i + 2u];
+  uint k = first;
+  for (int z = zr.x; z <= zr.y; ++z)
+  {
+    for (int y = yr.x; y <= yr.y; ++y)
+    {
+      for (int x = xr.x; x <= xr.y; ++x)
+      {
+        uint voxel = uint((z * tiles.y + y) * tiles.x + x);
+        pairVoxels[k] = voxel;
+        pairBalls[k] = i;
+        atomicAdd(histogram[voxel], 1u);
+        ++k;
+      }
+    }
+  }
+
+#elif PASS == 5
+  uint k = gl_GlobalInvocationID.x;
+  if (k >= count)
+  {
+    return;
+  }
+  uint voxel = pairVoxels[k];
+  uint position = atomicAdd(cursor[voxel], 1u);
+  voxelBalls[position] = pairBalls[k];
+#endif
+}

@@ -1,0 +1,398 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtk_glew.h"
+
+#include "vtkMetaballGridBuilder.h"
+
+#include "vtkComputeShaderProgram.h"
+#include "vtkMetaballGridCS.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkShaderStorageBuffer.h"
+#include "vtkSmartPointer.h"
+
+#include "psMetaball.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+vtkStandardNewMacro(vtkMetaballGridBuilder);
+
+namespace
+{
+enum Pass
+{
+  Range = 0,
+  Count = 1,
+  Scan = 2,
+  Add = 3,
+  Scatter = 4,
+  Place = 5,
+  NumberOfPasses = 6
+};
+const unsigned int BallGroup = 256;  // local_size_x of the per-item passes
+const unsigned int ScanBlock = 1024; // values per scan work group
+
+// Binding points of glsl/vtkMetaballGridCS.glsl.
+enum Binding
+{
+  BallsBinding = 0,
+  RangesBinding = 1,
+  CountsBinding = 2,
+  SumsBinding = 3,
+  PairVoxelsBinding = 4,
+  PairBallsBinding = 5,
+  HistogramBinding = 6,
+  CursorBinding = 7,
+  VoxelBallsBinding = 8,
+  StatsBinding = 9
+};
+
+// Grows `buffer` to at least `bytes` (never shrinks: the grid is rebuilt every frame).
+bool Reserve(vtkShaderStorageBuffer* buffer, size_t bytes)
+{
+  bytes = std::max<size_t>(bytes, 16);
+  return buffer->GetSize() >= bytes || buffer->Allocate(bytes + bytes / 4);
+}
+} // namespace
+
+struct vtkMetaballGridBuilder::Internals
+{
+  vtkNew<vtkComputeShaderProgram> Programs[NumberOfPasses];
+  vtkNew<vtkShaderStorageBuffer> Ranges, Counts, PairVoxels, PairBalls, Histogram, Cursor,
+    VoxelBalls, Stats;
+  std::vector<vtkSmartPointer<vtkShaderStorageBuffer>> Sums; // one per scan level
+
+  vtkComputeShaderProgram* Use(vtkOpenGLRenderWindow* renWin, int pass)
+  {
+    vtkComputeShaderProgram* p = this->Programs[pass];
+    if (!p->IsCompiled())
+    {
+      std::string source = vtkMetaballGridCS;
+      const std::string hook = "//VTK::Pass::Dec";
+      source.replace(source.find(hook), hook.size(), "#define PASS " + std::to_string(pass));
+      p->SetName(("vtkMetaballGridCS pass " + std::to_string(pass)).c_str());
+      p->SetSource(source);
+      if (!p->Compile(renWin))
+      {
+        return nullptr;
+      }
+    }
+    p->Bind(renWin);
+    return p;
+  }
+
+  // Exclusive scan of `n` uints of `values` in place, over as many levels as needed.
+  bool ExclusiveScan(vtkOpenGLRenderWindow* renWin,
+    vtkShaderStorageBuffer* values,
+    size_t n,
+    size_t level,
+    bool recordMax)
+  {
+    const size_t groups = (n + ScanBlock - 1) / ScanBlock;
+    if (this->Sums.size() <= level)
+    {
+      this->Sums.push_back(vtkSmartPointer<vtkShaderStorageBuffer>::New());
+    }
+    vtkShaderStorageBuffer* sums = this->Sums[level];
+    if (!Reserve(sums, (groups + 1) * sizeof(unsigned int)))
+    {
+      return false;
+    }
+    vtkComputeShaderProgram* scan = this->Use(renWin, Scan);
+    if (!scan)
+    {
+      return false;
+    }
+    values->BindBase(CountsBinding);
+    sums->BindBase(SumsBinding);
+    this->Stats->BindBase(StatsBinding);
+    scan->SetUniformui("count", static_cast<unsigned int>(n));
+    scan->SetUniformi("recordMax", recordMax ? 1 : 0);
+    if (!scan->Dispatch(static_cast<unsigned int>(groups)))
+    {
+      return false;
+    }
+    if (groups > 1)
+    {
+      if (!this->ExclusiveScan(renWin, sums, groups, level + 1, false))
+      {
+        return false;
+      }
+      vtkComputeShaderProgram* add = this->Use(renWin, Add);
+      if (!add)
+      {
+        return false;
+      }
+      values->BindBase(CountsBinding);
+      sums->BindBase(SumsBinding);
+      add->SetUniformui("count", static_cast<unsigned int>(n));
+      if (!add->Dispatch(vtkComputeShaderProgram::GroupCount(n, BallGroup)))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+};
+
+//------------------------------------------------------------------------------
+vtkMetaballGridBuilder::vtkMetaballGridBuilder()
+  : Impl(new Internals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkMetaballGridBuilder::~vtkMetaballGridBuilder() = default;
+
+//------------------------------------------------------------------------------
+vtkShaderStorageBuffer* vtkMetaballGridBuilder::GetVoxelOffsets()
+{
+  return this->Impl->Histogram;
+}
+
+//------------------------------------------------------------------------------
+vtkShaderStorageBuffer* vtkMetaballGridBuilder::GetVoxelBalls()
+{
+  return this->Impl->VoxelBalls;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
+  vtkShaderStorageBuffer* balls,
+  vtkIdType count,
+  const double worldToView[16],
+  const double viewToClip[16],
+  bool parallel,
+  int width,
+  int height)
+{
+  Internals& in = *this->Impl;
+  this->NumberOfPairs = this->MaximumBallsPerVoxel = 0;
+  this->NumberOfCulledBalls = this->NumberOfInvalidBalls = 0;
+  this->BuildTime = 0.0;
+  if (!renWin || !balls || count < 0 || width <= 0 || height <= 0)
+  {
+    vtkErrorMacro(<< "Build needs a window, a ball buffer and a viewport.");
+    return false;
+  }
+  this->TilesX = (width + this->TileSize - 1) / this->TileSize;
+  this->TilesY = (height + this->TileSize - 1) / this->TileSize;
+  const size_t voxels = static_cast<size_t>(this->TilesX) * this->TilesY * this->Slabs;
+  const size_t n = static_cast<size_t>(count);
+  const size_t maxBytes = vtkShaderStorageBuffer::GetMaximumSize();
+  if (n + 1 > maxBytes / (3 * 2 * sizeof(int)) || voxels + 1 > maxBytes / sizeof(unsigned int))
+  {
+    vtkErrorMacro(<< count << " balls or " << voxels
+                  << " voxels exceed the shader storage buffer limit of " << maxBytes << " bytes.");
+    return false;
+  }
+  const auto start = std::chrono::steady_clock::now();
+
+  // Uniforms shared by the passes: the view, in float.
+  float w2v[16], v2c[16];
+  for (int k = 0; k < 16; ++k)
+  {
+    w2v[k] = static_cast<float>(worldToView[k]);
+    v2c[k] = static_cast<float>(viewToClip[k]);
+  }
+  double planes[24];
+  pointsurfaces::FrustumPlanes(viewToClip, planes);
+  double projectionNear = 0.0, projectionFar = 0.0;
+  pointsurfaces::ProjectionRange(viewToClip, parallel, projectionNear, projectionFar);
+  projectionFar = std::min(projectionFar, 1e30);
+  auto common = [&](vtkComputeShaderProgram* p)
+  {
+    p->SetUniformMatrix4x4("worldToView", w2v);
+    p->SetUniformMatrix4x4("viewToClip", v2c);
+    for (int k = 0; k < 6; ++k)
+    {
+      const float plane[4] = { static_cast<float>(planes[4 * k]),
+        static_cast<float>(planes[4 * k + 1]),
+        static_cast<float>(planes[4 * k + 2]),
+        static_cast<float>(planes[4 * k + 3]) };
+      p->SetUniform4f(("frustum[" + std::to_string(k) + "]").c_str(), plane);
+    }
+    p->SetUniformi("parallelProjection", parallel ? 1 : 0);
+    p->SetUniform2i("viewport", width, height);
+    p->SetUniformi("tileSize", this->TileSize);
+    p->SetUniform2i("tiles", this->TilesX, this->TilesY);
+    p->SetUniformi("slabs", this->Slabs);
+    p->SetUniform2f(
+      "projectionRange", static_cast<float>(projectionNear), static_cast<float>(projectionFar));
+  };
+
+  // Stats: nearest, farthest (float bits), culled, invalid, max per voxel.
+  const float big = std::numeric_limits<float>::max();
+  unsigned int initial[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
+  std::memcpy(&initial[0], &big, sizeof(float));
+  bool ok = in.Stats->GetSize() >= sizeof(initial) || in.Stats->Allocate(sizeof(initial));
+  ok = ok && in.Stats->Upload(initial, sizeof(initial));
+  balls->BindBase(BallsBinding);
+  in.Stats->BindBase(StatsBinding);
+
+  // Slab planes: fixed, or from the balls in view.
+  double slabNear = this->SlabRange[0], slabFar = this->SlabRange[1];
+  if (ok && !(slabFar > slabNear))
+  {
+    vtkComputeShaderProgram* range = in.Use(renWin, Range);
+    ok = range != nullptr;
+    if (ok)
+    {
+      common(range);
+      range->SetUniformui("count", static_cast<unsigned int>(n));
+      ok = range->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), BallGroup));
+    }
+    unsigned int bits[2] = { 0, 0 };
+    ok = ok && in.Stats->Download(bits, sizeof(bits));
+    float lo = 0.0f, hi = 0.0f;
+    std::memcpy(&lo, &bits[0], sizeof(float));
+    std::memcpy(&hi, &bits[1], sizeof(float));
+    slabNear = lo;
+    slabFar = hi;
+    if (!(slabFar > slabNear) || !(slabNear < big))
+    {
+      slabNear = projectionNear;
+      slabFar = std::min(projectionFar, projectionNear + 1.0);
+    }
+  }
+  this->SlabPlanes.resize(this->Slabs + 1);
+  for (int k = 0; k <= this->Slabs; ++k)
+  {
+    this->SlabPlanes[k] = slabNear + (slabFar - slabNear) * k / this->Slabs;
+  }
+
+  // Count voxels per ball, then scan into each ball's first pair.
+  ok = ok && Reserve(in.Ranges, 3 * (n + 1) * 2 * sizeof(int)) &&
+    Reserve(in.Counts, (n + 1) * sizeof(unsigned int));
+  vtkComputeShaderProgram* countPass = ok ? in.Use(renWin, Count) : nullptr;
+  ok = countPass != nullptr;
+  if (ok)
+  {
+    common(countPass);
+    countPass->SetUniformf("slabNear", static_cast<float>(slabNear));
+    countPass->SetUniformf("slabFar", static_cast<float>(slabFar));
+    countPass->SetUniformui("count", static_cast<unsigned int>(n));
+    balls->BindBase(BallsBinding);
+    in.Ranges->BindBase(RangesBinding);
+    in.Counts->BindBase(CountsBinding);
+    in.Stats->BindBase(StatsBinding);
+    ok = countPass->Dispatch(vtkComputeShaderProgram::GroupCount(n + 1, BallGroup));
+  }
+  ok = ok && in.ExclusiveScan(renWin, in.Counts, n + 1, 0, false);
+  unsigned int pairs = 0;
+  ok = ok && in.Counts->Download(&pairs, sizeof(pairs), n * sizeof(unsigned int));
+  if (ok && static_cast<size_t>(pairs) > maxBytes / sizeof(unsigned int))
+  {
+    vtkErrorMacro(<< pairs << " (voxel, ball) pairs exceed the shader storage buffer limit of "
+                  << maxBytes << " bytes: use larger tiles or fewer slabs.");
+    ok = false;
+  }
+
+  // Scatter the pairs and count them per voxel; scan the counts into offsets.
+  ok = ok && Reserve(in.PairVoxels, pairs * sizeof(unsigned int)) &&
+    Reserve(in.PairBalls, pairs * sizeof(unsigned int)) &&
+    Reserve(in.Histogram, (voxels + 1) * sizeof(unsigned int)) &&
+    Reserve(in.Cursor, voxels * sizeof(unsigned int)) &&
+    Reserve(in.VoxelBalls, pairs * sizeof(unsigned int));
+  if (ok)
+  {
+    in.Histogram->Fill(0, (voxels + 1) * sizeof(unsigned int));
+  }
+  vtkComputeShaderProgram* scatter = ok ? in.Use(renWin, Scatter) : nullptr;
+  ok = scatter != nullptr;
+  if (ok)
+  {
+    common(scatter);
+    scatter->SetUniformui("count", static_cast<unsigned int>(n));
+    in.Ranges->BindBase(RangesBinding);
+    in.Counts->BindBase(CountsBinding);
+    in.PairVoxels->BindBase(PairVoxelsBinding);
+    in.PairBalls->BindBase(PairBallsBinding);
+    in.Histogram->BindBase(HistogramBinding);
+    ok = scatter->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), BallGroup));
+  }
+  ok = ok && in.ExclusiveScan(renWin, in.Histogram, voxels + 1, 0, true);
+
+  // Counting sort: each pair takes the next place of its voxel.
+  if (ok && pairs > 0)
+  {
+    glBindBuffer(GL_COPY_READ_BUFFER, in.Histogram->GetHandle());
+    glBindBuffer(GL_COPY_WRITE_BUFFER, in.Cursor->GetHandle());
+    glCopyBufferSubData(
+      GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, voxels * sizeof(unsigned int));
+    glBindBuffer(GL_COPY_READ_BUFFER, 0);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+    vtkComputeShaderProgram* place = in.Use(renWin, Place);
+    ok = place != nullptr;
+    if (ok)
+    {
+      place->SetUniformui("count", pairs);
+      in.PairVoxels->BindBase(PairVoxelsBinding);
+      in.PairBalls->BindBase(PairBallsBinding);
+      in.Cursor->BindBase(CursorBinding);
+      in.VoxelBalls->BindBase(VoxelBallsBinding);
+      ok = place->Dispatch(vtkComputeShaderProgram::GroupCount(pairs, BallGroup));
+    }
+  }
+  in.Programs[0]->Unbind();
+
+  unsigned int stats[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
+  ok = ok && in.Stats->Download(stats, sizeof(stats));
+  glFinish();
+  this->BuildTime =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (!ok)
+  {
+    vtkErrorMacro(<< "The metaball grid build failed (see the messages above).");
+    return false;
+  }
+  this->NumberOfPairs = pairs;
+  this->NumberOfCulledBalls = stats[2];
+  this->NumberOfInvalidBalls = stats[3];
+  this->MaximumBallsPerVoxel = stats[4];
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballGridBuilder::ReleaseGraphicsResources(vtkWindow* win)
+{
+  Internals& in = *this->Impl;
+  for (auto& p : in.Programs)
+  {
+    p->ReleaseGraphicsResources(win);
+  }
+  for (vtkShaderStorageBuffer* b : { in.Ranges.GetPointer(),
+         in.Counts.GetPointer(),
+         in.PairVoxels.GetPointer(),
+         in.PairBalls.GetPointer(),
+         in.Histogram.GetPointer(),
+         in.Cursor.GetPointer(),
+         in.VoxelBalls.GetPointer(),
+         in.Stats.GetPointer() })
+  {
+    b->ReleaseGraphicsResources(win);
+  }
+  for (auto& b : in.Sums)
+  {
+    b->ReleaseGraphicsResources(win);
+  }
+  in.Sums.clear();
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballGridBuilder::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "TileSize: " << this->TileSize << "\n";
+  os << indent << "Slabs: " << this->Slabs << "\n";
+  os << indent << "SlabRange: " << this->SlabRange[0] << ", " << this->SlabRange[1] << "\n";
+  os << indent << "NumberOfPairs: " << this->NumberOfPairs << "\n";
+  os << indent << "MaximumBallsPerVoxel: " << this->MaximumBallsPerVoxel << "\n";
+  os << indent << "BuildTime: " << this->BuildTime << " ms\n";
+}

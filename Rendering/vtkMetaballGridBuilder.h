@@ -1,0 +1,130 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkMetaballGridBuilder
+ * @brief   Builds the metaball perspective grid on the GPU every frame (thesis Algorithm 2).
+ *
+ * The view frustum is cut into screen tiles (TileSize pixels square) times
+ * depth slabs (Slabs planes spaced uniformly in view distance, between the
+ * nearest and farthest ball in view unless SlabRange fixes them). Each voxel
+ * lists the balls whose support sphere reaches into it. The build runs in GL
+ * compute shaders (glsl/vtkMetaballGridCS.glsl): frustum culling and a count
+ * of voxels per ball, an exclusive scan (Blelloch, multi-level), a scatter
+ * of (voxel, ball) pairs with a histogram of pairs per voxel, a scan of the
+ * histogram into voxel offsets, and a counting sort of the ball ids by voxel.
+ * The ray caster reads VoxelOffsets and VoxelBalls; within a voxel the order
+ * of the ids is not fixed.
+ *
+ * pointsurfaces::BuildPerspectiveGrid (Filters/Core/psMetaball.h) is the
+ * double-precision CPU reference that the tests compare with.
+ *
+ * Balls come as one vec4 per ball (centre, support radius R) in an SSBO, in
+ * the coordinates that WorldToView expects; balls with NaN or infinite
+ * values, or R <= 0, are skipped and counted. When the pairs would not fit
+ * in one shader storage buffer, Build() fails with an error naming the
+ * count.
+ */
+#ifndef vtkMetaballGridBuilder_h
+#define vtkMetaballGridBuilder_h
+
+#include "PointSurfacesRenderingModule.h" // For export macro
+#include "vtkObject.h"
+
+#include <memory> // For the implementation
+#include <vector> // For the slab planes
+
+class vtkOpenGLRenderWindow;
+class vtkShaderStorageBuffer;
+class vtkWindow;
+
+class POINTSURFACESRENDERING_EXPORT vtkMetaballGridBuilder : public vtkObject
+{
+public:
+  static vtkMetaballGridBuilder* New();
+  vtkTypeMacro(vtkMetaballGridBuilder, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Tile side in pixels. Default 16. */
+  vtkSetClampMacro(TileSize, int, 1, 1024);
+  vtkGetMacro(TileSize, int);
+  ///@}
+
+  ///@{
+  /** Depth slabs. Default 16. */
+  vtkSetClampMacro(Slabs, int, 1, 4096);
+  vtkGetMacro(Slabs, int);
+  ///@}
+
+  ///@{
+  /**
+   * The first and last slab plane, as view distances. When the second is not
+   * larger than the first (the default), they follow the balls in view.
+   */
+  vtkSetVector2Macro(SlabRange, double);
+  vtkGetVector2Macro(SlabRange, double);
+  ///@}
+
+  /**
+   * Builds the grid for `count` balls of `balls` seen through `worldToView`
+   * and `viewToClip` (row-major 4x4, column vectors, OpenGL clip space) in a
+   * `width` x `height` viewport. The context of `renWin` must be current.
+   */
+  bool Build(vtkOpenGLRenderWindow* renWin,
+    vtkShaderStorageBuffer* balls,
+    vtkIdType count,
+    const double worldToView[16],
+    const double viewToClip[16],
+    bool parallel,
+    int width,
+    int height);
+
+  ///@{
+  /** The grid of the last Build(). */
+  int GetTilesX() const { return this->TilesX; }
+  int GetTilesY() const { return this->TilesY; }
+  int GetNumberOfSlabPlanes() const { return static_cast<int>(this->SlabPlanes.size()); }
+  double GetSlabPlane(int k) const { return this->SlabPlanes[k]; }
+  vtkShaderStorageBuffer* GetVoxelOffsets(); // voxels + 1 uints
+  vtkShaderStorageBuffer* GetVoxelBalls();   // pairs uints
+  ///@}
+
+  ///@{
+  /**
+   * Statistics of the last Build(). BuildTime is the wall-clock time of the
+   * build in ms, up to glFinish(), read-backs of the pair count included.
+   */
+  vtkGetMacro(NumberOfPairs, vtkIdType);
+  vtkGetMacro(MaximumBallsPerVoxel, vtkIdType);
+  vtkGetMacro(NumberOfCulledBalls, vtkIdType);
+  vtkGetMacro(NumberOfInvalidBalls, vtkIdType);
+  vtkGetMacro(BuildTime, double);
+  ///@}
+
+  void ReleaseGraphicsResources(vtkWindow* win);
+
+protected:
+  vtkMetaballGridBuilder();
+  ~vtkMetaballGridBuilder() override;
+
+  int TileSize = 16;
+  int Slabs = 16;
+  double SlabRange[2] = { 0.0, 0.0 };
+  int TilesX = 0;
+  int TilesY = 0;
+  std::vector<double> SlabPlanes;
+  vtkIdType NumberOfPairs = 0;
+  vtkIdType MaximumBallsPerVoxel = 0;
+  vtkIdType NumberOfCulledBalls = 0;
+  vtkIdType NumberOfInvalidBalls = 0;
+  double BuildTime = 0.0;
+
+private:
+  struct Internals;
+  std::unique_ptr<Internals> Impl;
+
+  vtkMetaballGridBuilder(const vtkMetaballGridBuilder&) = delete;
+  void operator=(const vtkMetaballGridBuilder&) = delete;
+};
+
+#endif
