@@ -1,0 +1,400 @@
+//VTK::System::Dec
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+//
+// Coherent ray casting of metaballs through the perspective grid (thesis
+// Algorithm 3), for vtkMetaballMapper. One work group per screen tile, one
+// invocation per pixel. The group walks its tile's voxels front to back;
+// empty voxels are skipped; a voxel's balls are loaded into shared memory
+// (in view coordinates) by the whole group, in batches when there are more
+// than MAX_SHARED, and every ray marches the voxel's stretch of itself:
+//
+// - the step follows the field: |f| / L, with L a bound on |grad f| over the
+//   voxel's balls, so a step never jumps over the surface where f changes
+//   fast, and large steps are taken in free space; it never goes below
+//   stepScale times the smallest radius of the voxel (the thesis's base
+//   step), which near silhouettes, where the gradient is small, is what the
+//   rays take;
+// - a sign change of f is refined by `bisections` bisections;
+// - the normal is -grad f, analytic, and the colour the kernel-weighted mean
+//   of the balls' colours.
+//
+// Outputs per pixel: colour (rgba8, alpha 0 on a miss), normal and view
+// distance (rgba32f), window depth (r32f). TILE_SIZE, MAX_SHARED and KERNEL
+// are defined by the mapper.
+
+//VTK::Defines::Dec
+
+layout(local_size_x = TILE_SIZE, local_size_y = TILE_SIZE) in;
+
+layout(std430, binding = 0) readonly buffer Balls { vec4 balls[]; };     // centre, R
+layout(std430, binding = 1) readonly buffer Colors { uint colors[]; };   // rgba8
+layout(std430, binding = 2) readonly buffer Strengths { float strengths[]; };
+layout(std430, binding = 3) readonly buffer Offsets { uint offsets[]; }; // voxels + 1
+layout(std430, binding = 4) readonly buffer VoxelBalls { uint voxelBalls[]; };
+
+layout(rgba8, binding = 0) writeonly uniform image2D colorImage;
+layout(rgba32f, binding = 1) writeonly uniform image2D normalImage;
+layout(r32f, binding = 2) writeonly uniform image2D depthImage;
+
+uniform mat4 worldToView;
+uniform mat4 viewToClip;
+uniform mat4 clipToView;
+uniform int parallelProjection;
+uniform ivec2 viewport;
+uniform ivec2 tiles;
+uniform int slabs;
+uniform float slabNear;
+uniform float slabFar;
+uniform float threshold;
+uniform float stepScale;
+uniform int bisections;
+uniform int useStrengths;
+
+shared vec4 sharedBalls[MAX_SHARED]; // view-space centre, R
+shared float sharedStrength[MAX_SHARED];
+shared uint sharedColor[MAX_SHARED];
+shared float sharedReduce[TILE_SIZE * TILE_SIZE];
+shared uint sharedMinRadius;
+shared uint sharedActive;
+
+// Kernel f(x), x = r^2 / R^2, and df/dx.
+float psKernel(float x, out float slope)
+{
+  slope = 0.0;
+  if (x >= 1.0)
+  {
+    return 0.0;
+  }
+  x = max(x, 0.0);
+#if KERNEL == 1
+  slope = -2.0 * (1.0 - x);
+  return (1.0 - x) * (1.0 - x);
+#elif KERNEL == 2
+  const float floorValue = 0.018315639; // exp(-4)
+  float e = exp(-4.0 * x);
+  slope = -4.0 * e / (1.0 - floorValue);
+  return (e - floorValue) / (1.0 - floorValue);
+#else
+  slope = (-4.0 / 3.0 * x + 34.0 / 9.0) * x - 22.0 / 9.0;
+  return ((-4.0 / 9.0 * x + 17.0 / 9.0) * x - 22.0 / 9.0) * x + 1.0;
+#endif
+}
+
+// The largest |df/dr| of a kernel of unit support: bounds |grad f| by
+// sum q_i times this over R_i.
+float psKernelSlopeBound()
+{
+#if KERNEL == 1
+  return 1.5397; // max of 4 s (1 - s^2), s = r / R
+#elif KERNEL == 2
+  return 1.7476; // max of 8 s exp(-4 s^2) / (1 - exp(-4))
+#else
+  return 1.5835; // max of |2 s f'(s^2)| for Wyvill's polynomial
+#endif
+}
+
+// Sum of the batch's contributions at p: field, gradient, colour weights.
+void psAccumulate(vec3 p, int count, inout float f, inout vec3 grad, inout vec4 color,
+  bool wantColor)
+{
+  for (int k = 0; k < count; ++k)
+  {
+    vec4 b = sharedBalls[k];
+    vec3 d = p - b.xyz;
+    float R2 = b.w * b.w;
+    float x = dot(d, d) / R2;
+    if (x < 1.0)
+    {
+      float slope;
+      float q = sharedStrength[k];
+      float value = q * psKernel(x, slope);
+      f += value;
+      grad += (q * slope * 2.0 / R2) * d;
+      if (wantColor)
+      {
+        color += max(value, 0.0) * unpackUnorm4x8(sharedColor[k]);
+      }
+    }
+  }
+}
+
+// Does any invocation of the group pass `mine`? Uniform over the group.
+bool psAny(bool mine)
+{
+  barrier();
+  if (gl_LocalInvocationIndex == 0u)
+  {
+    sharedActive = 0u;
+  }
+  barrier();
+  if (mine)
+  {
+    atomicAdd(sharedActive, 1u);
+  }
+  barrier();
+  bool any = sharedActive > 0u;
+  barrier();
+  return any;
+}
+
+// f, its gradient and the colour weights at p over the voxel's list, from
+// global memory (the path for voxels with more than MAX_SHARED balls).
+void psAccumulateGlobal(vec3 p, uint first, uint count, inout float f, inout vec3 grad,
+  inout vec4 color, bool wantColor)
+{
+  for (uint j = 0u; j < count; ++j)
+  {
+    uint id = voxelBalls[first + j];
+    vec4 b = balls[id];
+    vec3 d = p - (worldToView * vec4(b.xyz, 1.0)).xyz;
+    float R2 = b.w * b.w;
+    float slope;
+    float q = useStrengths != 0 ? strengths[id] : 1.0;
+    float value = q * psKernel(dot(d, d) / R2, slope);
+    f += value;
+    grad += (q * slope * 2.0 / R2) * d;
+    if (wantColor)
+    {
+      color += max(value, 0.0) * unpackUnorm4x8(colors[id]);
+    }
+  }
+}
+
+// One march step of a ray at t, where the field is f: a bracketed sign
+// change is bisected and shaded (hit), otherwise the ray advances by
+// max(baseStep, |f| / L) up to the voxel's end t1.
+void psStep(inout float t, float f, float t1, float baseStep, float lipschitz, vec3 origin,
+  vec3 dir, uint first, uint count, bool single, inout int steps, inout bool haveA,
+  inout float tA, inout float fA, inout bool marching, inout bool searching, inout bool hit,
+  inout float tHit, inout vec3 normal, inout vec4 color)
+{
+  if (haveA && (fA < 0.0) != (f < 0.0))
+  {
+    float a = tA, b = t, fa = fA;
+    for (int k = 0; k < bisections; ++k)
+    {
+      float m = 0.5 * (a + b);
+      vec3 pm = origin + m * dir;
+      float fm = -threshold;
+      vec3 gm = vec3(0.0);
+      vec4 cm = vec4(0.0);
+      if (single)
+      {
+        psAccumulate(pm, int(count), fm, gm, cm, false);
+      }
+      else
+      {
+        psAccumulateGlobal(pm, first, count, fm, gm, cm, false);
+      }
+      if ((fa < 0.0) == (fm < 0.0))
+      {
+        a = m;
+        fa = fm;
+      }
+      else
+      {
+        b = m;
+      }
+    }
+    tHit = 0.5 * (a + b);
+    hit = true;
+    searching = false;
+    marching = false;
+    // Analytic normal and kernel-weighted colour at the hit.
+    vec3 ph = origin + tHit * dir;
+    float fh = -threshold;
+    vec3 gh = vec3(0.0);
+    vec4 ch = vec4(0.0);
+    if (single)
+    {
+      psAccumulate(ph, int(count), fh, gh, ch, true);
+    }
+    else
+    {
+      psAccumulateGlobal(ph, first, count, fh, gh, ch, true);
+    }
+    normal = length(gh) > 0.0 ? -normalize(gh) : -dir;
+    color = ch.a > 0.0 ? vec4(ch.rgb / ch.a, 1.0) : vec4(1.0);
+    return;
+  }
+  tA = t;
+  fA = f;
+  haveA = true;
+  if (t >= t1 || ++steps > 4096)
+  {
+    marching = false;
+    return;
+  }
+  t = min(t + max(baseStep, abs(f) / lipschitz), t1);
+}
+
+void main()
+{
+  ivec2 tile = ivec2(gl_WorkGroupID.xy);
+  ivec2 pixel = tile * TILE_SIZE + ivec2(gl_LocalInvocationID.xy);
+  uint local = gl_LocalInvocationIndex;
+  const uint groupSize = uint(TILE_SIZE * TILE_SIZE);
+  bool inside = pixel.x < viewport.x && pixel.y < viewport.y;
+
+  // This pixel's ray, in view coordinates; -z(t) = -origin.z + t perDistance.
+  vec2 ndc = (vec2(pixel) + 0.5) / vec2(viewport) * 2.0 - 1.0;
+  vec4 nearPoint = clipToView * vec4(ndc, -1.0, 1.0);
+  vec4 farPoint = clipToView * vec4(ndc, 1.0, 1.0);
+  nearPoint /= nearPoint.w;
+  farPoint /= farPoint.w;
+  vec3 origin = parallelProjection != 0 ? vec3(nearPoint.xy, 0.0) : vec3(0.0);
+  vec3 dir = normalize(farPoint.xyz - nearPoint.xyz);
+  float perDistance = -dir.z;
+
+  bool searching = inside;
+  bool hit = false;
+  float tHit = 0.0;
+  bool haveA = false;
+  float tA = 0.0, fA = 0.0;
+  vec3 normal = -dir;
+  vec4 color = vec4(1.0);
+
+  for (int slab = 0; slab < slabs; ++slab)
+  {
+    if (!psAny(searching))
+    {
+      break; // every ray of the tile has its hit
+    }
+    uint voxel = uint((slab * tiles.y + tile.y) * tiles.x + tile.x);
+    uint first = offsets[voxel];
+    uint count = offsets[voxel + 1u] - first;
+    float t0 = (slabNear + (slabFar - slabNear) * float(slab) / float(slabs) + origin.z) /
+      perDistance;
+    float t1 = (slabNear + (slabFar - slabNear) * float(slab + 1) / float(slabs) + origin.z) /
+      perDistance;
+    if (count == 0u)
+    {
+      // An empty voxel, skipped: f = -T all through it.
+      tA = t1;
+      fA = -threshold;
+      haveA = true;
+      continue;
+    }
+    bool single = count <= uint(MAX_SHARED);
+
+    // Step bounds: the smallest radius, and L >= |grad f| over the voxel.
+    if (local == 0u)
+    {
+      sharedMinRadius = floatBitsToUint(3.0e38);
+    }
+    barrier();
+    float partial = 0.0;
+    for (uint k = local; k < count; k += groupSize)
+    {
+      uint id = voxelBalls[first + k];
+      float R = balls[id].w;
+      partial += (useStrengths != 0 ? abs(strengths[id]) : 1.0) / R;
+      atomicMin(sharedMinRadius, floatBitsToUint(R));
+    }
+    sharedReduce[local] = partial;
+    for (uint stride = groupSize / 2u; stride > 0u; stride >>= 1)
+    {
+      barrier();
+      if (local < stride)
+      {
+        sharedReduce[local] += sharedReduce[local + stride];
+      }
+    }
+    barrier();
+    float lipschitz = sharedReduce[0] * psKernelSlopeBound() + 1e-30;
+    float baseStep = stepScale * uintBitsToFloat(sharedMinRadius);
+    if (single)
+    {
+      // The whole list in shared memory, in view coordinates.
+      for (uint k = local; k < count; k += groupSize)
+      {
+        uint id = voxelBalls[first + k];
+        vec4 b = balls[id];
+        sharedBalls[k] = vec4((worldToView * vec4(b.xyz, 1.0)).xyz, b.w);
+        sharedStrength[k] = useStrengths != 0 ? strengths[id] : 1.0;
+        sharedColor[k] = colors[id];
+      }
+    }
+    barrier();
+
+    float t = t0;
+    bool marching = searching;
+    int steps = 0;
+    if (single)
+    {
+      // The list is in shared memory: every ray marches on its own.
+      while (marching)
+      {
+        float f = -threshold;
+        vec3 g = vec3(0.0);
+        vec4 c = vec4(0.0);
+        psAccumulate(origin + t * dir, int(count), f, g, c, false);
+        psStep(t, f, t1, baseStep, lipschitz, origin, dir, first, count, true, steps, haveA, tA,
+          fA, marching, searching, hit, tHit, normal, color);
+      }
+    }
+    else
+    {
+      // Batches through shared memory, the group in lock step.
+      while (true)
+      {
+        vec3 p = origin + t * dir;
+        float f = -threshold;
+        vec3 g = vec3(0.0);
+        vec4 c = vec4(0.0);
+        for (uint base = 0u; base < count; base += uint(MAX_SHARED))
+        {
+          int n = int(min(uint(MAX_SHARED), count - base));
+          barrier();
+          for (uint k = local; k < uint(n); k += groupSize)
+          {
+            uint id = voxelBalls[first + base + k];
+            vec4 b = balls[id];
+            sharedBalls[k] = vec4((worldToView * vec4(b.xyz, 1.0)).xyz, b.w);
+            sharedStrength[k] = useStrengths != 0 ? strengths[id] : 1.0;
+            sharedColor[k] = colors[id];
+          }
+          barrier();
+          if (marching)
+          {
+            psAccumulate(p, n, f, g, c, false);
+          }
+        }
+        if (marching)
+        {
+          psStep(t, f, t1, baseStep, lipschitz, origin, dir, first, count, false, steps, haveA,
+            tA, fA, marching, searching, hit, tHit, normal, color);
+        }
+        if (!psAny(marching))
+        {
+          break;
+        }
+      }
+    }
+    barrier(); // the next voxel's list overwrites shared memory
+  }
+
+  if (!inside)
+  {
+    return;
+  }
+  if (!hit)
+  {
+    imageStore(colorImage, pixel, vec4(0.0));
+    imageStore(normalImage, pixel, vec4(0.0));
+    imageStore(depthImage, pixel, vec4(1.0));
+    return;
+  }
+  vec3 p = origin + tHit * dir;
+  // Seen from inside the surface (the camera in a blob): face the eye.
+  if (dot(normal, dir) > 0.0)
+  {
+    normal = -normal;
+  }
+  vec4 clip = viewToClip * vec4(p, 1.0);
+  float depth = 0.5 * clip.z / clip.w + 0.5;
+  imageStore(colorImage, pixel, color);
+  imageStore(normalImage, pixel, vec4(normal, -p.z));
+  imageStore(depthImage, pixel, vec4(clamp(depth, 0.0, 1.0)));
+}

@@ -1,0 +1,511 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtk_glew.h"
+
+#include "vtkMetaballMapper.h"
+
+#include "vtkActor.h"
+#include "vtkCamera.h"
+#include "vtkCommand.h"
+#include "vtkComputeShaderProgram.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkInformation.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMetaballCompositeFS.h"
+#include "vtkMetaballGridBuilder.h"
+#include "vtkMetaballRayCastCS.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkProperty.h"
+#include "vtkRenderer.h"
+#include "vtkScalarsToColors.h"
+#include "vtkShaderProgram.h"
+#include "vtkShaderStorageBuffer.h"
+#include "vtkTextureObject.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMetaballMapper);
+
+namespace
+{
+const int MaxShared = 256; // balls per voxel batch in shared memory
+const int MaxLights = 8;
+
+void ToFloat(vtkMatrix4x4* m, float out[16])
+{
+  for (int k = 0; k < 16; ++k)
+  {
+    out[k] = static_cast<float>(m->GetElement(k / 4, k % 4));
+  }
+}
+} // namespace
+
+struct vtkMetaballMapper::Internals
+{
+  vtkNew<vtkMetaballGridBuilder> Grid;
+  vtkNew<vtkShaderStorageBuffer> Balls, Colors, Strengths;
+  vtkNew<vtkComputeShaderProgram> RayCast;
+  std::string RayCastDefines;
+  vtkNew<vtkTextureObject> ColorImage, NormalImage, DepthImage;
+  std::unique_ptr<vtkOpenGLQuadHelper> Composite;
+  vtkTimeStamp UploadTime;
+  double Shift[3] = { 0.0, 0.0, 0.0 };
+  vtkIdType Count = 0;
+  bool HasStrengths = false;
+  int Width = 0;
+  int Height = 0;
+};
+
+//------------------------------------------------------------------------------
+vtkMetaballMapper::vtkMetaballMapper()
+  : Impl(new Internals)
+{
+}
+
+//------------------------------------------------------------------------------
+vtkMetaballMapper::~vtkMetaballMapper() = default;
+
+//------------------------------------------------------------------------------
+int vtkMetaballMapper::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballMapper::ComputeBounds()
+{
+  vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInputDataObject(0, 0));
+  if (!input || input->GetNumberOfPoints() == 0)
+  {
+    vtkMath::UninitializeBounds(this->Bounds);
+    return;
+  }
+  input->GetPoints()->GetBounds(this->Bounds);
+  double pad = this->Radius;
+  vtkDataArray* radii = input->GetPointData()->GetArray(this->RadiusArrayName.c_str());
+  if (radii)
+  {
+    double range[2];
+    radii->GetRange(range, 0);
+    pad = std::isfinite(range[1]) ? range[1] : 0.0;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    this->Bounds[2 * k] -= pad;
+    this->Bounds[2 * k + 1] += pad;
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* input)
+{
+  Internals& in = *this->Impl;
+  vtkMTimeType latest = std::max(input->GetMTime(), this->GetMTime());
+  latest = std::max(latest, act->GetProperty()->GetMTime());
+  latest = std::max(latest, act->GetMTime());
+  if (this->LookupTable)
+  {
+    latest = std::max(latest, this->LookupTable->GetMTime());
+  }
+  if (in.UploadTime.GetMTime() > latest && in.Count == input->GetNumberOfPoints())
+  {
+    return true; // nothing changed: nothing is uploaded
+  }
+  const vtkIdType n = input->GetNumberOfPoints();
+  if (static_cast<size_t>(n) * 4 * sizeof(float) > vtkShaderStorageBuffer::GetMaximumSize())
+  {
+    vtkErrorMacro(<< n << " balls exceed the GPU's shader storage buffer limit of "
+                  << vtkShaderStorageBuffer::GetMaximumSize() << " bytes: nothing is drawn.");
+    in.Count = 0;
+    return false;
+  }
+  vtkPointData* pd = input->GetPointData();
+  vtkDataArray* radii = pd->GetArray(this->RadiusArrayName.c_str());
+  vtkDataArray* strengths =
+    this->StrengthArrayName.empty() ? nullptr : pd->GetArray(this->StrengthArrayName.c_str());
+  if (!this->StrengthArrayName.empty() && !strengths)
+  {
+    vtkWarningMacro(<< "No point array \"" << this->StrengthArrayName
+                    << "\" for the strengths: all balls have strength 1.");
+  }
+  // Radii grow with the actor's largest axis scale.
+  double scale = 1.0;
+  if (!act->GetIsIdentity())
+  {
+    vtkMatrix4x4* m = act->GetMatrix();
+    scale = 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      scale = std::max(scale,
+        std::sqrt(m->GetElement(0, a) * m->GetElement(0, a) +
+          m->GetElement(1, a) * m->GetElement(1, a) + m->GetElement(2, a) * m->GetElement(2, a)));
+    }
+  }
+  double bounds[6];
+  input->GetPoints()->GetBounds(bounds);
+  for (int k = 0; k < 3; ++k)
+  {
+    const double c = 0.5 * (bounds[2 * k] + bounds[2 * k + 1]);
+    in.Shift[k] = std::isfinite(c) ? c : 0.0;
+  }
+  std::vector<float> balls(4 * n);
+  std::vector<float> q(strengths ? n : 1, 1.0f);
+  vtkIdType invalid = 0;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    input->GetPoint(i, p);
+    const double r = scale * (radii ? radii->GetComponent(i, 0) : this->Radius);
+    bool ok = std::isfinite(r) && r > 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      balls[4 * i + k] = static_cast<float>(p[k] - in.Shift[k]);
+      ok = ok && std::isfinite(p[k]);
+    }
+    balls[4 * i + 3] = static_cast<float>(r);
+    if (strengths)
+    {
+      q[i] = static_cast<float>(strengths->GetComponent(i, 0));
+      ok = ok && std::isfinite(q[i]);
+    }
+    if (!ok)
+    {
+      balls[4 * i + 3] = 0.0f; // the grid skips it
+      ++invalid;
+    }
+  }
+  if (invalid > 0)
+  {
+    vtkWarningMacro(<< invalid << " of " << n
+                    << " balls have a NaN or infinite centre, radius or strength, or a radius "
+                       "<= 0: they are skipped.");
+  }
+  // Colours: the usual scalar colouring, or the actor's colour.
+  std::vector<unsigned int> colors(std::max<vtkIdType>(n, 1));
+  vtkUnsignedCharArray* mapped = this->MapScalars(input, 1.0);
+  double* diffuse = act->GetProperty()->GetDiffuseColor();
+  const unsigned int plain = static_cast<unsigned int>(vtkMath::Round(255 * diffuse[0])) |
+    (static_cast<unsigned int>(vtkMath::Round(255 * diffuse[1])) << 8) |
+    (static_cast<unsigned int>(vtkMath::Round(255 * diffuse[2])) << 16) | (255u << 24);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    if (mapped && mapped->GetNumberOfComponents() == 4)
+    {
+      const unsigned char* c = mapped->GetPointer(4 * i);
+      colors[i] = c[0] | (c[1] << 8) | (c[2] << 16) | (static_cast<unsigned int>(c[3]) << 24);
+    }
+    else
+    {
+      colors[i] = plain;
+    }
+  }
+  bool ok = in.Balls->Upload(balls.data(), std::max<size_t>(balls.size(), 4) * sizeof(float));
+  ok = ok && in.Colors->Upload(colors.data(), colors.size() * sizeof(unsigned int));
+  ok = ok && in.Strengths->Upload(q.data(), q.size() * sizeof(float));
+  in.HasStrengths = strengths != nullptr;
+  in.Count = ok ? n : 0;
+  this->NumberOfInvalidBalls = invalid;
+  ++this->NumberOfUploads;
+  in.UploadTime.Modified();
+  (void)ren;
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
+{
+  Internals& in = *this->Impl;
+  vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInputDataObject(0, 0));
+  this->NumberOfPairs = this->MaximumBallsPerVoxel = this->NumberOfCulledBalls = 0;
+  if (!input || input->GetNumberOfPoints() == 0)
+  {
+    return;
+  }
+  auto* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (!renWin || ren->GetSelector())
+  {
+    return;
+  }
+  this->InvokeEvent(vtkCommand::StartEvent, nullptr);
+  if (!this->Upload(ren, act, input) || in.Count == 0)
+  {
+    return;
+  }
+  int width = 0, height = 0, x0 = 0, y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  if (width <= 0 || height <= 0)
+  {
+    return;
+  }
+
+  // The view: world (shifted) to view, and the projection.
+  vtkCamera* cam = ren->GetActiveCamera();
+  vtkNew<vtkMatrix4x4> model;
+  for (int k = 0; k < 3; ++k)
+  {
+    model->SetElement(k, 3, in.Shift[k]);
+  }
+  if (!act->GetIsIdentity())
+  {
+    vtkMatrix4x4::Multiply4x4(act->GetMatrix(), model, model);
+  }
+  vtkNew<vtkMatrix4x4> worldToView, viewToClip, clipToView;
+  vtkMatrix4x4::Multiply4x4(cam->GetViewTransformMatrix(), model, worldToView);
+  viewToClip->DeepCopy(cam->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  vtkMatrix4x4::Invert(viewToClip, clipToView);
+  const bool parallel = cam->GetParallelProjection() != 0;
+
+  // Algorithm 2: the perspective grid.
+  in.Grid->SetTileSize(this->TileSize);
+  in.Grid->SetSlabs(this->Slabs);
+  if (!in.Grid->Build(renWin,
+        in.Balls,
+        in.Count,
+        worldToView->GetData(),
+        viewToClip->GetData(),
+        parallel,
+        width,
+        height))
+  {
+    return;
+  }
+  this->GridBuildTime = in.Grid->GetBuildTime();
+  this->NumberOfPairs = in.Grid->GetNumberOfPairs();
+  this->MaximumBallsPerVoxel = in.Grid->GetMaximumBallsPerVoxel();
+  this->NumberOfCulledBalls = in.Grid->GetNumberOfCulledBalls();
+
+  // Algorithm 3: coherent ray casting, into colour, normal and depth images.
+  const auto start = std::chrono::steady_clock::now();
+  if (width != in.Width || height != in.Height)
+  {
+    in.ColorImage->SetContext(renWin);
+    in.NormalImage->SetContext(renWin);
+    in.DepthImage->SetContext(renWin);
+    in.ColorImage->Allocate2D(width, height, 4, VTK_UNSIGNED_CHAR);
+    in.NormalImage->Allocate2D(width, height, 4, VTK_FLOAT);
+    in.DepthImage->Allocate2D(width, height, 1, VTK_FLOAT);
+    in.Width = width;
+    in.Height = height;
+  }
+  const std::string defines = "#define TILE_SIZE " + std::to_string(this->TileSize) +
+    "\n#define MAX_SHARED " + std::to_string(MaxShared) + "\n#define KERNEL " +
+    std::to_string(this->Kernel) + "\n";
+  if (defines != in.RayCastDefines)
+  {
+    std::string source = vtkMetaballRayCastCS;
+    const std::string hook = "//VTK::Defines::Dec";
+    source.replace(source.find(hook), hook.size(), defines);
+    in.RayCast->ReleaseGraphicsResources(renWin);
+    in.RayCast->SetName("vtkMetaballRayCastCS");
+    in.RayCast->SetSource(source);
+    in.RayCastDefines = defines;
+  }
+  if (!in.RayCast->IsCompiled() && !in.RayCast->Compile(renWin))
+  {
+    return;
+  }
+  in.RayCast->Bind(renWin);
+  float m[16];
+  ToFloat(worldToView, m);
+  in.RayCast->SetUniformMatrix4x4("worldToView", m);
+  ToFloat(viewToClip, m);
+  in.RayCast->SetUniformMatrix4x4("viewToClip", m);
+  ToFloat(clipToView, m);
+  in.RayCast->SetUniformMatrix4x4("clipToView", m);
+  in.RayCast->SetUniformi("parallelProjection", parallel ? 1 : 0);
+  in.RayCast->SetUniform2i("viewport", width, height);
+  in.RayCast->SetUniform2i("tiles", in.Grid->GetTilesX(), in.Grid->GetTilesY());
+  in.RayCast->SetUniformi("slabs", this->Slabs);
+  in.RayCast->SetUniformf("slabNear", static_cast<float>(in.Grid->GetSlabPlane(0)));
+  in.RayCast->SetUniformf("slabFar", static_cast<float>(in.Grid->GetSlabPlane(this->Slabs)));
+  in.RayCast->SetUniformf("threshold", static_cast<float>(this->Threshold));
+  in.RayCast->SetUniformf("stepScale", static_cast<float>(this->StepScale));
+  in.RayCast->SetUniformi("bisections", this->Bisections);
+  in.RayCast->SetUniformi("useStrengths", in.HasStrengths ? 1 : 0);
+  in.Balls->BindBase(0);
+  in.Colors->BindBase(1);
+  in.Strengths->BindBase(2);
+  in.Grid->GetVoxelOffsets()->BindBase(3);
+  in.Grid->GetVoxelBalls()->BindBase(4);
+  glBindImageTexture(0, in.ColorImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+  glBindImageTexture(1, in.NormalImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(2, in.DepthImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  const bool cast = in.RayCast->Dispatch(in.Grid->GetTilesX(),
+    in.Grid->GetTilesY(),
+    1,
+    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+      GL_SHADER_STORAGE_BARRIER_BIT);
+  in.RayCast->Unbind();
+  glFinish();
+  this->RayCastTime =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (!cast)
+  {
+    return;
+  }
+
+  // Shade and composite with the true depth, depth-tested against the scene.
+  vtkOpenGLState* ostate = renWin->GetState();
+  ostate->Push();
+  if (!in.Composite)
+  {
+    in.Composite.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkMetaballCompositeFS, ""));
+  }
+  else
+  {
+    renWin->GetShaderCache()->ReadyShaderProgram(in.Composite->Program);
+  }
+  vtkShaderProgram* program = in.Composite->Program;
+  if (!program)
+  {
+    ostate->Pop();
+    vtkErrorMacro(<< "The metaball shading shader did not compile.");
+    return;
+  }
+  in.ColorImage->Activate();
+  in.NormalImage->Activate();
+  in.DepthImage->Activate();
+  program->SetUniformi("colorTexture", in.ColorImage->GetTextureUnit());
+  program->SetUniformi("normalTexture", in.NormalImage->GetTextureUnit());
+  program->SetUniformi("depthTexture", in.DepthImage->GetTextureUnit());
+  program->SetUniformMatrix("clipToView", clipToView);
+  program->SetUniformi("parallelProjection", parallel ? 1 : 0);
+  // The renderer's lights, in view coordinates.
+  vtkMatrix4x4* view = cam->GetViewTransformMatrix();
+  int lights = 0;
+  vtkLightCollection* collection = ren->GetLights();
+  vtkCollectionSimpleIterator it;
+  collection->InitTraversal(it);
+  while (vtkLight* light = collection->GetNextLight(it))
+  {
+    if (!light->GetSwitch() || lights >= MaxLights)
+    {
+      continue;
+    }
+    double position[4], focal[4];
+    light->GetTransformedPosition(position);
+    light->GetTransformedFocalPoint(focal);
+    position[3] = focal[3] = 1.0;
+    view->MultiplyPoint(position, position);
+    view->MultiplyPoint(focal, focal);
+    float direction[3], where[3], color[3];
+    double* diffuseColor = light->GetDiffuseColor();
+    double norm = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      norm += (focal[k] - position[k]) * (focal[k] - position[k]);
+    }
+    norm = std::max(std::sqrt(norm), 1e-300);
+    for (int k = 0; k < 3; ++k)
+    {
+      direction[k] = static_cast<float>((focal[k] - position[k]) / norm);
+      where[k] = static_cast<float>(position[k]);
+      color[k] = static_cast<float>(diffuseColor[k] * light->GetIntensity());
+    }
+    const std::string index = "[" + std::to_string(lights) + "]";
+    program->SetUniform3f(("lightColor" + index).c_str(), color);
+    program->SetUniform3f(("lightDirection" + index).c_str(), direction);
+    program->SetUniform3f(("lightPosition" + index).c_str(), where);
+    program->SetUniformi(("lightPositional" + index).c_str(), light->GetPositional());
+    ++lights;
+  }
+  program->SetUniformi("numberOfLights", lights);
+  vtkProperty* prop = act->GetProperty();
+  const double* ambientColor = prop->GetAmbientColor();
+  const double* specularColor = prop->GetSpecularColor();
+  const float ac[3] = { static_cast<float>(ambientColor[0]),
+    static_cast<float>(ambientColor[1]),
+    static_cast<float>(ambientColor[2]) };
+  const float sc[3] = { static_cast<float>(specularColor[0]),
+    static_cast<float>(specularColor[1]),
+    static_cast<float>(specularColor[2]) };
+  program->SetUniformf("ambient", static_cast<float>(prop->GetAmbient()));
+  program->SetUniformf("diffuse", static_cast<float>(prop->GetDiffuse()));
+  program->SetUniformf("specular", static_cast<float>(prop->GetSpecular()));
+  program->SetUniformf("specularPower", static_cast<float>(prop->GetSpecularPower()));
+  program->SetUniform3f("ambientColor", ac);
+  program->SetUniform3f("specularColor", sc);
+  program->SetUniformf("opacity", static_cast<float>(prop->GetOpacity()));
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_LEQUAL);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglDisable(GL_BLEND);
+  in.Composite->Render();
+  in.ColorImage->Deactivate();
+  in.NormalImage->Deactivate();
+  in.DepthImage->Deactivate();
+  ostate->Pop();
+  this->InvokeEvent(vtkCommand::EndEvent, nullptr);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMetaballMapper::ReadHitBuffer(vtkFloatArray* hits)
+{
+  Internals& in = *this->Impl;
+  if (!hits || in.Width <= 0 || !in.NormalImage->GetHandle())
+  {
+    return false;
+  }
+  hits->SetNumberOfComponents(4);
+  hits->SetNumberOfTuples(static_cast<vtkIdType>(in.Width) * in.Height);
+  in.NormalImage->Bind();
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, hits->GetPointer(0));
+  in.NormalImage->Deactivate();
+  return glGetError() == GL_NO_ERROR;
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballMapper::ReleaseGraphicsResources(vtkWindow* win)
+{
+  Internals& in = *this->Impl;
+  in.Grid->ReleaseGraphicsResources(win);
+  in.Balls->ReleaseGraphicsResources(win);
+  in.Colors->ReleaseGraphicsResources(win);
+  in.Strengths->ReleaseGraphicsResources(win);
+  in.RayCast->ReleaseGraphicsResources(win);
+  in.RayCastDefines.clear();
+  in.ColorImage->ReleaseGraphicsResources(win);
+  in.NormalImage->ReleaseGraphicsResources(win);
+  in.DepthImage->ReleaseGraphicsResources(win);
+  if (in.Composite)
+  {
+    in.Composite->ReleaseGraphicsResources(win);
+    in.Composite.reset();
+  }
+  in.Width = in.Height = 0;
+  in.Count = 0;
+  in.UploadTime = vtkTimeStamp();
+  this->Superclass::ReleaseGraphicsResources(win);
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Kernel: " << this->Kernel << "\n";
+  os << indent << "Threshold: " << this->Threshold << "\n";
+  os << indent << "RadiusArrayName: " << this->RadiusArrayName << "\n";
+  os << indent << "Radius: " << this->Radius << "\n";
+  os << indent << "StrengthArrayName: " << this->StrengthArrayName << "\n";
+  os << indent << "TileSize: " << this->TileSize << "\n";
+  os << indent << "Slabs: " << this->Slabs << "\n";
+  os << indent << "StepScale: " << this->StepScale << "\n";
+  os << indent << "Bisections: " << this->Bisections << "\n";
+}
