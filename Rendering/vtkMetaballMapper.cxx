@@ -59,7 +59,9 @@ void ToFloat(vtkMatrix4x4* m, float out[16])
 struct vtkMetaballMapper::Internals
 {
   vtkNew<vtkMetaballGridBuilder> Grid;
-  vtkNew<vtkShaderStorageBuffer> Balls, Colors, Strengths;
+  vtkNew<vtkShaderStorageBuffer> Balls, Colors, Strengths, Inside;
+  bool WarnedInside = false;
+  bool WarnedBudget = false;
   vtkNew<vtkComputeShaderProgram> RayCast;
   std::string RayCastDefines;
   vtkNew<vtkTextureObject> ColorImage, NormalImage, DepthImage;
@@ -98,13 +100,13 @@ void vtkMetaballMapper::ComputeBounds()
     return;
   }
   input->GetPoints()->GetBounds(this->Bounds);
-  double pad = this->Radius;
+  double pad = this->Radius * this->RadiusScale;
   vtkDataArray* radii = input->GetPointData()->GetArray(this->RadiusArrayName.c_str());
   if (radii)
   {
     double range[2];
     radii->GetRange(range, 0);
-    pad = std::isfinite(range[1]) ? range[1] : 0.0;
+    pad = std::isfinite(range[1]) ? range[1] * this->RadiusScale : 0.0;
   }
   for (int k = 0; k < 3; ++k)
   {
@@ -172,7 +174,7 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
   {
     double p[3];
     input->GetPoint(i, p);
-    const double r = scale * (radii ? radii->GetComponent(i, 0) : this->Radius);
+    const double r = scale * this->RadiusScale * (radii ? radii->GetComponent(i, 0) : this->Radius);
     bool ok = std::isfinite(r) && r > 0.0;
     for (int k = 0; k < 3; ++k)
     {
@@ -344,6 +346,10 @@ void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   in.Strengths->BindBase(2);
   in.Grid->GetVoxelOffsets()->BindBase(3);
   in.Grid->GetVoxelBalls()->BindBase(4);
+  const unsigned int zeros[2] = { 0, 0 };
+  in.Inside->Upload(zeros, sizeof(zeros));
+  in.Inside->BindBase(5);
+
   glBindImageTexture(0, in.ColorImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
   glBindImageTexture(1, in.NormalImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(2, in.DepthImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
@@ -353,6 +359,27 @@ void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
       GL_SHADER_STORAGE_BARRIER_BIT);
   in.RayCast->Unbind();
+  unsigned int counters[2] = { 0, 0 };
+  in.Inside->Download(counters, sizeof(counters));
+  const unsigned int inside = counters[0];
+  this->NumberOfPixelsStartingInside = inside;
+  this->NumberOfIncompleteRays = counters[1];
+  if (counters[1] > 0 && !in.WarnedBudget)
+  {
+    vtkWarningMacro(<< counters[1]
+                    << " rays stopped before finding the surface: they ran out of the GL "
+                       "driver's loop iterations (llvmpipe allows 65535 per shader invocation). "
+                       "Raise StepScale, or use more Slabs or a smaller TileSize so that voxels "
+                       "hold fewer balls.");
+  }
+  in.WarnedBudget = counters[1] > 0;
+  if (inside > 0 && !in.WarnedInside)
+  {
+    vtkWarningMacro(<< "The near clipping plane cuts into the metaball surface (the camera is "
+                       "inside it, or a ball crosses the near plane): "
+                    << inside << " pixels show the surface from within.");
+  }
+  in.WarnedInside = inside > 0;
   glFinish();
   this->RayCastTime =
     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -479,6 +506,7 @@ void vtkMetaballMapper::ReleaseGraphicsResources(vtkWindow* win)
   in.Balls->ReleaseGraphicsResources(win);
   in.Colors->ReleaseGraphicsResources(win);
   in.Strengths->ReleaseGraphicsResources(win);
+  in.Inside->ReleaseGraphicsResources(win);
   in.RayCast->ReleaseGraphicsResources(win);
   in.RayCastDefines.clear();
   in.ColorImage->ReleaseGraphicsResources(win);
@@ -503,6 +531,7 @@ void vtkMetaballMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Threshold: " << this->Threshold << "\n";
   os << indent << "RadiusArrayName: " << this->RadiusArrayName << "\n";
   os << indent << "Radius: " << this->Radius << "\n";
+  os << indent << "RadiusScale: " << this->RadiusScale << "\n";
   os << indent << "StrengthArrayName: " << this->StrengthArrayName << "\n";
   os << indent << "TileSize: " << this->TileSize << "\n";
   os << indent << "Slabs: " << this->Slabs << "\n";

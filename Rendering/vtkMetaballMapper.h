@@ -77,6 +77,16 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Multiplies every radius, from the array or constant. With Wyvill's kernel
+   * and T = 0.5 a lone ball's surface lies at half its support radius, so 2
+   * turns van der Waals radii into spheres of those radii. Default 1.
+   */
+  vtkSetClampMacro(RadiusScale, double, 0.0, 1e30);
+  vtkGetMacro(RadiusScale, double);
+  ///@}
+
+  ///@{
   /** Point array of strengths q_i; empty (the default): all 1. */
   vtkSetStdStringFromCharMacro(StrengthArrayName);
   vtkGetCharFromStdStringMacro(StrengthArrayName);
@@ -121,6 +131,22 @@ public:
   ///@}
 
   /**
+   * Pixels of the last render whose rays start inside the surface: the near
+   * clipping plane cuts into it (the camera is inside a blob, or a ball
+   * crosses the near plane). They show the surface from within; a warning
+   * says so when it first happens.
+   */
+  vtkGetMacro(NumberOfPixelsStartingInside, vtkIdType);
+
+  /**
+   * Rays of the last render that stopped before finding the surface because
+   * the GL driver's loop limit was near (llvmpipe ends the loops of a shader
+   * invocation after 65535 iterations in all); a warning says so. Zero on
+   * GPUs.
+   */
+  vtkGetMacro(NumberOfIncompleteRays, vtkIdType);
+
+  /**
    * The hits of the last render, one tuple per viewport pixel (rows from the
    * bottom): view-space unit normal and view distance, zeros on a miss. The
    * render window's context must be current. For accuracy checks.
@@ -142,6 +168,7 @@ protected:
   double Threshold = 0.5;
   std::string RadiusArrayName = "Radius";
   double Radius = 1.0;
+  double RadiusScale = 1.0;
   std::string StrengthArrayName;
   int TileSize = 16;
   int Slabs = 16;
@@ -154,6 +181,8 @@ protected:
   vtkIdType NumberOfCulledBalls = 0;
   vtkIdType NumberOfInvalidBalls = 0;
   int NumberOfUploads = 0;
+  vtkIdType NumberOfPixelsStartingInside = 0;
+  vtkIdType NumberOfIncompleteRays = 0;
 
 private:
   struct Internals;

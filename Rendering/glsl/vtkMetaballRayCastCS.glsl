@@ -6,8 +6,9 @@
 // Algorithm 3), for vtkMetaballMapper. One work group per screen tile, one
 // invocation per pixel. The group walks its tile's voxels front to back;
 // empty voxels are skipped; a voxel's balls are loaded into shared memory
-// (in view coordinates) by the whole group, in batches when there are more
-// than MAX_SHARED, and every ray marches the voxel's stretch of itself:
+// (in view coordinates) by the whole group when there are at most
+// MAX_SHARED of them, and read from global memory otherwise. Every ray then
+// marches the voxel's stretch of itself, without waiting on the others:
 //
 // - the step follows the field: |f| / L, with L a bound on |grad f| over the
 //   voxel's balls, so a step never jumps over the surface where f changes
@@ -32,6 +33,8 @@ layout(std430, binding = 1) readonly buffer Colors { uint colors[]; };   // rgba
 layout(std430, binding = 2) readonly buffer Strengths { float strengths[]; };
 layout(std430, binding = 3) readonly buffer Offsets { uint offsets[]; }; // voxels + 1
 layout(std430, binding = 4) readonly buffer VoxelBalls { uint voxelBalls[]; };
+// [0]: rays starting inside the surface; [1]: rays whose loops the driver cut.
+layout(std430, binding = 5) buffer Counters { uint insideCount[2]; };
 
 layout(rgba8, binding = 0) writeonly uniform image2D colorImage;
 layout(rgba32f, binding = 1) writeonly uniform image2D normalImage;
@@ -94,129 +97,178 @@ float psKernelSlopeBound()
 #endif
 }
 
-// Sum of the batch's contributions at p: field, gradient, colour weights.
-void psAccumulate(vec3 p, int count, inout float f, inout vec3 grad, inout vec4 color,
-  bool wantColor)
+// One ball's contribution at p: field, gradient, colour weight.
+void psAddBall(vec3 p, vec4 b, float q, uint rgba, inout float f, inout vec3 grad,
+  inout vec4 color, bool wantColor)
 {
-  for (int k = 0; k < count; ++k)
+  vec3 d = p - b.xyz;
+  float R2 = b.w * b.w;
+  float x = dot(d, d) / R2;
+  if (x < 1.0)
   {
-    vec4 b = sharedBalls[k];
-    vec3 d = p - b.xyz;
-    float R2 = b.w * b.w;
-    float x = dot(d, d) / R2;
-    if (x < 1.0)
+    float slope;
+    float value = q * psKernel(x, slope);
+    f += value;
+    grad += (q * slope * 2.0 / R2) * d;
+    if (wantColor)
     {
-      float slope;
-      float q = sharedStrength[k];
-      float value = q * psKernel(x, slope);
-      f += value;
-      grad += (q * slope * 2.0 / R2) * d;
-      if (wantColor)
-      {
-        color += max(value, 0.0) * unpackUnorm4x8(sharedColor[k]);
-      }
+      color += max(value, 0.0) * unpackUnorm4x8(rgba);
     }
   }
+}
+
+// The sum over the voxel's balls in shared memory at p, eight balls per loop
+// iteration. llvmpipe ends every loop of a shader invocation once they have
+// run 65535 iterations together (LP_MAX_TGSI_LOOP_ITERATIONS), silently: the
+// sum tells whether it ran to the end, and a ray whose sums were cut stops
+// and is counted (vtkMetaballMapper warns), instead of hitting garbage.
+bool psAccumulate(vec3 p, int count, inout float f, inout vec3 grad, inout vec4 color,
+  bool wantColor)
+{
+  int k = 0;
+  for (; k + 7 < count; k += 8)
+  {
+    for (int u = 0; u < 8; ++u) // unrolled by the compiler: a constant trip count
+    {
+      psAddBall(p, sharedBalls[k + u], sharedStrength[k + u], sharedColor[k + u], f, grad, color,
+        wantColor);
+    }
+  }
+  for (; k < count; ++k)
+  {
+    psAddBall(p, sharedBalls[k], sharedStrength[k], sharedColor[k], f, grad, color, wantColor);
+  }
+  return k == count; // false: the driver cut the loop short
 }
 
 // Does any invocation of the group pass `mine`? Uniform over the group.
 bool psAny(bool mine)
 {
+  memoryBarrierShared();
   barrier();
   if (gl_LocalInvocationIndex == 0u)
   {
     sharedActive = 0u;
   }
+  memoryBarrierShared();
   barrier();
   if (mine)
   {
     atomicAdd(sharedActive, 1u);
   }
+  memoryBarrierShared();
   barrier();
   bool any = sharedActive > 0u;
+  memoryBarrierShared();
   barrier();
   return any;
 }
 
 // f, its gradient and the colour weights at p over the voxel's list, from
 // global memory (the path for voxels with more than MAX_SHARED balls).
-void psAccumulateGlobal(vec3 p, uint first, uint count, inout float f, inout vec3 grad,
-  inout vec4 color, bool wantColor)
+void psAddGlobal(vec3 p, uint id, inout float f, inout vec3 grad, inout vec4 color,
+  bool wantColor)
 {
-  for (uint j = 0u; j < count; ++j)
-  {
-    uint id = voxelBalls[first + j];
-    vec4 b = balls[id];
-    vec3 d = p - (worldToView * vec4(b.xyz, 1.0)).xyz;
-    float R2 = b.w * b.w;
-    float slope;
-    float q = useStrengths != 0 ? strengths[id] : 1.0;
-    float value = q * psKernel(dot(d, d) / R2, slope);
-    f += value;
-    grad += (q * slope * 2.0 / R2) * d;
-    if (wantColor)
-    {
-      color += max(value, 0.0) * unpackUnorm4x8(colors[id]);
-    }
-  }
+  vec4 b = balls[id];
+  psAddBall(p, vec4((worldToView * vec4(b.xyz, 1.0)).xyz, b.w),
+    useStrengths != 0 ? strengths[id] : 1.0, colors[id], f, grad, color, wantColor);
 }
 
-// One march step of a ray at t, where the field is f: a bracketed sign
-// change is bisected and shaded (hit), otherwise the ray advances by
-// max(baseStep, |f| / L) up to the voxel's end t1.
+bool psAccumulateGlobal(vec3 p, uint first, uint count, inout float f, inout vec3 grad,
+  inout vec4 color, bool wantColor)
+{
+  uint j = 0u;
+  for (; j + 7u < count; j += 8u)
+  {
+    for (uint u = 0u; u < 8u; ++u) // unrolled by the compiler: a constant trip count
+    {
+      psAddGlobal(p, voxelBalls[first + j + u], f, grad, color, wantColor);
+    }
+  }
+  for (; j < count; ++j)
+  {
+    psAddGlobal(p, voxelBalls[first + j], f, grad, color, wantColor);
+  }
+  return j == count; // false: the driver cut the loop short
+}
+
+// One iteration of a ray's march at t, where the field is f. Marching, a
+// sign change against the previous sample starts a bisection of that
+// bracket; otherwise the ray advances by max(baseStep, |f| / L) up to the
+// voxel's end t1. Bisecting, f at the bracket's middle halves it; after
+// `bisections` halvings the middle is the hit, shaded from the analytic
+// gradient and the kernel-weighted colours. Bisection runs in the same loop
+// as the march, one field evaluation per iteration, so that the lanes of a
+// SIMD vector share their iterations (llvmpipe counts them per vector).
 void psStep(inout float t, float f, float t1, float baseStep, float lipschitz, vec3 origin,
   vec3 dir, uint first, uint count, bool single, inout int steps, inout bool haveA,
   inout float tA, inout float fA, inout bool marching, inout bool searching, inout bool hit,
-  inout float tHit, inout vec3 normal, inout vec4 color)
+  inout float tHit, inout vec3 normal, inout vec4 color, bool nearSlab, bool complete,
+  inout int bisecting, inout float a, inout float b, inout float fa)
 {
-  if (haveA && (fA < 0.0) != (f < 0.0))
+  if (!complete)
   {
-    float a = tA, b = t, fa = fA;
-    for (int k = 0; k < bisections; ++k)
+    // The driver cut the field's sum short (llvmpipe's loop limit): stop,
+    // and say so.
+    atomicAdd(insideCount[1], 1u);
+    marching = false;
+    searching = false;
+    return;
+  }
+  if (bisecting > 0)
+  {
+    if ((fa < 0.0) == (f < 0.0))
     {
-      float m = 0.5 * (a + b);
-      vec3 pm = origin + m * dir;
-      float fm = -threshold;
-      vec3 gm = vec3(0.0);
-      vec4 cm = vec4(0.0);
-      if (single)
-      {
-        psAccumulate(pm, int(count), fm, gm, cm, false);
-      }
-      else
-      {
-        psAccumulateGlobal(pm, first, count, fm, gm, cm, false);
-      }
-      if ((fa < 0.0) == (fm < 0.0))
-      {
-        a = m;
-        fa = fm;
-      }
-      else
-      {
-        b = m;
-      }
+      a = t;
+      fa = f;
     }
+    else
+    {
+      b = t;
+    }
+    if (bisecting++ <= bisections)
+    {
+      t = 0.5 * (a + b);
+      return;
+    }
+  }
+  else if (haveA && (fA < 0.0) != (f < 0.0))
+  {
+    a = tA;
+    b = t;
+    fa = fA;
+    bisecting = 1;
+    if (bisections > 0)
+    {
+      t = 0.5 * (a + b);
+      return;
+    }
+  }
+  if (bisecting > 0)
+  {
     tHit = 0.5 * (a + b);
     hit = true;
     searching = false;
     marching = false;
-    // Analytic normal and kernel-weighted colour at the hit.
     vec3 ph = origin + tHit * dir;
     float fh = -threshold;
     vec3 gh = vec3(0.0);
     vec4 ch = vec4(0.0);
-    if (single)
+    bool shaded = single ? psAccumulate(ph, int(count), fh, gh, ch, true)
+                         : psAccumulateGlobal(ph, first, count, fh, gh, ch, true);
+    if (!shaded)
     {
-      psAccumulate(ph, int(count), fh, gh, ch, true);
-    }
-    else
-    {
-      psAccumulateGlobal(ph, first, count, fh, gh, ch, true);
+      atomicAdd(insideCount[1], 1u);
+      hit = false;
+      return;
     }
     normal = length(gh) > 0.0 ? -normalize(gh) : -dir;
     color = ch.a > 0.0 ? vec4(ch.rgb / ch.a, 1.0) : vec4(1.0);
     return;
+  }
+  if (!haveA && nearSlab && f >= 0.0)
+  {
+    atomicAdd(insideCount[0], 1u); // the ray starts inside the surface
   }
   tA = t;
   fA = f;
@@ -255,8 +307,10 @@ void main()
   vec3 normal = -dir;
   vec4 color = vec4(1.0);
 
+  int lastSlab = -1;
   for (int slab = 0; slab < slabs; ++slab)
   {
+    lastSlab = slab;
     if (!psAny(searching))
     {
       break; // every ray of the tile has its hit
@@ -283,7 +337,8 @@ void main()
     {
       sharedMinRadius = floatBitsToUint(3.0e38);
     }
-    barrier();
+    memoryBarrierShared();
+  barrier();
     float partial = 0.0;
     for (uint k = local; k < count; k += groupSize)
     {
@@ -295,13 +350,15 @@ void main()
     sharedReduce[local] = partial;
     for (uint stride = groupSize / 2u; stride > 0u; stride >>= 1)
     {
-      barrier();
+      memoryBarrierShared();
+  barrier();
       if (local < stride)
       {
         sharedReduce[local] += sharedReduce[local + stride];
       }
     }
-    barrier();
+    memoryBarrierShared();
+  barrier();
     float lipschitz = sharedReduce[0] * psKernelSlopeBound() + 1e-30;
     float baseStep = stepScale * uintBitsToFloat(sharedMinRadius);
     if (single)
@@ -316,11 +373,14 @@ void main()
         sharedColor[k] = colors[id];
       }
     }
-    barrier();
+    memoryBarrierShared();
+  barrier();
 
     float t = t0;
     bool marching = searching;
     int steps = 0;
+    int bisecting = 0; // > 0: bisection step of the bracket [ba, bb]
+    float ba = 0.0, bb = 0.0, bfa = 0.0;
     if (single)
     {
       // The list is in shared memory: every ray marches on its own.
@@ -329,52 +389,41 @@ void main()
         float f = -threshold;
         vec3 g = vec3(0.0);
         vec4 c = vec4(0.0);
-        psAccumulate(origin + t * dir, int(count), f, g, c, false);
+        bool complete = psAccumulate(origin + t * dir, int(count), f, g, c, false);
         psStep(t, f, t1, baseStep, lipschitz, origin, dir, first, count, true, steps, haveA, tA,
-          fA, marching, searching, hit, tHit, normal, color);
+          fA, marching, searching, hit, tHit, normal, color, slab == 0, complete, bisecting, ba,
+          bb, bfa);
       }
     }
     else
     {
-      // Batches through shared memory, the group in lock step.
-      while (true)
+      // More balls than shared memory holds: each ray reads them from
+      // global memory (cached), still without waiting on the others.
+      while (marching)
       {
-        vec3 p = origin + t * dir;
         float f = -threshold;
         vec3 g = vec3(0.0);
         vec4 c = vec4(0.0);
-        for (uint base = 0u; base < count; base += uint(MAX_SHARED))
-        {
-          int n = int(min(uint(MAX_SHARED), count - base));
-          barrier();
-          for (uint k = local; k < uint(n); k += groupSize)
-          {
-            uint id = voxelBalls[first + base + k];
-            vec4 b = balls[id];
-            sharedBalls[k] = vec4((worldToView * vec4(b.xyz, 1.0)).xyz, b.w);
-            sharedStrength[k] = useStrengths != 0 ? strengths[id] : 1.0;
-            sharedColor[k] = colors[id];
-          }
-          barrier();
-          if (marching)
-          {
-            psAccumulate(p, n, f, g, c, false);
-          }
-        }
-        if (marching)
-        {
-          psStep(t, f, t1, baseStep, lipschitz, origin, dir, first, count, false, steps, haveA,
-            tA, fA, marching, searching, hit, tHit, normal, color);
-        }
-        if (!psAny(marching))
-        {
-          break;
-        }
+        bool complete = psAccumulateGlobal(origin + t * dir, first, count, f, g, c, false);
+        psStep(t, f, t1, baseStep, lipschitz, origin, dir, first, count, false, steps, haveA,
+          tA, fA, marching, searching, hit, tHit, normal, color, slab == 0, complete, bisecting,
+          ba, bb, bfa);
       }
     }
+    if (marching)
+    {
+      // The march loop itself was cut short by the driver.
+      atomicAdd(insideCount[1], 1u);
+      searching = false;
+    }
+    memoryBarrierShared();
     barrier(); // the next voxel's list overwrites shared memory
   }
 
+  if (searching && lastSlab < slabs - 1)
+  {
+    atomicAdd(insideCount[1], 1u); // the slab loop was cut short by the driver
+  }
   if (!inside)
   {
     return;
