@@ -117,7 +117,7 @@ void psAddBall(vec3 p, vec4 b, float q, uint rgba, inout float f, inout vec3 gra
   }
 }
 
-// The sum over the voxel's balls in shared memory at p, eight balls per loop
+// The sum over the voxel's balls in shared memory at p, four balls per loop
 // iteration. llvmpipe ends every loop of a shader invocation once they have
 // run 65535 iterations together (LP_MAX_TGSI_LOOP_ITERATIONS), silently: the
 // sum tells whether it ran to the end, and a ray whose sums were cut stops
@@ -126,13 +126,15 @@ bool psAccumulate(vec3 p, int count, inout float f, inout vec3 grad, inout vec4 
   bool wantColor)
 {
   int k = 0;
-  for (; k + 7 < count; k += 8)
+  for (; k + 3 < count; k += 4)
   {
-    for (int u = 0; u < 8; ++u) // unrolled by the compiler: a constant trip count
-    {
-      psAddBall(p, sharedBalls[k + u], sharedStrength[k + u], sharedColor[k + u], f, grad, color,
-        wantColor);
-    }
+    psAddBall(p, sharedBalls[k], sharedStrength[k], sharedColor[k], f, grad, color, wantColor);
+    psAddBall(p, sharedBalls[k + 1], sharedStrength[k + 1], sharedColor[k + 1], f, grad, color,
+      wantColor);
+    psAddBall(p, sharedBalls[k + 2], sharedStrength[k + 2], sharedColor[k + 2], f, grad, color,
+      wantColor);
+    psAddBall(p, sharedBalls[k + 3], sharedStrength[k + 3], sharedColor[k + 3], f, grad, color,
+      wantColor);
   }
   for (; k < count; ++k)
   {
@@ -178,12 +180,12 @@ bool psAccumulateGlobal(vec3 p, uint first, uint count, inout float f, inout vec
   inout vec4 color, bool wantColor)
 {
   uint j = 0u;
-  for (; j + 7u < count; j += 8u)
+  for (; j + 3u < count; j += 4u)
   {
-    for (uint u = 0u; u < 8u; ++u) // unrolled by the compiler: a constant trip count
-    {
-      psAddGlobal(p, voxelBalls[first + j + u], f, grad, color, wantColor);
-    }
+    psAddGlobal(p, voxelBalls[first + j], f, grad, color, wantColor);
+    psAddGlobal(p, voxelBalls[first + j + 1u], f, grad, color, wantColor);
+    psAddGlobal(p, voxelBalls[first + j + 2u], f, grad, color, wantColor);
+    psAddGlobal(p, voxelBalls[first + j + 3u], f, grad, color, wantColor);
   }
   for (; j < count; ++j)
   {
