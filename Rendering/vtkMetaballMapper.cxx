@@ -18,6 +18,7 @@
 #include "vtkMetaballCompositeFS.h"
 #include "vtkMetaballGridBuilder.h"
 #include "vtkMetaballRayCastCS.h"
+#include "vtkMetaballShadowCS.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLQuadHelper.h"
@@ -37,6 +38,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -59,6 +61,12 @@ void ToFloat(vtkMatrix4x4* m, float out[16])
 struct vtkMetaballMapper::Internals
 {
   vtkNew<vtkMetaballGridBuilder> Grid;
+  vtkNew<vtkMetaballGridBuilder> LightGrid;
+  vtkNew<vtkComputeShaderProgram> Shadow;
+  std::string ShadowDefines;
+  vtkNew<vtkTextureObject> ShadowImage;
+  double MinRadius = 1.0;
+  bool WarnedShadow = false;
   vtkNew<vtkShaderStorageBuffer> Balls, Colors, Strengths, Inside;
   bool WarnedInside = false;
   bool WarnedBudget = false;
@@ -170,6 +178,7 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
   std::vector<float> balls(4 * n);
   std::vector<float> q(strengths ? n : 1, 1.0f);
   vtkIdType invalid = 0;
+  double minRadius = std::numeric_limits<double>::max();
   for (vtkIdType i = 0; i < n; ++i)
   {
     double p[3];
@@ -192,7 +201,12 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
       balls[4 * i + 3] = 0.0f; // the grid skips it
       ++invalid;
     }
+    else
+    {
+      minRadius = std::min(minRadius, r);
+    }
   }
+  in.MinRadius = invalid < n ? minRadius : 1.0;
   if (invalid > 0)
   {
     vtkWarningMacro(<< invalid << " of " << n
@@ -346,7 +360,7 @@ void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   in.Strengths->BindBase(2);
   in.Grid->GetVoxelOffsets()->BindBase(3);
   in.Grid->GetVoxelBalls()->BindBase(4);
-  const unsigned int zeros[2] = { 0, 0 };
+  const unsigned int zeros[3] = { 0, 0, 0 };
   in.Inside->Upload(zeros, sizeof(zeros));
   in.Inside->BindBase(5);
 
@@ -359,7 +373,7 @@ void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
       GL_SHADER_STORAGE_BARRIER_BIT);
   in.RayCast->Unbind();
-  unsigned int counters[2] = { 0, 0 };
+  unsigned int counters[3] = { 0, 0, 0 };
   in.Inside->Download(counters, sizeof(counters));
   const unsigned int inside = counters[0];
   this->NumberOfPixelsStartingInside = inside;
@@ -388,6 +402,16 @@ void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
     return;
   }
 
+  // Shadows: secondary rays toward the lights.
+  int shadowLights = 0;
+  this->ShadowTime = 0.0;
+  if (this->Shadows)
+  {
+    vtkNew<vtkMatrix4x4> viewToModel;
+    vtkMatrix4x4::Invert(worldToView, viewToModel);
+    shadowLights = this->CastShadows(ren, act, model, viewToModel, clipToView, width, height);
+  }
+
   // Shade and composite with the true depth, depth-tested against the scene.
   vtkOpenGLState* ostate = renWin->GetState();
   ostate->Push();
@@ -412,6 +436,12 @@ void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   program->SetUniformi("colorTexture", in.ColorImage->GetTextureUnit());
   program->SetUniformi("normalTexture", in.NormalImage->GetTextureUnit());
   program->SetUniformi("depthTexture", in.DepthImage->GetTextureUnit());
+  program->SetUniformi("shadows", shadowLights > 0 ? 1 : 0);
+  if (shadowLights > 0)
+  {
+    in.ShadowImage->Activate();
+    program->SetUniformi("shadowTexture", in.ShadowImage->GetTextureUnit());
+  }
   program->SetUniformMatrix("clipToView", clipToView);
   program->SetUniformi("parallelProjection", parallel ? 1 : 0);
   // The renderer's lights, in view coordinates.
@@ -478,8 +508,182 @@ void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   in.ColorImage->Deactivate();
   in.NormalImage->Deactivate();
   in.DepthImage->Deactivate();
+  if (shadowLights > 0)
+  {
+    in.ShadowImage->Deactivate();
+  }
   ostate->Pop();
   this->InvokeEvent(vtkCommand::EndEvent, nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkMetaballMapper::CastShadows(vtkRenderer* ren,
+  vtkActor* act,
+  vtkMatrix4x4* model,
+  vtkMatrix4x4* viewToModel,
+  vtkMatrix4x4* clipToView,
+  int width,
+  int height)
+{
+  Internals& in = *this->Impl;
+  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  const auto start = std::chrono::steady_clock::now();
+  if (in.ShadowImage->GetWidth() != static_cast<unsigned int>(width) ||
+    in.ShadowImage->GetHeight() != static_cast<unsigned int>(height) ||
+    !in.ShadowImage->GetHandle())
+  {
+    in.ShadowImage->SetContext(renWin);
+    in.ShadowImage->Allocate2D(width, height, 4, VTK_FLOAT);
+  }
+  const float clear[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+  glClearTexImage(in.ShadowImage->GetHandle(), 0, GL_RGBA, GL_FLOAT, clear);
+  const std::string defines = "#define KERNEL " + std::to_string(this->Kernel) + "\n";
+  if (defines != in.ShadowDefines)
+  {
+    std::string source = vtkMetaballShadowCS;
+    const std::string hook = "//VTK::Defines::Dec";
+    source.replace(source.find(hook), hook.size(), defines);
+    in.Shadow->ReleaseGraphicsResources(renWin);
+    in.Shadow->SetName("vtkMetaballShadowCS");
+    in.Shadow->SetSource(source);
+    in.ShadowDefines = defines;
+  }
+  if (!in.Shadow->IsCompiled() && !in.Shadow->Compile(renWin))
+  {
+    return 0;
+  }
+  // The light cameras frame the balls' bounds (all of them: casters may lie
+  // outside the view).
+  double bounds[6];
+  this->GetBounds(bounds);
+  double corner[4], centre[3] = { 0, 0, 0 }, radius = 0.0;
+  if (!act->GetIsIdentity())
+  {
+    act->GetBounds(bounds);
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    centre[k] = 0.5 * (bounds[2 * k] + bounds[2 * k + 1]);
+    radius += 0.25 * (bounds[2 * k + 1] - bounds[2 * k]) * (bounds[2 * k + 1] - bounds[2 * k]);
+  }
+  radius = std::max(std::sqrt(radius), 1e-30);
+  (void)corner;
+  const int lightSize = 256;
+  in.LightGrid->SetTileSize(16);
+  in.LightGrid->SetSlabs(16);
+  int lights = 0;
+  unsigned int cut = 0;
+  vtkLightCollection* collection = ren->GetLights();
+  vtkCollectionSimpleIterator it;
+  collection->InitTraversal(it);
+  while (vtkLight* light = collection->GetNextLight(it))
+  {
+    if (!light->GetSwitch() || lights >= 4)
+    {
+      continue;
+    }
+    const int index = lights++;
+    double position[3], focal[3], dir[3];
+    light->GetTransformedPosition(position);
+    light->GetTransformedFocalPoint(focal);
+    vtkMath::Subtract(focal, position, dir);
+    if (vtkMath::Normalize(dir) == 0.0)
+    {
+      continue;
+    }
+    vtkNew<vtkCamera> eye;
+    double up[3] = { 0.0, 1.0, 0.0 };
+    if (std::abs(dir[1]) > 0.9)
+    {
+      up[0] = 1.0;
+      up[1] = 0.0;
+    }
+    if (light->GetPositional())
+    {
+      const double distance = std::sqrt(vtkMath::Distance2BetweenPoints(position, centre));
+      eye->SetPosition(position);
+      eye->SetFocalPoint(centre);
+      eye->SetViewUp(up);
+      const double half = distance > radius ? std::asin(radius / distance) : 1.45;
+      eye->SetViewAngle(std::min(170.0, 2.0 * vtkMath::DegreesFromRadians(half) * 1.05));
+      eye->SetClippingRange(std::max(distance - radius, 1e-3 * distance), distance + radius);
+    }
+    else
+    {
+      eye->SetPosition(centre[0] - 2.0 * radius * dir[0],
+        centre[1] - 2.0 * radius * dir[1],
+        centre[2] - 2.0 * radius * dir[2]);
+      eye->SetFocalPoint(centre);
+      eye->SetViewUp(up);
+      eye->ParallelProjectionOn();
+      eye->SetParallelScale(radius);
+      eye->SetClippingRange(0.5 * radius, 3.5 * radius);
+    }
+    vtkNew<vtkMatrix4x4> modelToLight, lightToClip;
+    vtkMatrix4x4::Multiply4x4(eye->GetViewTransformMatrix(), model, modelToLight);
+    lightToClip->DeepCopy(eye->GetProjectionTransformMatrix(1.0, -1, 1));
+    if (!in.LightGrid->Build(renWin,
+          in.Balls,
+          in.Count,
+          modelToLight->GetData(),
+          lightToClip->GetData(),
+          eye->GetParallelProjection() != 0,
+          lightSize,
+          lightSize))
+    {
+      return 0;
+    }
+    in.Shadow->Bind(renWin);
+    float m[16];
+    ToFloat(clipToView, m);
+    in.Shadow->SetUniformMatrix4x4("clipToView", m);
+    ToFloat(viewToModel, m);
+    in.Shadow->SetUniformMatrix4x4("viewToModel", m);
+    ToFloat(modelToLight, m);
+    in.Shadow->SetUniformMatrix4x4("modelToLight", m);
+    ToFloat(lightToClip, m);
+    in.Shadow->SetUniformMatrix4x4("lightToClip", m);
+    in.Shadow->SetUniformi("lightParallel", eye->GetParallelProjection());
+    in.Shadow->SetUniform2i("viewport", width, height);
+    in.Shadow->SetUniform2i("lightViewport", lightSize, lightSize);
+    in.Shadow->SetUniformi("tileSize", 16);
+    in.Shadow->SetUniform2i("tiles", in.LightGrid->GetTilesX(), in.LightGrid->GetTilesY());
+    in.Shadow->SetUniformi("slabs", 16);
+    in.Shadow->SetUniformf("slabNear", static_cast<float>(in.LightGrid->GetSlabPlane(0)));
+    in.Shadow->SetUniformf("slabFar", static_cast<float>(in.LightGrid->GetSlabPlane(16)));
+    in.Shadow->SetUniformf("threshold", static_cast<float>(this->Threshold));
+    in.Shadow->SetUniformf("stepScale", static_cast<float>(this->StepScale));
+    in.Shadow->SetUniformf("selfOffset", static_cast<float>(0.05 * in.MinRadius));
+    in.Shadow->SetUniformi("lightIndex", index);
+    in.Shadow->SetUniformi("useStrengths", in.HasStrengths ? 1 : 0);
+    in.Balls->BindBase(0);
+    in.Strengths->BindBase(2);
+    in.LightGrid->GetVoxelOffsets()->BindBase(3);
+    in.LightGrid->GetVoxelBalls()->BindBase(4);
+    in.Inside->BindBase(5);
+    glBindImageTexture(2, in.DepthImage->GetHandle(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
+    glBindImageTexture(3, in.ShadowImage->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    in.Shadow->Dispatch(vtkComputeShaderProgram::GroupCount(width, 16),
+      vtkComputeShaderProgram::GroupCount(height, 16),
+      1,
+      GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    in.Shadow->Unbind();
+  }
+  unsigned int counters[3] = { 0, 0, 0 };
+  in.Inside->Download(counters, sizeof(counters));
+  cut = counters[2];
+  if (cut > 0 && !in.WarnedShadow)
+  {
+    vtkWarningMacro(<< cut
+                    << " shadow rays stopped short of the light: they ran out of the GL "
+                       "driver's loop iterations (llvmpipe allows 65535 per shader "
+                       "invocation) and are left lit.");
+  }
+  in.WarnedShadow = cut > 0;
+  glFinish();
+  this->ShadowTime =
+    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return lights;
 }
 
 //------------------------------------------------------------------------------
@@ -507,6 +711,10 @@ void vtkMetaballMapper::ReleaseGraphicsResources(vtkWindow* win)
   in.Colors->ReleaseGraphicsResources(win);
   in.Strengths->ReleaseGraphicsResources(win);
   in.Inside->ReleaseGraphicsResources(win);
+  in.LightGrid->ReleaseGraphicsResources(win);
+  in.Shadow->ReleaseGraphicsResources(win);
+  in.ShadowDefines.clear();
+  in.ShadowImage->ReleaseGraphicsResources(win);
   in.RayCast->ReleaseGraphicsResources(win);
   in.RayCastDefines.clear();
   in.ColorImage->ReleaseGraphicsResources(win);
@@ -537,4 +745,5 @@ void vtkMetaballMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Slabs: " << this->Slabs << "\n";
   os << indent << "StepScale: " << this->StepScale << "\n";
   os << indent << "Bisections: " << this->Bisections << "\n";
+  os << indent << "Shadows: " << this->Shadows << "\n";
 }

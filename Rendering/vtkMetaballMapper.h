@@ -40,6 +40,7 @@
 #include <string> // For array names
 
 class vtkFloatArray;
+class vtkMatrix4x4;
 class vtkPointSet;
 
 class POINTSURFACESRENDERING_EXPORT vtkMetaballMapper : public vtkOpenGLPolyDataMapper
@@ -120,9 +121,21 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Shadows from secondary rays toward the first four lights that are on,
+   * tested against a perspective grid built from each light's point of view
+   * every frame. Default off.
+   */
+  vtkSetMacro(Shadows, bool);
+  vtkGetMacro(Shadows, bool);
+  vtkBooleanMacro(Shadows, bool);
+  ///@}
+
+  ///@{
   /** Statistics of the last render: grid build and ray cast times in ms (wall clock). */
   vtkGetMacro(GridBuildTime, double);
   vtkGetMacro(RayCastTime, double);
+  vtkGetMacro(ShadowTime, double); // light grids and shadow rays
   vtkGetMacro(NumberOfPairs, vtkIdType);
   vtkGetMacro(MaximumBallsPerVoxel, vtkIdType);
   vtkGetMacro(NumberOfCulledBalls, vtkIdType);
@@ -163,6 +176,13 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   void ComputeBounds() override;
   bool Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* input);
+  int CastShadows(vtkRenderer* ren,
+    vtkActor* act,
+    vtkMatrix4x4* model,
+    vtkMatrix4x4* viewToModel,
+    vtkMatrix4x4* clipToView,
+    int width,
+    int height);
 
   int Kernel = Wyvill;
   double Threshold = 0.5;
@@ -183,6 +203,8 @@ protected:
   int NumberOfUploads = 0;
   vtkIdType NumberOfPixelsStartingInside = 0;
   vtkIdType NumberOfIncompleteRays = 0;
+  bool Shadows = false;
+  double ShadowTime = 0.0;
 
 private:
   struct Internals;

@@ -20,6 +20,8 @@ for b in counts million tradeoff; do
 done
 env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \
   "$root/Testing/Benchmarks/bench_splat_render.py" --out "$out"
+env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \
+  "$root/Testing/Benchmarks/bench_metaballs.py" --out "$out"
 env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl "$build/bin/BenchComputeTiles" | tee "$out/compute_tiles.csv"
 /usr/bin/python3 "$root/Testing/Benchmarks/plot_csv.py" "$out/compute_tiles.csv" "$out/compute_tiles.png" \
   n gpu_ms cpu_ms --logx --logy

@@ -11,6 +11,8 @@ in vec2 texCoord;
 uniform sampler2D colorTexture;
 uniform sampler2D normalTexture;
 uniform sampler2D depthTexture;
+uniform sampler2D shadowTexture; // 1 where light k (k < 4) is blocked
+uniform int shadows;
 uniform mat4 clipToView;
 uniform int parallelProjection;
 uniform int numberOfLights;
@@ -41,6 +43,7 @@ void main()
   p /= p.w;
   vec3 toEye = parallelProjection != 0 ? vec3(0.0, 0.0, 1.0) : normalize(-p.xyz);
   vec3 result = ambient * ambientColor * base.rgb;
+  vec4 blocked = shadows != 0 ? texture(shadowTexture, texCoord) : vec4(0.0);
   for (int k = 0; k < 8; ++k)
   {
     if (k >= numberOfLights)
@@ -49,12 +52,13 @@ void main()
     }
     vec3 toLight =
       lightPositional[k] != 0 ? normalize(lightPosition[k] - p.xyz) : -lightDirection[k];
-    float df = max(dot(n, toLight), 0.0);
+    float lit = k < 4 ? 1.0 - blocked[k] : 1.0;
+    float df = lit * max(dot(n, toLight), 0.0);
     result += diffuse * df * lightColor[k] * base.rgb;
     if (df > 0.0 && specular > 0.0)
     {
       float sf = pow(max(dot(reflect(-toLight, n), toEye), 0.0), specularPower);
-      result += specular * sf * lightColor[k] * specularColor;
+      result += lit * specular * sf * lightColor[k] * specularColor;
     }
   }
   gl_FragData[0] = vec4(result, opacity);

@@ -1,0 +1,312 @@
+#!/usr/bin/env python3
+# SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+# SPDX-License-Identifier: BSD-3-Clause
+"""Per-frame cost and image error of vtkMetaballMapper against a sample-and-contour pipeline.
+
+For each input (scattered balls at N = 10K, 100K and 1M; the halo, HYG-star
+and solvated-protein sets of ../shared/data) the same window draws:
+
+- vtkMetaballMapper at its defaults (step scale 0.1, 10 bisections) and at a
+  coarser and a finer setting: grid build and ray cast times (the mapper's
+  statistics), frame time, pairs;
+- the reference: vtkMetaballMapper at step scale 0.02 and 20 bisections;
+- the sample-and-contour peer: the same field (Wyvill's kernel, T = 0.5)
+  sampled on an n^3 grid with numpy, vtkFlyingEdges3D at T, and an ordinary
+  mapper; its dynamic-frame time is sampling + contouring + drawing;
+- vtkOpenGLFluidMapper (screen-space particle surfaces), time only.
+
+Each image's RMSE against the reference is recorded, so that the methods can
+be compared at equal error. Particles move every frame in a dynamic scene,
+so the peer's whole pipeline is part of its frame. CSV goes to stdout and
+<out>/metaballs.csv, plots to <out>/metaballs_<input>.png. OpenVDB's
+particles-to-level-set is not run: Debian's libopenvdb-dev is not among the
+project's dependencies yet.
+"""
+import argparse
+import csv
+import os
+import statistics
+import sys
+import time
+
+import numpy as np
+
+import pointsurfaces  # noqa: F401  (the EGL window factory)
+from pointsurfaces import vtkMetaballMapper
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkFloatArray, vtkPoints, vtkUnsignedCharArray
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
+from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
+from vtkmodules.vtkIOChemistry import vtkPDBReader
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderWindow,
+                                         vtkRenderer, vtkVolume)
+from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLFluidMapper
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SHARED = os.path.join(HERE, "..", "..", "..", "shared", "data")
+
+
+def wyvill(x):
+    return np.where(x < 1.0, ((-4.0 / 9.0 * x + 17.0 / 9.0) * x - 22.0 / 9.0) * x + 1.0, 0.0)
+
+
+def scattered(n, seed=1):
+    rng = np.random.default_rng(seed)
+    # Balls in a unit cube, radii so that neighbours overlap (about 8 per support).
+    centres = rng.uniform(-1.0, 1.0, size=(n, 3))
+    radius = 1.6 * (8.0 / n) ** (1.0 / 3.0)
+    return centres, np.full(n, radius)
+
+
+def load(name, smoke):
+    if name.startswith("scattered-"):
+        n = {"10K": 10000, "100K": 100000, "1M": 1000000}[name.split("-")[1]]
+        return scattered(n if not smoke else 2000)
+    if name == "halo":
+        xyz = np.loadtxt(os.path.join(SHARED, "particles", "halo_32k.xyz"))
+        if smoke:
+            xyz = xyz[:2000]
+        spacing = np.ptp(xyz, axis=0).max() / len(xyz) ** (1.0 / 3.0)
+        return xyz, np.full(len(xyz), 1.5 * spacing)
+    if name == "hyg-stars":
+        reader = vtkXMLPolyDataReader()
+        reader.SetFileName(os.path.join(SHARED, "particles", "hyg_stars.vtp"))
+        reader.Update()
+        xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)
+        xyz = xyz[np.isfinite(xyz).all(axis=1)]
+        if smoke:
+            xyz = xyz[:2000]
+        # Stars within 100 pc, where the catalogue is dense.
+        near = np.linalg.norm(xyz, axis=1) < 100.0
+        xyz = xyz[near]
+        return xyz, np.full(len(xyz), 6.0)
+    if name == "adk-solvated":
+        reader = vtkPDBReader()
+        reader.SetFileName(os.path.join(SHARED, "molecules", "adk_solvated.pdb"))
+        reader.Update()
+        out = reader.GetOutput()
+        xyz = vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64)
+        radius = 2.0 * vtk_to_numpy(out.GetPointData().GetArray("radius")).astype(np.float64)
+        if smoke:
+            xyz, radius = xyz[:2000], radius[:2000]
+        return xyz, radius
+    raise ValueError(name)
+
+
+def poly_of(centres, radii):
+    pts = vtkPoints()
+    pts.SetData(numpy_to_vtk(centres.astype(np.float64), deep=True))
+    poly = vtkPolyData()
+    poly.SetPoints(pts)
+    r = numpy_to_vtk(radii.astype(np.float32), deep=True)
+    r.SetName("Radius")
+    poly.GetPointData().AddArray(r)
+    return poly
+
+
+def sample_field(centres, radii, n, threshold):
+    """The Wyvill field on an n^3 grid over the balls' bounds (numpy splatting)."""
+    lo = (centres - radii[:, None]).min(axis=0)
+    hi = (centres + radii[:, None]).max(axis=0)
+    h = (hi - lo).max() / (n - 1)
+    dims = np.minimum(np.ceil((hi - lo) / h).astype(int) + 1, n)
+    field = np.zeros(dims[::-1], dtype=np.float32)  # z, y, x
+    reach = int(np.ceil(radii.max() / h))
+    base = np.floor((centres - lo) / h).astype(int)
+    offsets = range(-reach, reach + 1)
+    for dz in offsets:
+        for dy in offsets:
+            for dx in offsets:
+                idx = base + np.array([dx, dy, dz])
+                inside = ((idx >= 0) & (idx < dims)).all(axis=1)
+                if not inside.any():
+                    continue
+                i = idx[inside]
+                p = lo + i * h
+                d2 = ((p - centres[inside]) ** 2).sum(axis=1)
+                x = d2 / radii[inside] ** 2
+                value = wyvill(x).astype(np.float32)
+                keep = value > 0
+                np.add.at(field, (i[keep, 2], i[keep, 1], i[keep, 0]), value[keep])
+    image = vtkImageData()
+    image.SetDimensions(*dims)
+    image.SetOrigin(*lo)
+    image.SetSpacing(h, h, h)
+    image.GetPointData().SetScalars(numpy_to_vtk(field.ravel(), deep=True))
+    return image
+
+
+class Scene:
+    def __init__(self, size):
+        self.size = size
+        self.window = vtkRenderWindow()
+        self.window.SetMultiSamples(0)
+        self.window.SetOffScreenRendering(1)
+        self.window.SetSize(*size)
+        self.renderer = vtkRenderer()
+        self.renderer.SetBackground(0.1, 0.1, 0.15)
+        self.window.AddRenderer(self.renderer)
+
+    def show(self, actor, bounds):
+        self.renderer.RemoveAllViewProps()
+        self.renderer.AddActor(actor)
+        self.renderer.ResetCamera(bounds)
+        self.renderer.ResetCameraClippingRange(bounds)
+
+    def image(self):
+        self.window.Render()
+        rgb = vtkUnsignedCharArray()
+        self.window.GetPixelData(0, 0, self.size[0] - 1, self.size[1] - 1, 0, rgb, 0)
+        return vtk_to_numpy(rgb).astype(np.float64) / 255.0
+
+    def frame_ms(self, frames, before=None):
+        times = []
+        for _ in range(frames):
+            t0 = time.perf_counter()
+            if before:
+                before()
+            self.window.Render()
+            self.window.GetZbufferDataAtPoint(0, 0)
+            times.append(1000.0 * (time.perf_counter() - t0))
+        return statistics.median(times)
+
+
+def material(actor):
+    p = actor.GetProperty()
+    p.SetColor(0.85, 0.75, 0.6)
+    p.SetSpecular(0.2)
+    return actor
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("inputs", nargs="*", default=[
+        "scattered-10K", "scattered-100K", "scattered-1M", "halo", "hyg-stars", "adk-solvated"])
+    parser.add_argument("--out", default="bench-results")
+    parser.add_argument("--frames", type=int, default=3)
+    parser.add_argument("--smoke", action="store_true")
+    args = parser.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    frames = 1 if args.smoke else args.frames
+    rows = []
+    for name in args.inputs:
+        centres, radii = load(name, args.smoke)
+        n = len(centres)
+        # Two resolutions; 1M balls at the lower one only on llvmpipe.
+        sizes = [(96, 96)] if args.smoke else ([(256, 256)] if n >= 500000 else [(256, 256), (512, 512)])
+        poly = poly_of(centres, radii)
+        bounds = list(np.ravel(np.column_stack([(centres - radii[:, None]).min(axis=0),
+                                                (centres + radii[:, None]).max(axis=0)])))
+        for size in sizes:
+            scene = Scene(size)
+            label = "%dx%d" % size
+
+            def metaballs(step, bisections):
+                mapper = vtkMetaballMapper()
+                mapper.SetInputDataObject(poly)
+                mapper.SetStepScale(step)
+                mapper.SetBisections(bisections)
+                actor = material(vtkActor())
+                actor.SetMapper(mapper)
+                scene.show(actor, bounds)
+                return mapper
+
+            reference_mapper = metaballs(0.02, 20)
+            reference = scene.image()
+
+            for step, bisections in ((0.4, 4), (0.1, 10), (0.05, 10)):
+                mapper = metaballs(step, bisections)
+                image = scene.image()
+                # A dynamic frame: the particles move (Modified), so they are uploaded again.
+                ms = scene.frame_ms(frames, before=poly.GetPoints().Modified)
+                rows.append(dict(input=name, balls=n, size=label, method="metaballs",
+                                 setting="step %g, %d bisections" % (step, bisections),
+                                 frame_ms="%.1f" % ms,
+                                 build_ms="%.2f" % mapper.GetGridBuildTime(),
+                                 render_ms="%.1f" % mapper.GetRayCastTime(),
+                                 pairs=mapper.GetNumberOfPairs(),
+                                 incomplete=mapper.GetNumberOfIncompleteRays(),
+                                 rmse="%.4f" % np.sqrt(np.mean((image - reference) ** 2))))
+            grids = (32,) if args.smoke else ((64, 128) if n > 200000 else (64, 128, 256))
+            for grid in grids:
+                t0 = time.perf_counter()
+                image_data = sample_field(centres, radii, grid, 0.5)
+                sample_ms = 1000.0 * (time.perf_counter() - t0)
+                contour = vtkFlyingEdges3D()
+                contour.SetInputData(image_data)
+                contour.SetValue(0, 0.5)
+                contour.ComputeNormalsOn()
+                t0 = time.perf_counter()
+                contour.Update()
+                contour_ms = 1000.0 * (time.perf_counter() - t0)
+                surface = vtkPolyData()
+                surface.ShallowCopy(contour.GetOutput())
+                mesh_mapper = vtkPolyDataMapper()
+                mesh_mapper.SetInputData(surface)
+                mesh_mapper.ScalarVisibilityOff()
+                actor = material(vtkActor())
+                actor.SetMapper(mesh_mapper)
+                scene.show(actor, bounds)
+                image = scene.image()
+                draw_ms = scene.frame_ms(frames, before=surface.Modified)
+                rows.append(dict(input=name, balls=n, size=label, method="sample+flying-edges",
+                                 setting="%d^3 grid" % grid,
+                                 frame_ms="%.1f" % (sample_ms + contour_ms + draw_ms),
+                                 build_ms="%.1f" % (sample_ms + contour_ms),
+                                 render_ms="%.1f" % draw_ms, pairs=surface.GetNumberOfCells(),
+                                 incomplete=0,
+                                 rmse="%.4f" % np.sqrt(np.mean((image - reference) ** 2))))
+            fluid = vtkOpenGLFluidMapper()
+            fluid.SetInputData(poly)
+            fluid.SetParticleRadius(float(np.median(radii)) * 0.5)
+            volume = vtkVolume()  # the fluid mapper is a volume mapper
+            volume.SetMapper(fluid)
+            scene.renderer.RemoveAllViewProps()
+            scene.renderer.AddVolume(volume)
+            scene.renderer.ResetCamera(bounds)
+            scene.image()
+            ms = scene.frame_ms(frames, before=poly.GetPoints().Modified)
+            rows.append(dict(input=name, balls=n, size=label, method="fluid-mapper",
+                             setting="radius R/2", frame_ms="%.1f" % ms, build_ms="",
+                             render_ms="", pairs="", incomplete="", rmse=""))
+            reference_mapper.ReleaseGraphicsResources(scene.window)
+
+    fields = ["input", "balls", "size", "method", "setting", "frame_ms", "build_ms", "render_ms",
+              "pairs", "incomplete", "rmse"]
+    with open(os.path.join(args.out, "metaballs.csv"), "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=fields)
+        writer.writeheader()
+        writer.writerows(rows)
+    writer = csv.DictWriter(sys.stdout, fieldnames=fields)
+    writer.writeheader()
+    writer.writerows(rows)
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    for name in dict.fromkeys(r["input"] for r in rows):
+        fig, ax = plt.subplots(figsize=(6.5, 4))
+        for method, marker in (("metaballs", "o"), ("sample+flying-edges", "s")):
+            sel = [r for r in rows if r["input"] == name and r["method"] == method]
+            if sel:
+                ax.scatter([float(r["frame_ms"]) for r in sel], [float(r["rmse"]) for r in sel],
+                           marker=marker, label=method)
+                for r in sel:
+                    ax.annotate("%s %s" % (r["size"], r["setting"]),
+                                (float(r["frame_ms"]), float(r["rmse"])), fontsize=6)
+        ax.set_xscale("log")
+        ax.set_xlabel("dynamic frame time (ms, median)")
+        ax.set_ylabel("RMSE vs fine ray cast")
+        ax.set_title(name)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        png = os.path.join(args.out, "metaballs_%s.png" % name)
+        fig.savefig(png, dpi=100)
+        print("# wrote " + png)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
