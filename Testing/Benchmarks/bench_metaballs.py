@@ -87,7 +87,8 @@ def load(name, smoke):
         reader.Update()
         out = reader.GetOutput()
         xyz = vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64)
-        radius = 2.0 * vtk_to_numpy(out.GetPointData().GetArray("radius")).astype(np.float64)
+        radius = vtk_to_numpy(out.GetPointData().GetArray("radius")).astype(np.float64)
+        radius = 2.0 * (radius[:, 0] if radius.ndim > 1 else radius)  # vtkPDBReader: 3 components
         if smoke:
             xyz, radius = xyz[:2000], radius[:2000]
         return xyz, radius
@@ -192,6 +193,8 @@ def main():
     rows = []
     for name in args.inputs:
         centres, radii = load(name, args.smoke)
+        centres = np.asarray(centres, dtype=np.float64).reshape(-1, 3)
+        radii = np.asarray(radii, dtype=np.float64).ravel()
         n = len(centres)
         # Two resolutions; 1M balls at the lower one only on llvmpipe.
         sizes = [(96, 96)] if args.smoke else ([(256, 256)] if n >= 500000 else [(256, 256), (512, 512)])
