@@ -6,9 +6,10 @@
 // Algorithm 3), for vtkMetaballMapper. One work group per screen tile, one
 // invocation per pixel. The group walks its tile's voxels front to back;
 // empty voxels are skipped; a voxel's balls are loaded into shared memory
-// (in view coordinates) by the whole group when there are at most
-// MAX_SHARED of them, and read from global memory otherwise. Every ray then
-// marches the voxel's stretch of itself, without waiting on the others:
+// (in view coordinates) by the whole group. When they fit (MAX_SHARED),
+// every ray marches the voxel's stretch of itself without waiting on the
+// others; otherwise the group loads them batch by batch at every sample and
+// the rays march in lock step:
 //
 // - the step follows the field: |f| / L, with L a bound on |grad f| over the
 //   voxel's balls, so a step never jumps over the surface where f changes
@@ -340,33 +341,38 @@ void main()
       sharedMinRadius = floatBitsToUint(3.0e38);
     }
     memoryBarrierShared();
-  barrier();
+    barrier();
     float partial = 0.0;
-    for (uint k = local; k < count; k += groupSize)
+    uint kb = local;
+    for (; kb < count; kb += groupSize)
     {
-      uint id = voxelBalls[first + k];
+      uint id = voxelBalls[first + kb];
       float R = balls[id].w;
       partial += (useStrengths != 0 ? abs(strengths[id]) : 1.0) / R;
       atomicMin(sharedMinRadius, floatBitsToUint(R));
     }
     sharedReduce[local] = partial;
-    for (uint stride = groupSize / 2u; stride > 0u; stride >>= 1)
+    uint stride = groupSize / 2u;
+    for (; stride > 0u; stride >>= 1)
     {
       memoryBarrierShared();
-  barrier();
+      barrier();
       if (local < stride)
       {
         sharedReduce[local] += sharedReduce[local + stride];
       }
     }
     memoryBarrierShared();
-  barrier();
+    barrier();
     float lipschitz = sharedReduce[0] * psKernelSlopeBound() + 1e-30;
     float baseStep = stepScale * uintBitsToFloat(sharedMinRadius);
+    // A bound cut short by the driver is too small, and its steps too long.
+    bool loaded = !psAny(kb < count || stride > 0u);
     if (single)
     {
       // The whole list in shared memory, in view coordinates.
-      for (uint k = local; k < count; k += groupSize)
+      uint k = local;
+      for (; k < count; k += groupSize)
       {
         uint id = voxelBalls[first + k];
         vec4 b = balls[id];
@@ -374,9 +380,10 @@ void main()
         sharedStrength[k] = useStrengths != 0 ? strengths[id] : 1.0;
         sharedColor[k] = colors[id];
       }
+      loaded = !psAny(k < count) && loaded; // a load cut short by the driver
     }
     memoryBarrierShared();
-  barrier();
+    barrier();
 
     float t = t0;
     bool marching = searching;
@@ -391,7 +398,7 @@ void main()
         float f = -threshold;
         vec3 g = vec3(0.0);
         vec4 c = vec4(0.0);
-        bool complete = psAccumulate(origin + t * dir, int(count), f, g, c, false);
+        bool complete = psAccumulate(origin + t * dir, int(count), f, g, c, false) && loaded;
         psStep(t, f, t1, baseStep, lipschitz, origin, dir, first, count, true, steps, haveA, tA,
           fA, marching, searching, hit, tHit, normal, color, slab == 0, complete, bisecting, ba,
           bb, bfa);
@@ -399,17 +406,48 @@ void main()
     }
     else
     {
-      // More balls than shared memory holds: each ray reads them from
-      // global memory (cached), still without waiting on the others.
-      while (marching)
+      // More balls than shared memory holds: the group loads them in batches
+      // and every ray sums each batch at its own sample, in lock step.
+      while (true)
       {
+        vec3 p = origin + t * dir;
         float f = -threshold;
         vec3 g = vec3(0.0);
         vec4 c = vec4(0.0);
-        bool complete = psAccumulateGlobal(origin + t * dir, first, count, f, g, c, false);
-        psStep(t, f, t1, baseStep, lipschitz, origin, dir, first, count, false, steps, haveA,
-          tA, fA, marching, searching, hit, tHit, normal, color, slab == 0, complete, bisecting,
-          ba, bb, bfa);
+        bool complete = true;
+        uint base = 0u;
+        for (; base < count; base += uint(MAX_SHARED))
+        {
+          int n = int(min(uint(MAX_SHARED), count - base));
+          memoryBarrierShared();
+          barrier();
+          uint k = local;
+          for (; k < uint(n); k += groupSize)
+          {
+            uint id = voxelBalls[first + base + k];
+            vec4 b = balls[id];
+            sharedBalls[k] = vec4((worldToView * vec4(b.xyz, 1.0)).xyz, b.w);
+            sharedStrength[k] = useStrengths != 0 ? strengths[id] : 1.0;
+            sharedColor[k] = colors[id];
+          }
+          // A load cut short by the driver leaves stale balls: no sum to trust.
+          complete = psAny(k < uint(n)) || !loaded ? false : complete;
+          if (marching)
+          {
+            complete = psAccumulate(p, n, f, g, c, false) && complete;
+          }
+        }
+        complete = complete && base >= count;
+        if (marching)
+        {
+          psStep(t, f, t1, baseStep, lipschitz, origin, dir, first, count, false, steps, haveA,
+            tA, fA, marching, searching, hit, tHit, normal, color, slab == 0, complete,
+            bisecting, ba, bb, bfa);
+        }
+        if (!psAny(marching))
+        {
+          break;
+        }
       }
     }
     if (marching)
