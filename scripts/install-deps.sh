@@ -13,8 +13,9 @@ packages=(
   build-essential cmake ninja-build pkg-config git clang-format
   # VTK 9.1 (X11 build, system GLEW) and its Python bindings
   libvtk9-dev python3-vtk9 vtk9 python3-numpy
-  # numerics and readers (PCL: kd-trees, PCD files; Ceres: robust fits)
-  libeigen3-dev libpcl-dev libceres-dev
+  # numerics and readers (PCL: kd-trees, PCD files; Ceres: robust fits;
+  # OpenMesh: OFF, OBJ, OM and STL meshes)
+  libeigen3-dev libpcl-dev libceres-dev libopenmesh-dev
   # benchmark peers (CGAL's WLOP; PCL's MLS comes with libpcl-dev)
   libcgal-dev
   # headless GL: Mesa llvmpipe through EGL (surfaceless) or GLX under Xvfb
