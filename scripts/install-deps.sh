@@ -14,14 +14,16 @@ packages=(
   # VTK 9.1 (X11 build, system GLEW) and its Python bindings
   libvtk9-dev python3-vtk9 vtk9 python3-numpy
   # numerics and readers (PCL: kd-trees, PCD files; Ceres: robust fits;
-  # OpenMesh: OFF, OBJ, OM and STL meshes)
-  libeigen3-dev libpcl-dev libceres-dev libopenmesh-dev
+  # OpenMesh: OFF, OBJ, OM and STL meshes; OpenVDB: point grids and level sets)
+  libeigen3-dev libpcl-dev libceres-dev libopenmesh-dev libopenvdb-dev
   # benchmark peers (CGAL's WLOP; PCL's MLS comes with libpcl-dev)
   libcgal-dev
   # headless GL: Mesa llvmpipe through EGL (surfaceless) or GLX under Xvfb
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev xvfb xauth
   # benchmark plots
   python3-matplotlib
+  # the fuzz preset: clang with libFuzzer and the sanitizer runtimes
+  clang libclang-rt-14-dev
 )
 dryrun=0
 for arg in "$@"; do

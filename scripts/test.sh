@@ -5,7 +5,8 @@
 # package).
 #
 # Usage: scripts/test.sh [PRESET] [-- extra ctest arguments]
-#   PRESET: vtk (default), debug or asan (asan runs the unit tests only)
+#   PRESET: vtk (default), debug, asan (the unit tests only) or fuzz (the
+#           readers' libFuzzer smoke runs)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"

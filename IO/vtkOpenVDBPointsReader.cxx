@@ -1,0 +1,577 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkOpenVDBPointsReader.h"
+
+#include "vtkCellArray.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkShortArray.h"
+#include "vtkSignedCharArray.h"
+#include "vtkSmartPointer.h"
+#include "vtkStringArray.h"
+#include "vtkTypeInt64Array.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/points/AttributeArrayString.h>
+#include <openvdb/points/AttributeGroup.h>
+#include <openvdb/points/PointDataGrid.h>
+
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <set>
+
+vtkStandardNewMacro(vtkOpenVDBPointsReader);
+
+namespace
+{
+namespace ovp = openvdb::points;
+using openvdb::Index;
+
+// Components of one attribute value, and its c-th component as a double.
+template<typename T>
+struct Components
+{
+  static constexpr int N = 1;
+  static double Get(const T& v, int) { return static_cast<double>(v); }
+};
+template<typename T>
+struct Components<openvdb::math::Vec3<T>>
+{
+  static constexpr int N = 3;
+  static double Get(const openvdb::math::Vec3<T>& v, int c) { return static_cast<double>(v[c]); }
+};
+template<typename T>
+struct Components<openvdb::math::Mat3<T>>
+{
+  static constexpr int N = 9;
+  static double Get(const openvdb::math::Mat3<T>& v, int c) { return v.asPointer()[c]; }
+};
+template<typename T>
+struct Components<openvdb::math::Mat4<T>>
+{
+  static constexpr int N = 16;
+  static double Get(const openvdb::math::Mat4<T>& v, int c) { return v.asPointer()[c]; }
+};
+template<typename T>
+struct Components<openvdb::math::Quat<T>>
+{
+  static constexpr int N = 4;
+  static double Get(const openvdb::math::Quat<T>& v, int c) { return v[c]; }
+};
+
+// One output array, created at the first grid that has the attribute.
+struct Output
+{
+  vtkSmartPointer<vtkAbstractArray> Array;
+  std::string Type; // the VDB value type (or "string", "group")
+};
+
+// The VTK array for a VDB value type, or null for a type we do not read.
+vtkSmartPointer<vtkDataArray> NewArray(const std::string& type)
+{
+  if (type == "bool" || type == "group")
+  {
+    return vtkSmartPointer<vtkUnsignedCharArray>::New();
+  }
+  if (type == "int8")
+  {
+    return vtkSmartPointer<vtkSignedCharArray>::New();
+  }
+  if (type == "int16")
+  {
+    return vtkSmartPointer<vtkShortArray>::New();
+  }
+  if (type == "int32" || type == "vec3i")
+  {
+    return vtkSmartPointer<vtkIntArray>::New();
+  }
+  if (type == "int64")
+  {
+    return vtkSmartPointer<vtkTypeInt64Array>::New();
+  }
+  if (type == "float" || type == "half" || type == "vec3s" || type == "mat3s" || type == "mat4s" ||
+    type == "quats")
+  {
+    return vtkSmartPointer<vtkFloatArray>::New();
+  }
+  if (type == "double" || type == "vec3d" || type == "mat3d" || type == "mat4d" || type == "quatd")
+  {
+    return vtkSmartPointer<vtkDoubleArray>::New();
+  }
+  return nullptr;
+}
+
+// Copies attribute values of the points `indices` into rows first.. of out.
+template<typename T>
+void CopyValues(const ovp::AttributeArray& array,
+  const std::vector<Index>& indices,
+  vtkDataArray* out,
+  vtkIdType first)
+{
+  ovp::AttributeHandle<T> handle(array);
+  const int n = Components<T>::N;
+  const Index stride = handle.stride();
+  for (size_t i = 0; i < indices.size(); ++i)
+  {
+    for (Index m = 0; m < stride; ++m)
+    {
+      const T value = handle.get(indices[i], m);
+      for (int c = 0; c < n; ++c)
+      {
+        out->SetComponent(first + static_cast<vtkIdType>(i),
+          static_cast<int>(m) * n + c,
+          Components<T>::Get(value, c));
+      }
+    }
+  }
+}
+
+// Dispatch by value type; returns the components per point (0: not read).
+int ComponentsOf(const std::string& type)
+{
+  if (type == "vec3i" || type == "vec3s" || type == "vec3d")
+  {
+    return 3;
+  }
+  if (type == "mat3s" || type == "mat3d")
+  {
+    return 9;
+  }
+  if (type == "mat4s" || type == "mat4d")
+  {
+    return 16;
+  }
+  if (type == "quats" || type == "quatd")
+  {
+    return 4;
+  }
+  return NewArray(type) ? 1 : 0;
+}
+
+bool CopyTyped(const std::string& type,
+  const ovp::AttributeArray& array,
+  const std::vector<Index>& indices,
+  vtkDataArray* out,
+  vtkIdType first)
+{
+  using namespace openvdb::math;
+  if (type == "bool")
+  {
+    CopyValues<bool>(array, indices, out, first);
+  }
+  else if (type == "int8")
+  {
+    CopyValues<int8_t>(array, indices, out, first);
+  }
+  else if (type == "int16")
+  {
+    CopyValues<int16_t>(array, indices, out, first);
+  }
+  else if (type == "int32")
+  {
+    CopyValues<int32_t>(array, indices, out, first);
+  }
+  else if (type == "int64")
+  {
+    CopyValues<int64_t>(array, indices, out, first);
+  }
+  else if (type == "float")
+  {
+    CopyValues<float>(array, indices, out, first);
+  }
+  else if (type == "half")
+  {
+    CopyValues<openvdb::math::half>(array, indices, out, first);
+  }
+  else if (type == "double")
+  {
+    CopyValues<double>(array, indices, out, first);
+  }
+  else if (type == "vec3i")
+  {
+    CopyValues<Vec3<int32_t>>(array, indices, out, first);
+  }
+  else if (type == "vec3s")
+  {
+    CopyValues<Vec3<float>>(array, indices, out, first);
+  }
+  else if (type == "vec3d")
+  {
+    CopyValues<Vec3<double>>(array, indices, out, first);
+  }
+  else if (type == "mat3s")
+  {
+    CopyValues<Mat3<float>>(array, indices, out, first);
+  }
+  else if (type == "mat3d")
+  {
+    CopyValues<Mat3<double>>(array, indices, out, first);
+  }
+  else if (type == "mat4s")
+  {
+    CopyValues<Mat4<float>>(array, indices, out, first);
+  }
+  else if (type == "mat4d")
+  {
+    CopyValues<Mat4<double>>(array, indices, out, first);
+  }
+  else if (type == "quats")
+  {
+    CopyValues<Quat<float>>(array, indices, out, first);
+  }
+  else if (type == "quatd")
+  {
+    CopyValues<Quat<double>>(array, indices, out, first);
+  }
+  else
+  {
+    return false;
+  }
+  return true;
+}
+
+// A leaf whose offsets or arrays disagree would be read out of bounds.
+bool LeafConsistent(const ovp::PointDataTree::LeafNodeType& leaf, std::string& why)
+{
+  Index previous = 0;
+  for (Index i = 0; i < ovp::PointDataTree::LeafNodeType::SIZE; ++i)
+  {
+    const Index offset = leaf.getValue(i);
+    if (offset < previous)
+    {
+      why = "a leaf's point offsets decrease";
+      return false;
+    }
+    previous = offset;
+  }
+  const ovp::AttributeSet& set = leaf.attributeSet();
+  for (size_t a = 0; a < set.size(); ++a)
+  {
+    const ovp::AttributeArray* array = set.getConst(a);
+    if (!array)
+    {
+      why = "a leaf lacks an attribute array";
+      return false;
+    }
+    if (!array->isUniform() && array->hasConstantStride() && array->size() < previous)
+    {
+      why = "a leaf's attribute array holds " + std::to_string(array->size()) + " values for " +
+        std::to_string(previous) + " points";
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkOpenVDBPointsReader::vtkOpenVDBPointsReader()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+//------------------------------------------------------------------------------
+const char* vtkOpenVDBPointsReader::GetPointGridName(int i) const
+{
+  return i >= 0 && i < this->GetNumberOfPointGrids() ? this->PointGridNames[i].c_str() : nullptr;
+}
+
+//------------------------------------------------------------------------------
+bool vtkOpenVDBPointsReader::CanReadFile(const char* fileName)
+{
+  if (!fileName)
+  {
+    return false;
+  }
+  std::ifstream in(fileName, std::ios::binary);
+  unsigned char magic[4] = { 0, 0, 0, 0 };
+  in.read(reinterpret_cast<char*>(magic), 4);
+  // OPENVDB_MAGIC, 0x56444220 ("VDB "), little-endian.
+  return in && magic[0] == 0x20 && magic[1] == 0x42 && magic[2] == 0x44 && magic[3] == 0x56;
+}
+
+//------------------------------------------------------------------------------
+int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  this->PointGridNames.clear();
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro(<< "No FileName set.");
+    return 1;
+  }
+  if (!vtkOpenVDBPointsReader::CanReadFile(this->FileName.c_str()))
+  {
+    vtkErrorMacro(<< "\"" << this->FileName
+                  << "\" is missing or is not an OpenVDB file (no VDB magic number).");
+    return 1;
+  }
+  openvdb::initialize();
+
+  // Read the point grids, whole (no delayed loading: damage shows now).
+  std::vector<ovp::PointDataGrid::Ptr> grids;
+  try
+  {
+    openvdb::io::File file(this->FileName);
+    file.open(/*delayLoad=*/false);
+    for (auto name = file.beginName(); name != file.endName(); ++name)
+    {
+      if (!this->GridName.empty() && name.gridName() != this->GridName)
+      {
+        continue;
+      }
+      openvdb::GridBase::ConstPtr meta = file.readGridMetadata(name.gridName());
+      if (!meta || meta->type() != ovp::PointDataGrid::gridType())
+      {
+        continue;
+      }
+      openvdb::GridBase::Ptr base = file.readGrid(name.gridName());
+      ovp::PointDataGrid::Ptr grid = openvdb::gridPtrCast<ovp::PointDataGrid>(base);
+      if (grid)
+      {
+        grids.push_back(grid);
+        this->PointGridNames.push_back(name.gridName());
+      }
+    }
+    file.close();
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Cannot read \"" << this->FileName << "\": " << e.what());
+    this->PointGridNames.clear();
+    return 1;
+  }
+  if (grids.empty())
+  {
+    if (this->GridName.empty())
+    {
+      vtkErrorMacro(<< "\"" << this->FileName << "\" holds no point data grid.");
+    }
+    else
+    {
+      vtkErrorMacro(<< "\"" << this->FileName << "\" holds no point data grid named \""
+                    << this->GridName << "\".");
+    }
+    return 1;
+  }
+
+  // Count the points (active voxels only) and check every leaf first.
+  std::vector<vtkIdType> firstOfGrid(grids.size() + 1, 0);
+  for (size_t g = 0; g < grids.size(); ++g)
+  {
+    vtkIdType count = 0;
+    for (auto leaf = grids[g]->tree().cbeginLeaf(); leaf; ++leaf)
+    {
+      std::string why;
+      if (!LeafConsistent(*leaf, why))
+      {
+        vtkErrorMacro(<< "\"" << this->FileName << "\", grid \"" << this->PointGridNames[g]
+                      << "\" is corrupt: " << why << ".");
+        this->PointGridNames.clear();
+        return 1;
+      }
+      count += static_cast<vtkIdType>(leaf->onPointCount());
+    }
+    firstOfGrid[g + 1] = firstOfGrid[g] + count;
+  }
+  const vtkIdType total = firstOfGrid.back();
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(total);
+  vtkNew<vtkIntArray> gridIndex;
+  gridIndex->SetName("VDBGridIndex");
+  gridIndex->SetNumberOfTuples(total);
+  std::map<std::string, Output> outputs;
+  std::set<std::string> warned;
+  auto warnOnce = [&](const std::string& text)
+  {
+    if (warned.insert(text).second)
+    {
+      vtkWarningMacro(<< "\"" << this->FileName << "\": " << text);
+    }
+  };
+  // The output array for `name`, created (zero-filled) when first seen.
+  auto outputFor =
+    [&](const std::string& name, const std::string& type, int components) -> vtkAbstractArray*
+  {
+    auto it = outputs.find(name);
+    if (it == outputs.end())
+    {
+      Output o;
+      o.Type = type;
+      if (type == "string")
+      {
+        auto strings = vtkSmartPointer<vtkStringArray>::New();
+        strings->SetNumberOfValues(total);
+        o.Array = strings;
+      }
+      else
+      {
+        vtkSmartPointer<vtkDataArray> data = NewArray(type);
+        data->SetNumberOfComponents(components);
+        data->SetNumberOfTuples(total);
+        data->Fill(0.0);
+        o.Array = data;
+      }
+      o.Array->SetName(name.c_str());
+      it = outputs.emplace(name, o).first;
+    }
+    const bool stringOut = it->second.Type == "string";
+    if (stringOut != (type == "string") ||
+      (!stringOut && it->second.Array->GetNumberOfComponents() != components))
+    {
+      warnOnce("attribute \"" + name +
+        "\" differs in type or size between grids: " + "only the first grid's kind is read.");
+      return nullptr;
+    }
+    return it->second.Array;
+  };
+
+  try
+  {
+    std::vector<Index> indices;
+    for (size_t g = 0; g < grids.size(); ++g)
+    {
+      const openvdb::math::Transform& xform = grids[g]->transform();
+      vtkIdType next = firstOfGrid[g];
+      for (auto leaf = grids[g]->tree().cbeginLeaf(); leaf; ++leaf)
+      {
+        const ovp::AttributeSet::Descriptor& descriptor = leaf->attributeSet().descriptor();
+        const size_t positionIndex = descriptor.find("P");
+        if (positionIndex == ovp::AttributeSet::INVALID_POS)
+        {
+          vtkErrorMacro(<< "\"" << this->FileName << "\", grid \"" << this->PointGridNames[g]
+                        << "\" has no position attribute P.");
+          this->PointGridNames.clear();
+          return 1;
+        }
+        // Positions: voxel centre plus the decoded offset, to world space.
+        indices.clear();
+        ovp::AttributeHandle<openvdb::Vec3f> position(leaf->constAttributeArray(positionIndex));
+        for (auto index = leaf->beginIndexOn(); index; ++index)
+        {
+          const openvdb::Vec3d xyz =
+            index.getCoord().asVec3d() + openvdb::Vec3d(position.get(*index));
+          const openvdb::Vec3d world = xform.indexToWorld(xyz);
+          points->SetPoint(
+            next + static_cast<vtkIdType>(indices.size()), world[0], world[1], world[2]);
+          gridIndex->SetValue(next + static_cast<vtkIdType>(indices.size()), static_cast<int>(g));
+          indices.push_back(*index);
+        }
+        // Attributes.
+        for (const auto& entry : descriptor.map())
+        {
+          if (entry.second == positionIndex)
+          {
+            continue;
+          }
+          const ovp::AttributeArray& array = leaf->constAttributeArray(entry.second);
+          if (ovp::isGroup(array))
+          {
+            continue; // groups are read by name below
+          }
+          if (!array.hasConstantStride())
+          {
+            warnOnce("attribute \"" + entry.first + "\" has a variable length per point: skipped.");
+            continue;
+          }
+          if (ovp::isString(array))
+          {
+            auto* out = vtkStringArray::SafeDownCast(outputFor(entry.first, "string", 1));
+            if (out)
+            {
+              ovp::StringAttributeHandle handle(array, descriptor.getMetadata());
+              for (size_t i = 0; i < indices.size(); ++i)
+              {
+                out->SetValue(next + static_cast<vtkIdType>(i), handle.get(indices[i]));
+              }
+            }
+            continue;
+          }
+          const std::string type = array.type().first;
+          const int components = ComponentsOf(type);
+          if (components == 0)
+          {
+            warnOnce("attribute \"" + entry.first + "\" has the type " + type +
+              ", which this reader does not convert: skipped.");
+            continue;
+          }
+          auto* out = vtkDataArray::SafeDownCast(
+            outputFor(entry.first, type, components * static_cast<int>(array.stride())));
+          if (out)
+          {
+            CopyTyped(type, array, indices, out, next);
+          }
+        }
+        // Groups, as 0/1 arrays.
+        for (const auto& group : descriptor.groupMap())
+        {
+          auto* out = vtkDataArray::SafeDownCast(outputFor("group:" + group.first, "group", 1));
+          if (out)
+          {
+            const ovp::GroupHandle handle = leaf->groupHandle(group.first);
+            for (size_t i = 0; i < indices.size(); ++i)
+            {
+              out->SetComponent(next + static_cast<vtkIdType>(i), 0, handle.get(indices[i]));
+            }
+          }
+        }
+        next += static_cast<vtkIdType>(indices.size());
+      }
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Cannot read the points of \"" << this->FileName << "\": " << e.what());
+    this->PointGridNames.clear();
+    return 1;
+  }
+
+  output->SetPoints(points);
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(total + 1);
+  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + total + 1, vtkIdType(0));
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(total);
+  std::iota(connectivity->GetPointer(0), connectivity->GetPointer(0) + total, vtkIdType(0));
+  vtkNew<vtkCellArray> vertices;
+  vertices->SetData(offsets, connectivity);
+  output->SetVerts(vertices);
+  output->GetPointData()->AddArray(gridIndex);
+  for (const auto& entry : outputs)
+  {
+    output->GetPointData()->AddArray(entry.second.Array);
+  }
+  vtkNew<vtkStringArray> names;
+  names->SetName("VDBGridNames");
+  for (const std::string& name : this->PointGridNames)
+  {
+    names->InsertNextValue(name);
+  }
+  output->GetFieldData()->AddArray(names);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenVDBPointsReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "GridName: " << (this->GridName.empty() ? "(all)" : this->GridName) << "\n";
+  os << indent << "PointGrids: " << this->PointGridNames.size() << "\n";
+}
