@@ -18,7 +18,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <vector>
 
@@ -27,6 +29,139 @@ vtkStandardNewMacro(vtkOpenMeshReader);
 namespace
 {
 using Mesh = OpenMesh::PolyMesh_ArrayKernelT<>;
+
+// OpenMesh's readers hand per-face (and other) attributes to the importer
+// even when the element was rejected (an invalid or repeated vertex index, a
+// non-manifold face): ImporterT then writes at index -1. Found by
+// FuzzOpenMeshReader (an OFF face with a colour and a bad index). This
+// importer drops every attribute and connectivity call whose handles are not
+// valid elements of the mesh.
+class GuardedImporter : public OpenMesh::IO::ImporterT<Mesh>
+{
+  using Base = OpenMesh::IO::ImporterT<Mesh>;
+  using VH = OpenMesh::VertexHandle;
+  using HH = OpenMesh::HalfedgeHandle;
+  using EH = OpenMesh::EdgeHandle;
+  using FH = OpenMesh::FaceHandle;
+  using Status = OpenMesh::Attributes::StatusInfo;
+
+public:
+  explicit GuardedImporter(Mesh& mesh)
+    : Base(mesh)
+    , M(mesh)
+  {
+  }
+  bool Ok(VH h) const { return h.is_valid() && static_cast<size_t>(h.idx()) < M.n_vertices(); }
+  bool Ok(HH h) const { return h.is_valid() && static_cast<size_t>(h.idx()) < M.n_halfedges(); }
+  bool Ok(EH h) const { return h.is_valid() && static_cast<size_t>(h.idx()) < M.n_edges(); }
+  bool Ok(FH h) const { return h.is_valid() && static_cast<size_t>(h.idx()) < M.n_faces(); }
+
+  HH add_edge(VH a, VH b) override { return Ok(a) && Ok(b) ? Base::add_edge(a, b) : HH(); }
+  FH add_face(HH h) override { return Ok(h) ? Base::add_face(h) : FH(); }
+  void set_point(VH h, const OpenMesh::Vec3f& p) override
+  {
+    Ok(h) ? Base::set_point(h, p) : void();
+  }
+  void set_halfedge(VH h, HH e) override { Ok(h) && Ok(e) ? Base::set_halfedge(h, e) : void(); }
+  void set_normal(VH h, const OpenMesh::Vec3f& n) override
+  {
+    Ok(h) ? Base::set_normal(h, n) : void();
+  }
+  void set_normal(VH h, const OpenMesh::Vec3d& n) override
+  {
+    Ok(h) ? Base::set_normal(h, n) : void();
+  }
+  void set_color(VH h, const OpenMesh::Vec4uc& c) override
+  {
+    Ok(h) ? Base::set_color(h, c) : void();
+  }
+  void set_color(VH h, const OpenMesh::Vec3uc& c) override
+  {
+    Ok(h) ? Base::set_color(h, c) : void();
+  }
+  void set_color(VH h, const OpenMesh::Vec4f& c) override
+  {
+    Ok(h) ? Base::set_color(h, c) : void();
+  }
+  void set_color(VH h, const OpenMesh::Vec3f& c) override
+  {
+    Ok(h) ? Base::set_color(h, c) : void();
+  }
+  void set_texcoord(VH h, const OpenMesh::Vec2f& t) override
+  {
+    Ok(h) ? Base::set_texcoord(h, t) : void();
+  }
+  void set_texcoord(VH h, const OpenMesh::Vec3f& t) override
+  {
+    Ok(h) ? Base::set_texcoord(h, t) : void();
+  }
+  void set_status(VH h, const Status& s) override { Ok(h) ? Base::set_status(h, s) : void(); }
+  void set_next(HH h, HH n) override { Ok(h) && Ok(n) ? Base::set_next(h, n) : void(); }
+  void set_face(HH h, FH f) override { Ok(h) && Ok(f) ? Base::set_face(h, f) : void(); }
+  void set_texcoord(HH h, const OpenMesh::Vec2f& t) override
+  {
+    Ok(h) ? Base::set_texcoord(h, t) : void();
+  }
+  void set_texcoord(HH h, const OpenMesh::Vec3f& t) override
+  {
+    Ok(h) ? Base::set_texcoord(h, t) : void();
+  }
+  void set_status(HH h, const Status& s) override { Ok(h) ? Base::set_status(h, s) : void(); }
+  void set_color(EH h, const OpenMesh::Vec4uc& c) override
+  {
+    Ok(h) ? Base::set_color(h, c) : void();
+  }
+  void set_color(EH h, const OpenMesh::Vec3uc& c) override
+  {
+    Ok(h) ? Base::set_color(h, c) : void();
+  }
+  void set_color(EH h, const OpenMesh::Vec4f& c) override
+  {
+    Ok(h) ? Base::set_color(h, c) : void();
+  }
+  void set_color(EH h, const OpenMesh::Vec3f& c) override
+  {
+    Ok(h) ? Base::set_color(h, c) : void();
+  }
+  void set_status(EH h, const Status& s) override { Ok(h) ? Base::set_status(h, s) : void(); }
+  void set_normal(FH h, const OpenMesh::Vec3f& n) override
+  {
+    Ok(h) ? Base::set_normal(h, n) : void();
+  }
+  void set_normal(FH h, const OpenMesh::Vec3d& n) override
+  {
+    Ok(h) ? Base::set_normal(h, n) : void();
+  }
+  void set_color(FH h, const OpenMesh::Vec3uc& c) override
+  {
+    Ok(h) ? Base::set_color(h, c) : void();
+  }
+  void set_color(FH h, const OpenMesh::Vec4uc& c) override
+  {
+    Ok(h) ? Base::set_color(h, c) : void();
+  }
+  void set_color(FH h, const OpenMesh::Vec3f& c) override
+  {
+    Ok(h) ? Base::set_color(h, c) : void();
+  }
+  void set_color(FH h, const OpenMesh::Vec4f& c) override
+  {
+    Ok(h) ? Base::set_color(h, c) : void();
+  }
+  void set_status(FH h, const Status& s) override { Ok(h) ? Base::set_status(h, s) : void(); }
+  void add_face_texcoords(FH h, VH v, const std::vector<OpenMesh::Vec2f>& t) override
+  {
+    Ok(h) && Ok(v) ? Base::add_face_texcoords(h, v, t) : void();
+  }
+  void add_face_texcoords(FH h, VH v, const std::vector<OpenMesh::Vec3f>& t) override
+  {
+    Ok(h) && Ok(v) ? Base::add_face_texcoords(h, v, t) : void();
+  }
+  void set_face_texindex(FH h, int id) override { Ok(h) ? Base::set_face_texindex(h, id) : void(); }
+
+private:
+  Mesh& M;
+};
 
 std::string Extension(const std::string& name)
 {
@@ -73,10 +208,13 @@ bool BinarySTLComplete(const std::string& name, std::string& why)
 // The vertex and face counts an ASCII OFF header announces (-1: not found).
 void OFFCounts(const std::string& name, long long& vertices, long long& faces)
 {
+  // The keyword is [ST][C][N][4][n]OFF; the counts follow on its line or the
+  // next non-comment line. Anything else leaves both at -1.
   vertices = faces = -1;
   std::ifstream in(name);
   std::string line;
   bool keyword = false;
+  static const std::regex offKeyword("^(ST)?C?N?4?n?OFF$");
   while (std::getline(in, line))
   {
     const size_t hash = line.find('#');
@@ -90,26 +228,166 @@ void OFFCounts(const std::string& name, long long& vertices, long long& faces)
     {
       continue;
     }
-    if (!keyword && first.find("OFF") != std::string::npos)
+    if (!keyword)
     {
+      if (!std::regex_match(first, offKeyword))
+      {
+        return;
+      }
       keyword = true;
       if (line.find("BINARY") != std::string::npos)
       {
         return; // binary OFF: OpenMesh checks its own sizes
       }
-      std::string rest;
-      std::getline(words, rest);
-      std::istringstream counts(rest);
-      if (counts >> vertices >> faces)
+      long long v = -1, f = -1;
+      if (words >> v >> f)
       {
+        vertices = v;
+        faces = f;
         return;
       }
       continue;
     }
     std::istringstream counts(line);
-    counts >> vertices >> faces;
+    long long v = -1, f = -1;
+    if (counts >> v >> f)
+    {
+      vertices = v;
+      faces = f;
+    }
     return;
   }
+}
+
+// Debian's OpenMesh is built with assertions, and its OBJ reader asserts
+// (aborting the program) on a face whose tokens yield no vertex ("f //1"),
+// and indexes out of range with index 0 or one beyond the vertices read so
+// far (found by FuzzOpenMeshReader). Check every face line first: each
+// token is v, v/t, v//n or v/t/n with nonzero indices (negative: relative)
+// that refer to elements already defined.
+bool ValidOBJFaces(const std::string& name, std::string& why)
+{
+  std::ifstream in(name, std::ios::binary);
+  std::string line;
+  long long vertices = 0, texcoords = 0, normals = 0, number = 0;
+  auto valid = [](const std::string& text, long long count)
+  {
+    if (text.empty())
+    {
+      return false;
+    }
+    char* end = nullptr;
+    const long long index = std::strtoll(text.c_str(), &end, 10);
+    return *end == '\0' && index != 0 && index <= count && -index <= count;
+  };
+  while (std::getline(in, line))
+  {
+    ++number;
+    std::istringstream words(line);
+    std::string keyword;
+    if (!(words >> keyword))
+    {
+      continue;
+    }
+    if (keyword == "v")
+    {
+      ++vertices;
+    }
+    else if (keyword == "vt")
+    {
+      ++texcoords;
+    }
+    else if (keyword == "vn")
+    {
+      ++normals;
+    }
+    else if (keyword == "f")
+    {
+      std::string token;
+      int corners = 0;
+      while (words >> token)
+      {
+        const size_t slash = token.find('/');
+        const size_t slash2 = slash == std::string::npos ? slash : token.find('/', slash + 1);
+        const std::string v = token.substr(0, slash);
+        const std::string t = slash == std::string::npos
+          ? std::string()
+          : token.substr(slash + 1, slash2 == std::string::npos ? slash2 : slash2 - slash - 1);
+        const std::string n =
+          slash2 == std::string::npos ? std::string() : token.substr(slash2 + 1);
+        if (!valid(v, vertices) || (!t.empty() && !valid(t, texcoords)) ||
+          (!n.empty() && !valid(n, normals)) ||
+          (slash != std::string::npos && slash2 == std::string::npos && t.empty()))
+        {
+          why = "face line " + std::to_string(number) + " has the corner \"" + token +
+            "\", which names no vertex defined before it";
+          return false;
+        }
+        ++corners;
+      }
+      if (corners < 3)
+      {
+        why = "face line " + std::to_string(number) + " has fewer than three corners";
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+// OpenMesh reserves memory for the element counts a header announces before
+// it reads a single element; a damaged header can ask for gigabytes (found by
+// FuzzOpenMeshReader). Check the counts against the file size first: an
+// ASCII OFF vertex takes at least 6 bytes ("0 0 0\n") and a face 8, an OM
+// vertex at least 12 (its position) and a face or edge at least one.
+bool PlausibleCounts(const std::string& name, const std::string& ext, std::string& why)
+{
+  std::ifstream in(name, std::ios::binary | std::ios::ate);
+  const long long size = static_cast<long long>(in.tellg());
+  if (ext == "off")
+  {
+    std::string head(64, '\0');
+    in.seekg(0);
+    in.read(&head[0], 64);
+    if (head.find("BINARY") != std::string::npos)
+    {
+      return true; // binary OFF: the truncation check after reading applies
+    }
+    long long vertices = -1, faces = -1;
+    OFFCounts(name, vertices, faces);
+    if (vertices < 0 || faces < 0)
+    {
+      why = "its header has no vertex and face counts";
+      return false;
+    }
+    if (vertices > size / 6 || faces > size / 8)
+    {
+      why = "its header announces " + std::to_string(vertices) + " vertices and " +
+        std::to_string(faces) + " faces, more than " + std::to_string(size) + " bytes can hold";
+      return false;
+    }
+  }
+  else if (ext == "om" && size >= 16)
+  {
+    unsigned char header[16];
+    in.seekg(0);
+    in.read(reinterpret_cast<char*>(header), 16);
+    auto count = [&](int at)
+    {
+      return static_cast<long long>(header[at]) | (static_cast<long long>(header[at + 1]) << 8) |
+        (static_cast<long long>(header[at + 2]) << 16) |
+        (static_cast<long long>(header[at + 3]) << 24);
+    };
+    const long long vertices = count(4), faces = count(8), edges = count(12);
+    if (vertices * 12 > size || faces > size || edges > size)
+    {
+      why = "its header announces " + std::to_string(vertices) + " vertices, " +
+        std::to_string(faces) + " faces and " + std::to_string(edges) + " edges, more than " +
+        std::to_string(size) + " bytes can hold";
+      return false;
+    }
+  }
+  return true;
 }
 } // namespace
 
@@ -162,6 +440,12 @@ int vtkOpenMeshReader::RequestData(vtkInformation*,
     vtkErrorMacro(<< this->FileName << " is truncated: " << why << ".");
     return 1;
   }
+  if (!PlausibleCounts(this->FileName, Extension(this->FileName), why) ||
+    (Extension(this->FileName) == "obj" && !ValidOBJFaces(this->FileName, why)))
+  {
+    vtkErrorMacro(<< this->FileName << " is damaged: " << why << ".");
+    return 1;
+  }
 
   Mesh mesh;
   mesh.request_vertex_normals();
@@ -174,7 +458,9 @@ int vtkOpenMeshReader::RequestData(vtkInformation*,
   bool ok = false;
   try
   {
-    ok = OpenMesh::IO::read_mesh(mesh, this->FileName, options);
+    mesh.clear();
+    GuardedImporter importer(mesh);
+    ok = OpenMesh::IO::IOManager().read(this->FileName, importer, options);
   }
   catch (const std::exception& e)
   {

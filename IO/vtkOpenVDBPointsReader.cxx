@@ -21,7 +21,7 @@
 #include "vtkTypeInt64Array.h"
 #include "vtkUnsignedCharArray.h"
 
-#include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/points/AttributeArrayString.h>
 #include <openvdb/points/AttributeGroup.h>
@@ -322,36 +322,34 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
   }
   openvdb::initialize();
 
-  // Read the point grids, whole (no delayed loading: damage shows now).
+  // Read the point grids, whole. OpenVDB's io::File reads from a stream that
+  // does not report a short read, and loops for a long time over counts that
+  // a damaged file announces (found by FuzzOpenVDBPointsReader); here the
+  // stream throws at the first read past the end or failure instead.
   std::vector<ovp::PointDataGrid::Ptr> grids;
   try
   {
-    openvdb::io::File file(this->FileName);
-    file.open(/*delayLoad=*/false);
-    for (auto name = file.beginName(); name != file.endName(); ++name)
+    std::ifstream in;
+    in.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
+    in.open(this->FileName, std::ios::binary);
+    openvdb::io::Stream stream(in, /*delayLoad=*/false);
+    openvdb::GridPtrVecPtr all = stream.getGrids();
+    for (const openvdb::GridBase::Ptr& base : *all)
     {
-      if (!this->GridName.empty() && name.gridName() != this->GridName)
-      {
-        continue;
-      }
-      openvdb::GridBase::ConstPtr meta = file.readGridMetadata(name.gridName());
-      if (!meta || meta->type() != ovp::PointDataGrid::gridType())
-      {
-        continue;
-      }
-      openvdb::GridBase::Ptr base = file.readGrid(name.gridName());
       ovp::PointDataGrid::Ptr grid = openvdb::gridPtrCast<ovp::PointDataGrid>(base);
-      if (grid)
+      if (grid && (this->GridName.empty() || grid->getName() == this->GridName))
       {
         grids.push_back(grid);
-        this->PointGridNames.push_back(name.gridName());
+        this->PointGridNames.push_back(grid->getName());
       }
     }
-    file.close();
   }
   catch (const std::exception& e)
   {
-    vtkErrorMacro(<< "Cannot read \"" << this->FileName << "\": " << e.what());
+    vtkErrorMacro(<< "Cannot read \"" << this->FileName << "\": " << e.what()
+                  << (dynamic_cast<const std::ios::failure*>(&e)
+                         ? " (the file ends early or is damaged)"
+                         : ""));
     this->PointGridNames.clear();
     return 1;
   }

@@ -7,9 +7,11 @@
  * Houdini, Blender and many simulation codes store particles as OpenVDB
  * point data grids: positions quantised inside voxels, and any number of
  * typed attributes, groups and strings. VTK 9.1 has no reader for them.
- * This one opens the file through openvdb::io::File (no delayed loading, so
- * a damaged file fails here and not later), and turns every PointDataGrid,
- * or the one named by GridName, into points with one vertex cell each:
+ * This one reads the whole file through openvdb::io::Stream from a stream
+ * that throws at the first short read (no delayed loading, so a damaged file
+ * fails here and not later; OpenVDB's own file reader can loop for minutes
+ * over a damaged count), and turns every PointDataGrid, or the one named by
+ * GridName, into points with one vertex cell each:
  *
  * - positions in world space, in double (the grid's transform, then the
  *   decoded voxel offset: fixed-point and truncated codecs are undone);
