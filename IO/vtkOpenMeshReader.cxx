@@ -56,6 +56,15 @@ public:
   bool Ok(EH h) const { return h.is_valid() && static_cast<size_t>(h.idx()) < M.n_edges(); }
   bool Ok(FH h) const { return h.is_valid() && static_cast<size_t>(h.idx()) < M.n_faces(); }
 
+  FH add_face(const VHandles& corners) override
+  {
+    ++this->FaceAttempts;
+    const FH face = Base::add_face(corners);
+    this->RejectedFaces += face.is_valid() ? 0 : 1;
+    return face;
+  }
+  long long FaceAttempts = 0;  ///< faces the file gave, accepted or not
+  long long RejectedFaces = 0; ///< faces OpenMesh refused to add
   HH add_edge(VH a, VH b) override { return Ok(a) && Ok(b) ? Base::add_edge(a, b) : HH(); }
   FH add_face(HH h) override { return Ok(h) ? Base::add_face(h) : FH(); }
   void set_point(VH h, const OpenMesh::Vec3f& p) override
@@ -456,10 +465,9 @@ int vtkOpenMeshReader::RequestData(vtkInformation*,
   options += OpenMesh::IO::Options::VertexColor;
   options += OpenMesh::IO::Options::FaceColor;
   bool ok = false;
+  GuardedImporter importer(mesh);
   try
   {
-    mesh.clear();
-    GuardedImporter importer(mesh);
     ok = OpenMesh::IO::IOManager().read(this->FileName, importer, options);
   }
   catch (const std::exception& e)
@@ -479,14 +487,20 @@ int vtkOpenMeshReader::RequestData(vtkInformation*,
     long long vertices = -1, faces = -1;
     OFFCounts(this->FileName, vertices, faces);
     if (vertices >= 0 &&
-      (static_cast<long long>(mesh.n_vertices()) < vertices ||
-        static_cast<long long>(mesh.n_faces()) < faces))
+      (static_cast<long long>(mesh.n_vertices()) < vertices || importer.FaceAttempts < faces))
     {
       vtkErrorMacro(<< this->FileName << " is truncated or corrupt: its header announces "
                     << vertices << " vertices and " << faces << " faces, OpenMesh read "
-                    << mesh.n_vertices() << " and " << mesh.n_faces() << ".");
+                    << mesh.n_vertices() << " and " << importer.FaceAttempts << ".");
       return 1;
     }
+  }
+  if (importer.RejectedFaces > 0)
+  {
+    vtkWarningMacro(<< this->FileName << ": OpenMesh rejected " << importer.RejectedFaces << " of "
+                    << importer.FaceAttempts
+                    << " faces (an invalid or repeated vertex, or a non-manifold edge); they are "
+                       "left out.");
   }
 
   const vtkIdType n = static_cast<vtkIdType>(mesh.n_vertices());
