@@ -358,9 +358,31 @@ bool PlausibleCounts(const std::string& name, const std::string& ext, std::strin
     std::string head(64, '\0');
     in.seekg(0);
     in.read(&head[0], 64);
-    if (head.find("BINARY") != std::string::npos)
+    const size_t eol = head.find('\n');
+    if (head.substr(0, eol).find("BINARY") != std::string::npos)
     {
-      return true; // binary OFF: the truncation check after reading applies
+      // Binary OFF: three int32 counts (vertices, faces, edges) after the
+      // keyword line; a vertex takes 12 bytes, a face at least 4.
+      unsigned char counts[8] = { 0 };
+      in.clear();
+      in.seekg(eol == std::string::npos ? 0 : static_cast<std::streamoff>(eol + 1));
+      in.read(reinterpret_cast<char*>(counts), 8);
+      auto count = [&](int at)
+      {
+        return static_cast<long long>(static_cast<int32_t>(static_cast<uint32_t>(counts[at]) |
+          (static_cast<uint32_t>(counts[at + 1]) << 8) |
+          (static_cast<uint32_t>(counts[at + 2]) << 16) |
+          (static_cast<uint32_t>(counts[at + 3]) << 24)));
+      };
+      const long long vertices = count(0), faces = count(4);
+      if (eol == std::string::npos || !in || vertices < 0 || faces < 0 || vertices > size / 12 ||
+        faces > size / 4)
+      {
+        why = "its binary header announces " + std::to_string(vertices) + " vertices and " +
+          std::to_string(faces) + " faces, which " + std::to_string(size) + " bytes cannot hold";
+        return false;
+      }
+      return true;
     }
     long long vertices = -1, faces = -1;
     OFFCounts(name, vertices, faces);

@@ -207,11 +207,26 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
     return 1;
   }
   const size_t n = static_cast<size_t>(cloud.width) * cloud.height;
-  if (status < 0 || cloud.data.size() < n * cloud.point_step)
+  if (status < 0 || cloud.point_step == 0 || n > cloud.data.size() / cloud.point_step)
   {
     vtkErrorMacro(<< "Cannot read '" << this->FileName
                   << "': the file is corrupt or truncated (PCL status " << status << ").");
     return 1;
+  }
+  // Every field must lie inside a point's record (found by FuzzPCDReader: a
+  // damaged SIZE line put the colour's 4 bytes past the last point).
+  for (const auto& f : cloud.fields)
+  {
+    const size_t bytes = static_cast<size_t>(TypeSize(f.datatype)) * f.count;
+    if (static_cast<size_t>(f.offset) + std::max<size_t>(bytes, 1) > cloud.point_step ||
+      ((f.name == "rgb" || f.name == "rgba") && bytes < 4))
+    {
+      vtkErrorMacro(<< "Cannot read '" << this->FileName << "': the field '" << f.name
+                    << "' (offset " << f.offset << ", " << bytes
+                    << " bytes) does not fit a point's " << cloud.point_step
+                    << " bytes: the header is corrupt.");
+      return 1;
+    }
   }
   const pcl::PCLPointField* fx = Find(cloud, "x");
   const pcl::PCLPointField* fy = Find(cloud, "y");
