@@ -1,0 +1,108 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file psOpenVDBMetaballs.h
+ * @brief Metaball and particle level sets through OpenVDB (private to PointSurfaces::IO).
+ *
+ * Shared by vtkMetaballLevelSetWriter and vtkOpenVDBParticleMesher:
+ *
+ * - MetaballLevelSet: the metaball field of psMetaball as a narrow-band
+ *   level set (kernels splatted into sparse per-thread grids, the
+ *   first-order distance (T - sum) / |grad sum|, levelSetRebuild);
+ * - SphereLevelSet: OpenVDB's own ParticlesToLevelSet, a union of spheres;
+ * - MeshLevelSet: volumeToMesh, with normals from the level set's gradient.
+ *
+ * Grids live in a frame whose origin is `centre` (scale-only transform):
+ * OpenVDB meshes in float world coordinates, so large offsets are removed
+ * first and put back in double on the way out.
+ */
+#ifndef psOpenVDBMetaballs_h
+#define psOpenVDBMetaballs_h
+
+#include "psMetaball.h"
+#include "vtkSmartPointer.h"
+
+#include <openvdb/openvdb.h>
+
+#include <string>
+#include <vector>
+
+class vtkPointSet;
+class vtkPolyData;
+
+namespace pointsurfaces
+{
+/** A vtkPointSet's balls as spans for psMetaball, owning their storage. */
+struct BallArrays
+{
+  std::vector<double> Centres, Radii, Strengths;
+  MetaballSet Set;
+  bool MissingStrengths = false; ///< a strength array was named but not found
+};
+/**
+ * Centres, radii (the array's first component, or `radius`, times `scale`)
+ * and strengths (when `strengthName` is not empty) of `input`.
+ */
+BallArrays ExtractBalls(vtkPointSet* input,
+  const std::string& radiusName,
+  double radius,
+  double scale,
+  const std::string& strengthName,
+  MetaballKernel kernel,
+  double threshold);
+
+/** The balls usable in `set` (ValidBall), their bounds and smallest radius and sum of R^3. */
+struct BallSummary
+{
+  std::vector<long long> Valid;
+  long long Invalid = 0;
+  double Lo[3] = { 0, 0, 0 }, Hi[3] = { 0, 0, 0 };
+  double MinRadius = 0.0;
+  double SumCubedRadius = 0.0;
+  openvdb::Vec3d Centre{ 0.0 }; ///< the bounds' centre, rounded to `voxel` by CentreOn
+  void CentreOn(double voxel);
+};
+BallSummary SummariseBalls(const MetaballSet& set);
+
+/**
+ * The voxel size: `requested`, or a tenth of the smallest radius, raised to
+ * keep the sampled voxels (sum of ball volumes / voxel^3) under
+ * `maximumVoxels`. Returns false (with `error`) when a requested size is
+ * beyond the budget or the span beyond 32-bit voxel coordinates; `warning`
+ * is set when an automatic size was raised.
+ */
+bool ChooseVoxel(const BallSummary& balls,
+  double requested,
+  double maximumVoxels,
+  double& voxel,
+  std::string& warning,
+  std::string& error);
+
+/** The metaball surface f = 0 as a level set, `halfWidth` voxels each side. */
+openvdb::FloatGrid::Ptr MetaballLevelSet(const MetaballSet& set,
+  const BallSummary& balls,
+  double voxel,
+  double halfWidth);
+
+/**
+ * OpenVDB's ParticlesToLevelSet: the union of spheres of radius
+ * `sphereRadius[i]` (world units) around the valid balls. `tooSmall`
+ * receives the number of spheres under 1.5 voxels, which OpenVDB skips.
+ */
+openvdb::FloatGrid::Ptr SphereLevelSet(const MetaballSet& set,
+  const BallSummary& balls,
+  const std::vector<double>& sphereRadius,
+  double voxel,
+  double halfWidth,
+  size_t& tooSmall);
+
+/** volumeToMesh at the zero crossing, moved back by `centre`, with point normals. */
+vtkSmartPointer<vtkPolyData> MeshLevelSet(const openvdb::FloatGrid& grid,
+  const openvdb::Vec3d& centre,
+  double adaptivity);
+
+/** The radius at which a lone ball of radius 1 and strength 1 reaches T (0 when it never does). */
+double LoneBallIsoRadius(MetaballKernel kernel, double threshold);
+} // namespace pointsurfaces
+
+#endif

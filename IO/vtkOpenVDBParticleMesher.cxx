@@ -1,0 +1,145 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkOpenVDBParticleMesher.h"
+
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointSet.h"
+#include "vtkPolyData.h"
+
+#include "psOpenVDBMetaballs.h"
+
+#include <chrono>
+#include <cmath>
+
+vtkStandardNewMacro(vtkOpenVDBParticleMesher);
+
+//------------------------------------------------------------------------------
+vtkOpenVDBParticleMesher::vtkOpenVDBParticleMesher() = default;
+
+//------------------------------------------------------------------------------
+int vtkOpenVDBParticleMesher::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkOpenVDBParticleMesher::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  this->LevelSetTime = this->MeshTime = this->UsedVoxelSize = 0.0;
+  this->NumberOfInvalidBalls = this->NumberOfSkippedParticles = 0;
+  if (!input || input->GetNumberOfPoints() == 0)
+  {
+    vtkWarningMacro(<< "No balls in the input: the mesh is empty.");
+    return 1;
+  }
+  const auto kernel = static_cast<pointsurfaces::MetaballKernel>(this->Kernel);
+  if (!std::isfinite(this->Threshold) || this->Threshold <= 0.0)
+  {
+    vtkErrorMacro(<< "The threshold must be a positive number, not " << this->Threshold << ".");
+    return 1;
+  }
+  pointsurfaces::BallArrays arrays = pointsurfaces::ExtractBalls(input,
+    this->RadiusArrayName,
+    this->Radius,
+    this->RadiusScale,
+    this->Method == MetaballField ? this->StrengthArrayName : "",
+    kernel,
+    this->Threshold);
+  if (arrays.MissingStrengths)
+  {
+    vtkWarningMacro(<< "No point array \"" << this->StrengthArrayName
+                    << "\" for the strengths: all balls have strength 1.");
+  }
+  pointsurfaces::BallSummary balls = pointsurfaces::SummariseBalls(arrays.Set);
+  this->NumberOfInvalidBalls = static_cast<vtkIdType>(balls.Invalid);
+  if (balls.Invalid > 0)
+  {
+    vtkWarningMacro(<< balls.Invalid << " of " << arrays.Set.Count
+                    << " balls have a NaN or infinite centre, radius or strength, or a radius "
+                       "<= 0: they are skipped.");
+  }
+  if (balls.Valid.empty())
+  {
+    vtkWarningMacro(<< "No valid ball: the mesh is empty.");
+    return 1;
+  }
+  double voxel = 0.0;
+  std::string warning, error;
+  if (!pointsurfaces::ChooseVoxel(
+        balls, this->VoxelSize, this->MaximumVoxels, voxel, warning, error))
+  {
+    vtkErrorMacro(<< "No mesh: " << error << ".");
+    return 1;
+  }
+  if (!warning.empty())
+  {
+    vtkWarningMacro(<< "A" << warning.substr(1) << ".");
+  }
+  this->UsedVoxelSize = voxel;
+  balls.CentreOn(voxel);
+
+  const double halfWidth = 3.0;
+  try
+  {
+    const auto start = std::chrono::steady_clock::now();
+    openvdb::FloatGrid::Ptr levelSet;
+    if (this->Method == MetaballField)
+    {
+      levelSet = pointsurfaces::MetaballLevelSet(arrays.Set, balls, voxel, halfWidth);
+    }
+    else
+    {
+      // Each sphere has the radius at which its lone ball reaches T.
+      const double iso = pointsurfaces::LoneBallIsoRadius(kernel, this->Threshold);
+      std::vector<double> radius(arrays.Radii);
+      for (double& r : radius)
+      {
+        r *= iso;
+      }
+      size_t skipped = 0;
+      levelSet =
+        pointsurfaces::SphereLevelSet(arrays.Set, balls, radius, voxel, halfWidth, skipped);
+      this->NumberOfSkippedParticles = static_cast<vtkIdType>(skipped);
+      if (skipped > 0)
+      {
+        vtkWarningMacro(<< skipped
+                        << " spheres are under 1.5 voxels, which OpenVDB's ParticlesToLevelSet "
+                           "skips: make VoxelSize smaller.");
+      }
+    }
+    const auto meshed = std::chrono::steady_clock::now();
+    output->ShallowCopy(pointsurfaces::MeshLevelSet(*levelSet, balls.Centre, this->Adaptivity));
+    const auto end = std::chrono::steady_clock::now();
+    this->LevelSetTime = std::chrono::duration<double, std::milli>(meshed - start).count();
+    this->MeshTime = std::chrono::duration<double, std::milli>(end - meshed).count();
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "OpenVDB failed: " << e.what());
+    output->Initialize();
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenVDBParticleMesher::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Method: " << (this->Method == Spheres ? "Spheres" : "MetaballField") << "\n";
+  os << indent << "Kernel: " << this->Kernel << "\n";
+  os << indent << "Threshold: " << this->Threshold << "\n";
+  os << indent << "RadiusArrayName: " << this->RadiusArrayName << "\n";
+  os << indent << "Radius: " << this->Radius << "\n";
+  os << indent << "RadiusScale: " << this->RadiusScale << "\n";
+  os << indent << "StrengthArrayName: " << this->StrengthArrayName << "\n";
+  os << indent << "VoxelSize: " << this->VoxelSize << "\n";
+  os << indent << "Adaptivity: " << this->Adaptivity << "\n";
+  os << indent << "MaximumVoxels: " << this->MaximumVoxels << "\n";
+}
