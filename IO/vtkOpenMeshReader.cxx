@@ -215,11 +215,21 @@ bool BinarySTLComplete(const std::string& name, std::string& why)
   return true;
 }
 // The vertex and face counts an ASCII OFF header announces (-1: not found).
-void OFFCounts(const std::string& name, long long& vertices, long long& faces)
+void OFFCounts(const std::string& name,
+  long long& vertices,
+  long long& faces,
+  long long* nextVertices = nullptr,
+  long long* nextFaces = nullptr)
 {
   // The keyword is [ST][C][N][4][n]OFF; the counts follow on its line or the
-  // next non-comment line. Anything else leaves both at -1.
+  // next non-comment line. Anything else leaves both at -1. The counts on
+  // the line after the keyword line are also returned (next*), since
+  // OpenMesh may read those even when the keyword line has some.
   vertices = faces = -1;
+  long long ignored[2];
+  long long& afterV = nextVertices ? *nextVertices : ignored[0];
+  long long& afterF = nextFaces ? *nextFaces : ignored[1];
+  afterV = afterF = -1;
   std::ifstream in(name);
   std::string line;
   bool keyword = false;
@@ -253,7 +263,6 @@ void OFFCounts(const std::string& name, long long& vertices, long long& faces)
       {
         vertices = v;
         faces = f;
-        return;
       }
       continue;
     }
@@ -261,8 +270,13 @@ void OFFCounts(const std::string& name, long long& vertices, long long& faces)
     long long v = -1, f = -1;
     if (counts >> v >> f)
     {
-      vertices = v;
-      faces = f;
+      afterV = v;
+      afterF = f;
+      if (vertices < 0)
+      {
+        vertices = v;
+        faces = f;
+      }
     }
     return;
   }
@@ -384,14 +398,14 @@ bool PlausibleCounts(const std::string& name, const std::string& ext, std::strin
       }
       return true;
     }
-    long long vertices = -1, faces = -1;
-    OFFCounts(name, vertices, faces);
+    long long vertices = -1, faces = -1, nextVertices = -1, nextFaces = -1;
+    OFFCounts(name, vertices, faces, &nextVertices, &nextFaces);
     if (vertices < 0 || faces < 0)
     {
       why = "its header has no vertex and face counts";
       return false;
     }
-    if (vertices > size / 6 || faces > size / 8)
+    if (vertices > size / 6 || faces > size / 8 || nextVertices > size / 6 || nextFaces > size / 8)
     {
       why = "its header announces " + std::to_string(vertices) + " vertices and " +
         std::to_string(faces) + " faces, more than " + std::to_string(size) + " bytes can hold";

@@ -25,6 +25,7 @@
 #include <cstring>
 #include <exception>
 #include <fstream>
+#include <sstream>
 #include <vector>
 
 vtkStandardNewMacro(vtkPCDReader);
@@ -82,6 +83,73 @@ double ReadScalar(const std::uint8_t* p, std::uint8_t type)
   }
 }
 
+// PCL's readHeader already sizes the data for WIDTH x HEIGHT points of
+// SIZE x COUNT bytes, so a damaged header makes it allocate gigabytes (found
+// by FuzzPCDReader). Read those lines first, as text, and check them
+// against the file size: an ASCII point takes at least one byte, a binary
+// one its point step, and LZF expands at most about 100-fold.
+std::string CheckHeaderCounts(const std::string& fileName)
+{
+  std::ifstream in(fileName, std::ios::binary | std::ios::ate);
+  const double fileSize = static_cast<double>(in.tellg());
+  in.seekg(0);
+  std::string line, data;
+  double width = -1, height = 1, pointsLine = -1, sizeSum = 0, countSum = 0;
+  // PCL does not always stop at a damaged DATA line: take the largest counts
+  // of any header-like line in the first 10 000 lines.
+  for (int lines = 0; lines < 10000 && std::getline(in, line); ++lines)
+  {
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    double value = -1;
+    if (key == "WIDTH" && words >> value)
+    {
+      width = std::max(width, value);
+    }
+    else if (key == "POINTS" && words >> value)
+    {
+      pointsLine = std::max(pointsLine, value);
+    }
+    else if (key == "HEIGHT" && words >> value)
+    {
+      height = std::max(height, value);
+    }
+    else if (key == "SIZE" || key == "COUNT")
+    {
+      // The largest SIZE and COUNT of any field bound a point's step and its
+      // number of values from above, whatever lines PCL pairs up.
+      double v = 0;
+      double sum = 0;
+      while (words >> v)
+      {
+        sum += std::abs(v);
+      }
+      (key == "SIZE" ? sizeSum : countSum) = std::max(key == "SIZE" ? sizeSum : countSum, sum);
+    }
+    else if (key == "DATA" && data.empty())
+    {
+      words >> data;
+    }
+  }
+  const double points = std::max({ width * height, pointsLine, 0.0 });
+  // At least one character a value in ASCII; SIZE x COUNT bytes a point in
+  // binary (bounded below by the largest of the two sums).
+  const double values = points * std::max(countSum, 1.0);
+  const double bytes = points * std::max({ sizeSum, countSum, 1.0 });
+  const double least = data == "ascii" || data.empty() ? values
+    : data == "binary"                                 ? bytes
+                                                       : bytes / 100.0;
+  if (least > fileSize)
+  {
+    return "its header announces " + std::to_string(static_cast<long long>(points)) + " points (" +
+      std::to_string(static_cast<long long>(countSum)) + " values, " +
+      std::to_string(static_cast<long long>(sizeSum)) + " bytes a field), which " +
+      std::to_string(static_cast<long long>(fileSize)) + " bytes of " + data + " data cannot hold";
+  }
+  return std::string();
+}
+
 // PCL 1.13 trusts the sizes in a binary file and crashes on a truncated one:
 // check them against the file size before the data is read.
 std::string CheckDataSize(const std::string& fileName)
@@ -91,6 +159,11 @@ std::string CheckDataSize(const std::string& fileName)
   Eigen::Quaternionf orientation;
   int version = 0, dataType = 0;
   unsigned int dataIndex = 0;
+  const std::string counts = CheckHeaderCounts(fileName);
+  if (!counts.empty())
+  {
+    return counts;
+  }
   pcl::PCDReader reader;
   if (reader.readHeader(fileName, header, origin, orientation, version, dataType, dataIndex) < 0)
   {
