@@ -13,14 +13,17 @@ and solvated-protein sets of ../shared/data) the same window draws:
 - the sample-and-contour peer: the same field (Wyvill's kernel, T = 0.5)
   sampled on an n^3 grid with numpy, vtkFlyingEdges3D at T, and an ordinary
   mapper; its dynamic-frame time is sampling + contouring + drawing;
+- OpenVDB's particles-to-level-set plus mesh (vtkOpenVDBParticleMesher,
+  Spheres: the union of each ball's lone iso-sphere) and the exact metaball
+  field through an OpenVDB level set (MetaballField), meshed by
+  volumeToMesh, at voxels of R/4 and R/8 (coarsened to at most 5e7 sampled
+  voxels); its dynamic-frame time is level set + mesh + drawing;
 - vtkOpenGLFluidMapper (screen-space particle surfaces), time only.
 
 Each image's RMSE against the reference is recorded, so that the methods can
 be compared at equal error. Particles move every frame in a dynamic scene,
 so the peer's whole pipeline is part of its frame. CSV goes to stdout and
-<out>/metaballs.csv, plots to <out>/metaballs_<input>.png. OpenVDB's
-particles-to-level-set is not run: Debian's libopenvdb-dev is not among the
-project's dependencies yet.
+<out>/metaballs.csv, plots to <out>/metaballs_<input>.png.
 """
 import argparse
 import csv
@@ -32,7 +35,7 @@ import time
 import numpy as np
 
 import pointsurfaces  # noqa: F401  (the EGL window factory)
-from pointsurfaces import vtkMetaballMapper
+from pointsurfaces import vtkMetaballMapper, vtkOpenVDBParticleMesher
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkFloatArray, vtkPoints, vtkUnsignedCharArray
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
@@ -231,7 +234,7 @@ def main():
                                  pairs=mapper.GetNumberOfPairs(),
                                  incomplete=mapper.GetNumberOfIncompleteRays(),
                                  rmse="%.4f" % np.sqrt(np.mean((image - reference) ** 2))))
-            grids = (32,) if args.smoke else ((64, 128) if n > 200000 else (64, 128, 256))
+            grids = (32,) if args.smoke else ((64, 128) if n > 50000 else (64, 128, 256))
             for grid in grids:
                 t0 = time.perf_counter()
                 image_data = sample_field(centres, radii, grid, 0.5)
@@ -260,6 +263,37 @@ def main():
                                  render_ms="%.1f" % draw_ms, pairs=surface.GetNumberOfCells(),
                                  incomplete=0,
                                  rmse="%.4f" % np.sqrt(np.mean((image - reference) ** 2))))
+            # OpenVDB: particles (or the field) to a level set, then a mesh.
+            median = float(np.median(radii))
+            budget = (4.0 / 3.0 * np.pi * float(np.sum(radii ** 3)) / 5e7) ** (1.0 / 3.0)
+            fractions = (4,) if args.smoke else (4, 8)
+            for method, label_method in ((vtkOpenVDBParticleMesher.Spheres, "openvdb-spheres"),
+                                         (vtkOpenVDBParticleMesher.MetaballField, "openvdb-field")):
+                for fraction in fractions:
+                    voxel = max(median / fraction, budget)
+                    mesher = vtkOpenVDBParticleMesher()
+                    mesher.SetInputData(poly)
+                    mesher.SetMethod(method)
+                    mesher.SetVoxelSize(voxel)
+                    t0 = time.perf_counter()
+                    mesher.Update()
+                    build_ms = 1000.0 * (time.perf_counter() - t0)
+                    surface = vtkPolyData()
+                    surface.ShallowCopy(mesher.GetOutput())
+                    mesh_mapper = vtkPolyDataMapper()
+                    mesh_mapper.SetInputData(surface)
+                    mesh_mapper.ScalarVisibilityOff()
+                    actor = material(vtkActor())
+                    actor.SetMapper(mesh_mapper)
+                    scene.show(actor, bounds)
+                    image = scene.image()
+                    draw_ms = scene.frame_ms(frames, before=surface.Modified)
+                    rows.append(dict(input=name, balls=n, size=label, method=label_method,
+                                     setting="voxel R/%d" % round(median / voxel),
+                                     frame_ms="%.1f" % (build_ms + draw_ms),
+                                     build_ms="%.1f" % build_ms, render_ms="%.1f" % draw_ms,
+                                     pairs=surface.GetNumberOfCells(), incomplete=0,
+                                     rmse="%.4f" % np.sqrt(np.mean((image - reference) ** 2))))
             fluid = vtkOpenGLFluidMapper()
             fluid.SetInputData(poly)
             fluid.SetParticleRadius(float(np.median(radii)) * 0.5)
@@ -290,7 +324,8 @@ def main():
     import matplotlib.pyplot as plt
     for name in dict.fromkeys(r["input"] for r in rows):
         fig, ax = plt.subplots(figsize=(6.5, 4))
-        for method, marker in (("metaballs", "o"), ("sample+flying-edges", "s")):
+        for method, marker in (("metaballs", "o"), ("sample+flying-edges", "s"),
+                               ("openvdb-spheres", "^"), ("openvdb-field", "v")):
             sel = [r for r in rows if r["input"] == name and r["method"] == method]
             if sel:
                 ax.scatter([float(r["frame_ms"]) for r in sel], [float(r["rmse"]) for r in sel],
