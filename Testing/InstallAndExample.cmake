@@ -1,7 +1,7 @@
 # SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 # SPDX-License-Identifier: BSD-3-Clause
 # Install the build tree into a scratch prefix, build the standalone C++
-# example against the installed CMake package, run it headless, and import
+# examples against the installed CMake package, run them headless, and import
 # the installed Python package with /usr/bin/python3.
 #   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DPREFIX=... -DPYTHON=... -DSITE=... -P InstallAndExample.cmake
 function (run)
@@ -12,7 +12,7 @@ function (run)
   endif ()
 endfunction ()
 
-file(REMOVE_RECURSE "${PREFIX}" "${PREFIX}-example")
+file(REMOVE_RECURSE "${PREFIX}" "${PREFIX}-example" "${PREFIX}-metaballs")
 run("${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${PREFIX}")
 run("${CMAKE_COMMAND}" -S "${SOURCE_DIR}/Examples/Cxx/RenderScan" -B "${PREFIX}-example"
   -G Ninja -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${PREFIX}")
@@ -21,5 +21,16 @@ run("${PREFIX}-example/RenderScan" "${SOURCE_DIR}/Testing/Data/bunny.vtp" "${PRE
 if (NOT EXISTS "${PREFIX}-example/bunny.png")
   message(FATAL_ERROR "the example wrote no image")
 endif ()
+# The metaball example: PDB atoms to an image and an OpenVDB level set.
+run("${CMAKE_COMMAND}" -S "${SOURCE_DIR}/Examples/Cxx/ParticleMetaballs" -B "${PREFIX}-metaballs"
+  -G Ninja -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${PREFIX}")
+run("${CMAKE_COMMAND}" --build "${PREFIX}-metaballs")
+run("${PREFIX}-metaballs/ParticleMetaballs" "${SOURCE_DIR}/Testing/Data/hemoglobin_chainA.pdb"
+  "${PREFIX}-metaballs/molecule.png" 128 "${PREFIX}-metaballs/molecule.vdb")
+foreach (out IN ITEMS molecule.png molecule.vdb)
+  if (NOT EXISTS "${PREFIX}-metaballs/${out}")
+    message(FATAL_ERROR "the metaball example wrote no ${out}")
+  endif ()
+endforeach ()
 set(ENV{PYTHONPATH} "${PREFIX}/${SITE}")
 run("${PYTHON}" -c "import pointsurfaces, vtkmodules.vtkRenderingCore as rc; pointsurfaces.use_egl(); w = rc.vtkRenderWindow(); assert w.GetClassName() == 'vtkEGLHeadlessRenderWindow', w.GetClassName(); print('installed pointsurfaces from', pointsurfaces.__file__)")
