@@ -15,6 +15,7 @@
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/System/omstream.hh>
 
 #include <algorithm>
 #include <cctype>
@@ -502,6 +503,14 @@ int vtkOpenMeshReader::RequestData(vtkInformation*,
   options += OpenMesh::IO::Options::FaceColor;
   bool ok = false;
   GuardedImporter importer(mesh);
+  // OpenMesh writes a line to its error stream for every face it rejects
+  // (millions for a damaged file); the reader counts them and warns once.
+  struct QuietOpenMesh
+  {
+    bool Saved = ::omerr().is_enabled();
+    QuietOpenMesh() { ::omerr().disable(); }
+    ~QuietOpenMesh() { this->Saved ? ::omerr().enable() : ::omerr().disable(); }
+  } quiet;
   try
   {
     ok = OpenMesh::IO::IOManager().read(this->FileName, importer, options);
