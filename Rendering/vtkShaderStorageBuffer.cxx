@@ -6,6 +6,9 @@
 
 #include "vtkObjectFactory.h"
 
+#include <algorithm>
+#include <atomic>
+
 vtkStandardNewMacro(vtkShaderStorageBuffer);
 
 //------------------------------------------------------------------------------
@@ -22,11 +25,29 @@ vtkShaderStorageBuffer::~vtkShaderStorageBuffer()
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+std::atomic<size_t> SizeLimit{ 0 };
+}
+
 size_t vtkShaderStorageBuffer::GetMaximumSize()
 {
   GLint64 size = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &size);
-  return static_cast<size_t>(size);
+  const size_t limit = SizeLimit.load();
+  return limit > 0 ? std::min(limit, static_cast<size_t>(size)) : static_cast<size_t>(size);
+}
+
+//------------------------------------------------------------------------------
+void vtkShaderStorageBuffer::SetMaximumSizeLimit(size_t bytes)
+{
+  SizeLimit.store(bytes);
+}
+
+//------------------------------------------------------------------------------
+size_t vtkShaderStorageBuffer::GetMaximumSizeLimit()
+{
+  return SizeLimit.load();
 }
 
 //------------------------------------------------------------------------------

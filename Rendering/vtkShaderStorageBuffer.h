@@ -53,8 +53,20 @@ public:
   /** Bind any GL buffer name (for example a VTK VBO) to a storage binding point. */
   static void BindHandle(unsigned int handle, unsigned int index);
 
-  /** The largest storage block the current context allows, in bytes. */
+  /**
+   * The largest storage block allowed, in bytes: the current context's
+   * GL_MAX_SHADER_STORAGE_BLOCK_SIZE, or the limit set below when smaller.
+   */
   static size_t GetMaximumSize();
+
+  /**
+   * Caps every storage buffer at `bytes` (0, the default: no cap beyond the
+   * driver's), process-wide. Tests use it to reach the size limits without
+   * gigabytes of data; an application can use it to leave GPU memory to
+   * others.
+   */
+  static void SetMaximumSizeLimit(size_t bytes);
+  static size_t GetMaximumSizeLimit();
 
   unsigned int GetHandle() const { return this->Handle; }
   size_t GetSize() const { return this->Size; }

@@ -9,7 +9,9 @@
 // - NaN centres, NaN and zero radii: skipped, counted, one warning;
 // - the camera inside a blob, and a ball crossing the near plane: a warning,
 //   and the pixels that start inside are counted;
-// - balls behind the camera: culled and counted, the others drawn.
+// - balls behind the camera: culled and counted, the others drawn;
+// - more balls than a storage buffer may hold (a capped limit): one clear
+//   error and an empty image, then a normal frame once the cap is lifted.
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
@@ -22,6 +24,7 @@
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkShaderStorageBuffer.h"
 #include "vtk_glew.h"
 
 #include "psMetaball.h"
@@ -201,6 +204,37 @@ int TestMetaballMapperBadInput(int, char*[])
     std::cerr << "balls behind the camera: " << coveredBehind << " pixels, "
               << mapper->GetNumberOfCulledBalls() << " culled\n";
     ++failures;
+  }
+  // More balls than a storage buffer holds: a clear error, an empty but valid
+  // image. The cap stands in for a driver limit (about 2 GB on llvmpipe,
+  // which would take 130M balls to reach).
+  {
+    std::vector<double> many;
+    for (int i = 0; i < 5000; ++i)
+    {
+      many.insert(many.end(), { 0.01 * (i % 70), 0.01 * (i / 70), 0.0, 0.05 });
+    }
+    mapper->SetInputDataObject(Balls(many));
+    look(0.35, 0.35, 0, 3.0);
+    vtkShaderStorageBuffer::SetMaximumSizeLimit(16 * 4096); // 4 096 balls of 16 bytes
+    Warnings = Errors = 0;
+    const int coveredOver = render("beyond the buffer limit");
+    vtkShaderStorageBuffer::SetMaximumSizeLimit(0);
+    std::cout << "5 000 balls, buffers capped at 4 096 balls: " << Errors << " errors, "
+              << coveredOver << " pixels drawn\n";
+    if (Errors != 1 || coveredOver != 0)
+    {
+      ++failures;
+    }
+    Warnings = Errors = 0;
+    mapper->Modified();
+    const int coveredUnder = render("below the buffer limit again");
+    if (Errors != 0 || coveredUnder < 1000)
+    {
+      std::cerr << "after the cap is lifted: " << Errors << " errors, " << coveredUnder
+                << " pixels\n";
+      ++failures;
+    }
   }
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
