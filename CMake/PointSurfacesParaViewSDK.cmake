@@ -1,0 +1,74 @@
+# SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+# SPDX-License-Identifier: BSD-3-Clause
+#[==[
+Find Debian's ParaView 5.11 SDK (paraview-dev) for the `paraview` preset.
+
+Debian's ParaView CMake package imports targets whose files only
+python3-paraview ships (the Python modules of ParaView's own VTK 9.2, and
+pvpython), and python3-paraview can never be installed beside python3-vtk9.
+`scripts/install-deps.sh --paraview` therefore unpacks python3-paraview into
+POINTSURFACES_PARAVIEW_ROOT (default build/paraview-sdk/root), and this file
+copies the CMake package into the build tree with two edits:
+
+- each targets file's install prefix (and VTK-m's package prefix, and the
+  module properties' import prefix) is the original one (/usr), not the
+  copy's location;
+- the Python module, wrapping hierarchy and pvpython paths point into the
+  unpacked package.
+
+It then sets ParaView_DIR to the copy. Only the non-GUI components are
+requested, so Qt is not needed.
+#]==]
+set(POINTSURFACES_PARAVIEW_ROOT "${CMAKE_SOURCE_DIR}/build/paraview-sdk/root"
+  CACHE PATH "Where python3-paraview is unpacked (scripts/install-deps.sh --paraview)")
+set(_ps_pv_system "/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/paraview-5.11")
+if (NOT EXISTS "${_ps_pv_system}/paraview-config.cmake")
+  message(FATAL_ERROR "No ParaView 5.11 CMake package in ${_ps_pv_system}: "
+    "run scripts/install-deps.sh --paraview (installs paraview-dev).")
+endif ()
+set(_ps_pv_python "${POINTSURFACES_PARAVIEW_ROOT}/usr/lib/python3/dist-packages")
+if (NOT EXISTS "${_ps_pv_python}/paraview/simple.py")
+  message(FATAL_ERROR "python3-paraview is not unpacked in ${POINTSURFACES_PARAVIEW_ROOT}: "
+    "run scripts/install-deps.sh --paraview.")
+endif ()
+
+set(_ps_pv_copy "${CMAKE_BINARY_DIR}/paraview-cmake")
+if (NOT EXISTS "${_ps_pv_copy}/paraview-config.cmake")
+  file(COPY "${_ps_pv_system}/" DESTINATION "${_ps_pv_copy}")
+  file(GLOB_RECURSE _ps_pv_files "${_ps_pv_copy}/*.cmake")
+  foreach (_ps_pv_file IN LISTS _ps_pv_files)
+    file(READ "${_ps_pv_file}" _ps_pv_text)
+    set(_ps_pv_edited "${_ps_pv_text}")
+    get_filename_component(_ps_pv_dir "${_ps_pv_file}" DIRECTORY)
+    file(RELATIVE_PATH _ps_pv_sub "${_ps_pv_copy}" "${_ps_pv_dir}")
+    set(_ps_pv_origin "${_ps_pv_system}")
+    if (_ps_pv_sub)
+      string(APPEND _ps_pv_origin "/${_ps_pv_sub}")
+    endif ()
+    # Prefixes computed upward from the file: VTK-m's package init and the
+    # module properties' import prefix (header and hierarchy paths).
+    string(REPLACE "\${CMAKE_CURRENT_LIST_DIR}/.." "${_ps_pv_origin}/.."
+      _ps_pv_edited "${_ps_pv_edited}")
+    string(REPLACE "set(_vtk_module_import_prefix \"\${CMAKE_CURRENT_LIST_DIR}\")"
+      "set(_vtk_module_import_prefix \"${_ps_pv_origin}\")" _ps_pv_edited "${_ps_pv_edited}")
+    # The wrapping hierarchy files ship in python3-paraview too.
+    string(REPLACE "\${_vtk_module_import_prefix}/lib/${CMAKE_LIBRARY_ARCHITECTURE}/vtk/hierarchy"
+      "${POINTSURFACES_PARAVIEW_ROOT}/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/vtk/hierarchy"
+      _ps_pv_edited "${_ps_pv_edited}")
+    if (_ps_pv_text MATCHES "_IMPORT_PREFIX")
+      string(REPLACE
+        "get_filename_component(_IMPORT_PREFIX \"\${CMAKE_CURRENT_LIST_FILE}\" PATH)"
+        "set(_IMPORT_PREFIX \"${_ps_pv_origin}\")"
+        _ps_pv_edited "${_ps_pv_edited}")
+      string(REPLACE "\${_IMPORT_PREFIX}/lib/python3/dist-packages" "${_ps_pv_python}"
+        _ps_pv_edited "${_ps_pv_edited}")
+      string(REPLACE "\${_IMPORT_PREFIX}/bin/pvpython" "${POINTSURFACES_PARAVIEW_ROOT}/usr/bin/pvpython"
+        _ps_pv_edited "${_ps_pv_edited}")
+    endif ()
+    if (NOT _ps_pv_edited STREQUAL _ps_pv_text)
+      file(WRITE "${_ps_pv_file}" "${_ps_pv_edited}")
+    endif ()
+  endforeach ()
+endif ()
+set(ParaView_DIR "${_ps_pv_copy}" CACHE PATH "The patched copy of Debian's ParaView package" FORCE)
+set(POINTSURFACES_PARAVIEW_PYTHONPATH "${_ps_pv_python}")

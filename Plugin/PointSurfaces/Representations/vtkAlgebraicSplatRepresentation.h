@@ -1,0 +1,57 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkAlgebraicSplatRepresentation
+ * @brief   ParaView's "Algebraic Splats" representation: splats ray-cast by vtkAlgebraicSplatMapper.
+ *
+ * A surface representation whose mappers are vtkAlgebraicSplatMapper (through
+ * vtkPointSurfacesDelegatingMapper, which takes ParaView's composite data
+ * and colouring), so the output of the Algebraic Splat Fitter shows as the
+ * smooth, lit, depth-correct surface of its splats, coloured like any other
+ * representation. The mapper's knobs are forwarded: two-pass blending and
+ * its depth offset and sharpness, adaptive anti-aliasing and its silhouette
+ * threshold, octree culling and the LOD pixel error. ParaView's decimated
+ * interaction LOD is suppressed: decimation would drop the splat arrays, and
+ * the mapper has its own level of detail.
+ */
+#ifndef vtkAlgebraicSplatRepresentation_h
+#define vtkAlgebraicSplatRepresentation_h
+
+#include "PointSurfacesParaViewRepresentationsModule.h" // For export macro
+#include "vtkGeometryRepresentationWithFaces.h"
+
+class vtkAlgebraicSplatMapper;
+
+class POINTSURFACESPARAVIEWREPRESENTATIONS_EXPORT vtkAlgebraicSplatRepresentation
+  : public vtkGeometryRepresentationWithFaces
+{
+public:
+  static vtkAlgebraicSplatRepresentation* New();
+  vtkTypeMacro(vtkAlgebraicSplatRepresentation, vtkGeometryRepresentationWithFaces);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Forwarded to both splat mappers; see vtkAlgebraicSplatMapper. */
+  void SetSplatBlending(bool on);
+  void SetSplatBlendDepthOffset(double offset);
+  void SetSplatBlendSharpness(double sharpness);
+  void SetSplatAntiAliasing(int grid);
+  void SetSplatSilhouetteThreshold(double threshold);
+  void SetSplatCulling(bool on);
+  void SetSplatLODPixelError(double pixels);
+  ///@}
+
+  void SetSuppressLOD(bool) override { this->Superclass::SetSuppressLOD(true); }
+
+protected:
+  vtkAlgebraicSplatRepresentation();
+  ~vtkAlgebraicSplatRepresentation() override;
+
+  vtkAlgebraicSplatMapper* Splats[2];
+
+private:
+  vtkAlgebraicSplatRepresentation(const vtkAlgebraicSplatRepresentation&) = delete;
+  void operator=(const vtkAlgebraicSplatRepresentation&) = delete;
+};
+
+#endif

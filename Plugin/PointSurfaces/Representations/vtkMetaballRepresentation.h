@@ -1,0 +1,60 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkMetaballRepresentation
+ * @brief   ParaView's "Metaballs" representation: particles as a blobby surface by vtkMetaballMapper.
+ *
+ * A surface representation whose mappers are vtkMetaballMapper (through
+ * vtkPointSurfacesDelegatingMapper), so any point set (particles, atoms,
+ * stars) shows as the iso-surface of its metaball field, ray-cast on the
+ * GPU every frame and coloured through ParaView's colour map. The mapper's
+ * knobs are forwarded: kernel, threshold, radius array or constant radius
+ * and its scale, strength array, marching step and bisections, tile size
+ * and slabs, and shadows. ParaView's decimated interaction LOD is
+ * suppressed: the metaball surface of decimated points is another surface.
+ */
+#ifndef vtkMetaballRepresentation_h
+#define vtkMetaballRepresentation_h
+
+#include "PointSurfacesParaViewRepresentationsModule.h" // For export macro
+#include "vtkGeometryRepresentationWithFaces.h"
+
+class vtkMetaballMapper;
+
+class POINTSURFACESPARAVIEWREPRESENTATIONS_EXPORT vtkMetaballRepresentation
+  : public vtkGeometryRepresentationWithFaces
+{
+public:
+  static vtkMetaballRepresentation* New();
+  vtkTypeMacro(vtkMetaballRepresentation, vtkGeometryRepresentationWithFaces);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** Forwarded to both metaball mappers; see vtkMetaballMapper. */
+  void SetMetaballKernel(int kernel);
+  void SetMetaballThreshold(double threshold);
+  void SetMetaballRadiusArray(const char* name);
+  void SetMetaballRadius(double radius);
+  void SetMetaballRadiusScale(double scale);
+  void SetMetaballStrengthArray(const char* name);
+  void SetMetaballStepScale(double scale);
+  void SetMetaballBisections(int count);
+  void SetMetaballTileSize(int pixels);
+  void SetMetaballSlabs(int count);
+  void SetMetaballShadows(bool on);
+  ///@}
+
+  void SetSuppressLOD(bool) override { this->Superclass::SetSuppressLOD(true); }
+
+protected:
+  vtkMetaballRepresentation();
+  ~vtkMetaballRepresentation() override;
+
+  vtkMetaballMapper* Balls[2];
+
+private:
+  vtkMetaballRepresentation(const vtkMetaballRepresentation&) = delete;
+  void operator=(const vtkMetaballRepresentation&) = delete;
+};
+
+#endif
