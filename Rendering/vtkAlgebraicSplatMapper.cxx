@@ -499,6 +499,39 @@ void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
       return;
     }
   }
+  // A filter that split, subset or reordered the splats (ParaView's
+  // RedistributeDataSet between ranks, a threshold, a merge) leaves ranges
+  // that no longer index them: check every range before using one.
+  {
+    const vtkIdType n = poly->GetNumberOfPoints();
+    const int levels = ends->GetNumberOfComponents();
+    bool valid = static_cast<vtkIdType>(range->GetComponent(0, 0)) == 0 &&
+      static_cast<vtkIdType>(range->GetComponent(0, 1)) == n;
+    for (vtkIdType i = 0; i < count && valid; ++i)
+    {
+      const double begin = range->GetComponent(i, 0), end = range->GetComponent(i, 1);
+      const double first = children->GetComponent(i, 0), number = children->GetComponent(i, 1);
+      valid = begin >= 0 && begin <= end && end <= n && number >= 0 &&
+        (number == 0 || (first > i && first + number <= count));
+      for (int l = 0; l < levels && valid; ++l)
+      {
+        const double e = ends->GetComponent(i, l);
+        valid = e >= begin && e <= end;
+      }
+    }
+    for (vtkIdType k = 0; k < n && valid; ++k)
+    {
+      const double level = lod->GetTuple1(k);
+      valid = level >= 0 && level < levels;
+    }
+    if (!valid)
+    {
+      vtkWarningMacro(<< "The octree in the input's field data does not index its " << n
+                      << " splats (were splats split, removed or reordered after fitting?): it is "
+                         "ignored, every splat is drawn.");
+      return;
+    }
+  }
   auto tree = std::make_shared<Octree>();
   tree->Levels = ends->GetNumberOfComponents();
   for (int l = 0; l < tree->Levels; ++l)

@@ -8,6 +8,8 @@
 // - splats with NaN positions, NaN coefficients, zero radii, zero feature
 //   sizes and zero normals mixed into a valid set: they are counted, a
 //   warning names them, the others are drawn, and GL reports no error;
+// - half the splats with the whole set's octree (a subset or a split between
+//   ParaView's ranks): the stale octree is ignored with one warning, no crash;
 // - an empty input and an input that is not a splat set: nothing is drawn
 //   and no GL error, with an error message for the latter.
 #include "vtkActor.h"
@@ -16,7 +18,9 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkMaskPoints.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPointData.h"
@@ -190,6 +194,35 @@ int TestAlgebraicSplatMapperBadInput(int, char*[])
   {
     std::cerr << "invalid splats are not skipped as they should be\n";
     ++failures;
+  }
+
+  // Every other splat, the octree's field data passed along unchanged (as a
+  // subset, threshold or ParaView's split between ranks leaves it): the
+  // octree's ranges no longer index the splats. One warning, the splats
+  // drawn without culling, no crash.
+  {
+    vtkNew<vtkMaskPoints> half;
+    half->SetInputConnection(fitter->GetOutputPort());
+    half->SetOnRatio(2);
+    half->GenerateVerticesOn();
+    half->SingleVertexPerCellOn();
+    half->Update();
+    mapper->SetInputConnection(half->GetOutputPort());
+    look(origin);
+    Warnings = Errors = 0;
+    renWin->Render();
+    glOk("a subset with the whole set's octree");
+    int coveredHalf = 0;
+    Measure(renWin, renderer, origin, coveredHalf, error);
+    std::cout << "half the splats with the whole octree: " << coveredHalf << " pixels, " << Warnings
+              << " warnings, " << Errors << " errors\n";
+    if (Warnings != 1 || Errors != 0 || coveredHalf < coveredOrigin / 2 ||
+      half->GetOutput()->GetFieldData()->GetArray("OctreeNodeRange") == nullptr)
+    {
+      std::cerr << "a stale octree (subset) is not ignored as it should be\n";
+      ++failures;
+    }
+    mapper->SetInputData(nullptr);
   }
 
   // Empty input, then points that are not splats.
