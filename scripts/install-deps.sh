@@ -4,8 +4,13 @@
 # Runs as root, or through sudo otherwise. Never installs python3-paraview, which
 # conflicts with python3-vtk9 (see DESIGN.md section 5).
 #
-# Usage: scripts/install-deps.sh [--dry-run]
-#   --dry-run  only list the packages that are missing
+# Usage: scripts/install-deps.sh [--dry-run] [--paraview]
+#   --dry-run   only list the packages that are missing
+#   --paraview  also what the `paraview` preset needs: paraview, paraview-dev,
+#               Qt's xmlpatterns (the plugin's help pages) and Open MPI's
+#               mpiexec; and python3-paraview, downloaded and unpacked into
+#               build/paraview-sdk/root (it can never be installed beside
+#               python3-vtk9)
 set -euo pipefail
 
 packages=(
@@ -26,13 +31,18 @@ packages=(
   clang libclang-rt-14-dev
 )
 dryrun=0
+paraview=0
 for arg in "$@"; do
   case "$arg" in
     --dry-run) dryrun=1 ;;
-    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
+    --paraview) paraview=1 ;;
+    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
     *) echo "install-deps.sh: unknown argument '$arg'" >&2; exit 2 ;;
   esac
 done
+if [ "$paraview" = 1 ]; then
+  packages+=(paraview paraview-dev qtxmlpatterns5-dev-tools openmpi-bin)
+fi
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
@@ -40,11 +50,18 @@ for p in "${packages[@]}"; do
   fi
 done
 
-if [ "${#missing[@]}" -eq 0 ]; then
+root=$(cd "$(dirname "$0")/.." && pwd)
+sdk="$root/build/paraview-sdk"
+need_sdk=0
+if [ "$paraview" = 1 ] && [ ! -f "$sdk/root/usr/lib/python3/dist-packages/paraview/simple.py" ]; then
+  need_sdk=1
+fi
+if [ "${#missing[@]}" -eq 0 ] && [ "$need_sdk" = 0 ]; then
   echo "install-deps.sh: all ${#packages[@]} packages present"
   exit 0
 fi
-echo "install-deps.sh: installing ${missing[*]}"
+[ "${#missing[@]}" -gt 0 ] && echo "install-deps.sh: installing ${missing[*]}"
+[ "$need_sdk" = 1 ] && echo "install-deps.sh: unpacking python3-paraview into $sdk/root"
 [ "$dryrun" = 1 ] && exit 0
 
 SUDO=""
@@ -53,8 +70,20 @@ if [ "$(id -u)" != 0 ]; then
   SUDO=sudo
 fi
 export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+updated=0
+if [ "${#missing[@]}" -gt 0 ]; then
+  $SUDO apt-get update -qq
+  updated=1
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+if [ "$need_sdk" = 1 ]; then
+  # Download only (never install) the package whose files ParaView's CMake
+  # package and pvbatch need, and unpack it where the preset looks.
+  [ "$updated" = 1 ] || $SUDO apt-get update -qq
+  rm -rf "$sdk" && mkdir -p "$sdk"
+  (cd "$sdk" && $SUDO apt-get download -qq python3-paraview)
+  dpkg-deb -x "$sdk"/python3-paraview_*.deb "$sdk/root"
+fi
 if dpkg-query -W -f='${Status}' python3-paraview 2>/dev/null | grep -q "install ok installed"; then
   echo "install-deps.sh: warning: python3-paraview is installed and conflicts with python3-vtk9" >&2
 fi

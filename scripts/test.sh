@@ -5,8 +5,9 @@
 # package).
 #
 # Usage: scripts/test.sh [PRESET] [-- extra ctest arguments]
-#   PRESET: vtk (default), debug, asan (the unit tests only) or fuzz (the
-#           readers' libFuzzer smoke runs)
+#   PRESET: vtk (default), debug, asan (the unit tests only), fuzz (the
+#           readers' libFuzzer smoke runs) or paraview (the plugin against
+#           Debian's ParaView, in pvbatch, serial and over two MPI ranks)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -17,7 +18,11 @@ if [ $# -gt 0 ] && [ "$1" != "--" ]; then
 fi
 [ "${1:-}" = "--" ] && shift
 
-"$root/scripts/install-deps.sh"
+if [ "$preset" = paraview ]; then
+  "$root/scripts/install-deps.sh" --paraview
+else
+  "$root/scripts/install-deps.sh"
+fi
 cmake --preset "$preset"
 cmake --build --preset "$preset"
 ctest --preset "$preset" "$@"

@@ -50,6 +50,10 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SHARED = os.path.join(HERE, "..", "..", "..", "shared", "data")
 
 
+FIELDS = ["input", "balls", "size", "method", "setting", "frame_ms", "build_ms", "render_ms",
+          "pairs", "incomplete", "rmse"]
+
+
 def wyvill(x):
     return np.where(x < 1.0, ((-4.0 / 9.0 * x + 17.0 / 9.0) * x - 22.0 / 9.0) * x + 1.0, 0.0)
 
@@ -308,13 +312,13 @@ def main():
                              setting="radius R/2", frame_ms="%.1f" % ms, build_ms="",
                              render_ms="", pairs="", incomplete="", rmse=""))
             reference_mapper.ReleaseGraphicsResources(scene.window)
+            # Written after every input and size, so a long run keeps what it measured.
+            with open(os.path.join(args.out, "metaballs.csv"), "w", newline="") as f:
+                writer = csv.DictWriter(f, fieldnames=FIELDS)
+                writer.writeheader()
+                writer.writerows(rows)
 
-    fields = ["input", "balls", "size", "method", "setting", "frame_ms", "build_ms", "render_ms",
-              "pairs", "incomplete", "rmse"]
-    with open(os.path.join(args.out, "metaballs.csv"), "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=fields)
-        writer.writeheader()
-        writer.writerows(rows)
+    fields = FIELDS
     writer = csv.DictWriter(sys.stdout, fieldnames=fields)
     writer.writeheader()
     writer.writerows(rows)
