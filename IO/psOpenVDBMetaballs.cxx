@@ -160,6 +160,26 @@ BallArrays ExtractBalls(vtkPointSet* input,
 }
 
 //------------------------------------------------------------------------------
+std::vector<std::string> BallWarnings(const BallArrays& arrays,
+  const BallSummary& balls,
+  const std::string& strengthName)
+{
+  std::vector<std::string> warnings;
+  if (arrays.MissingStrengths)
+  {
+    warnings.push_back(
+      "No point array \"" + strengthName + "\" for the strengths: all balls have strength 1.");
+  }
+  if (balls.Invalid > 0)
+  {
+    warnings.push_back(std::to_string(balls.Invalid) + " of " + std::to_string(arrays.Set.Count) +
+      " balls have a NaN or infinite centre, radius or strength, or a radius <= 0: they are "
+      "skipped.");
+  }
+  return warnings;
+}
+
+//------------------------------------------------------------------------------
 bool ChooseVoxel(const BallSummary& balls,
   double requested,
   double maximumVoxels,

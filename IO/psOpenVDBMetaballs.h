@@ -65,6 +65,14 @@ struct BallSummary
 BallSummary SummariseBalls(const MetaballSet& set);
 
 /**
+ * The warnings a filter should give about `arrays` and `balls`: a strength
+ * array named (`strengthName`) but missing, and balls skipped as invalid.
+ */
+std::vector<std::string> BallWarnings(const BallArrays& arrays,
+  const BallSummary& balls,
+  const std::string& strengthName);
+
+/**
  * The voxel size: `requested`, or a tenth of the smallest radius, raised to
  * keep the sampled voxels (sum of ball volumes / voxel^3) under
  * `maximumVoxels`. Returns false (with `error`) when a requested size is

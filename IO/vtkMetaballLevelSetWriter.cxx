@@ -56,18 +56,12 @@ void vtkMetaballLevelSetWriter::WriteData()
     this->StrengthArrayName,
     static_cast<pointsurfaces::MetaballKernel>(this->Kernel),
     this->Threshold);
-  if (arrays.MissingStrengths)
-  {
-    vtkWarningMacro(<< "No point array \"" << this->StrengthArrayName
-                    << "\" for the strengths: all balls have strength 1.");
-  }
   pointsurfaces::BallSummary balls = pointsurfaces::SummariseBalls(arrays.Set);
   this->NumberOfInvalidBalls = static_cast<vtkIdType>(balls.Invalid);
-  if (balls.Invalid > 0)
+  for (const std::string& warning :
+    pointsurfaces::BallWarnings(arrays, balls, this->StrengthArrayName))
   {
-    vtkWarningMacro(<< balls.Invalid << " of " << arrays.Set.Count
-                    << " balls have a NaN or infinite centre, radius or strength, or a radius "
-                       "<= 0: they are skipped.");
+    vtkWarningMacro(<< warning);
   }
   if (!std::isfinite(this->Threshold) || this->Threshold <= 0.0)
   {

@@ -238,6 +238,24 @@ def main():
                                  pairs=mapper.GetNumberOfPairs(),
                                  incomplete=mapper.GetNumberOfIncompleteRays(),
                                  rmse="%.4f" % np.sqrt(np.mean((image - reference) ** 2))))
+            def mesh_row(method, setting, mesh, build_ms):
+                """Draws a peer's mesh; its dynamic frame is building it plus drawing it."""
+                surface = vtkPolyData()
+                surface.ShallowCopy(mesh)
+                mesh_mapper = vtkPolyDataMapper()
+                mesh_mapper.SetInputData(surface)
+                mesh_mapper.ScalarVisibilityOff()
+                actor = material(vtkActor())
+                actor.SetMapper(mesh_mapper)
+                scene.show(actor, bounds)
+                image = scene.image()
+                draw_ms = scene.frame_ms(frames, before=surface.Modified)
+                rows.append(dict(input=name, balls=n, size=label, method=method, setting=setting,
+                                 frame_ms="%.1f" % (build_ms + draw_ms),
+                                 build_ms="%.1f" % build_ms, render_ms="%.1f" % draw_ms,
+                                 pairs=surface.GetNumberOfCells(), incomplete=0,
+                                 rmse="%.4f" % np.sqrt(np.mean((image - reference) ** 2))))
+
             grids = (32,) if args.smoke else ((64, 128) if n > 50000 else (64, 128, 256))
             for grid in grids:
                 t0 = time.perf_counter()
@@ -250,23 +268,8 @@ def main():
                 t0 = time.perf_counter()
                 contour.Update()
                 contour_ms = 1000.0 * (time.perf_counter() - t0)
-                surface = vtkPolyData()
-                surface.ShallowCopy(contour.GetOutput())
-                mesh_mapper = vtkPolyDataMapper()
-                mesh_mapper.SetInputData(surface)
-                mesh_mapper.ScalarVisibilityOff()
-                actor = material(vtkActor())
-                actor.SetMapper(mesh_mapper)
-                scene.show(actor, bounds)
-                image = scene.image()
-                draw_ms = scene.frame_ms(frames, before=surface.Modified)
-                rows.append(dict(input=name, balls=n, size=label, method="sample+flying-edges",
-                                 setting="%d^3 grid" % grid,
-                                 frame_ms="%.1f" % (sample_ms + contour_ms + draw_ms),
-                                 build_ms="%.1f" % (sample_ms + contour_ms),
-                                 render_ms="%.1f" % draw_ms, pairs=surface.GetNumberOfCells(),
-                                 incomplete=0,
-                                 rmse="%.4f" % np.sqrt(np.mean((image - reference) ** 2))))
+                mesh_row("sample+flying-edges", "%d^3 grid" % grid, contour.GetOutput(),
+                         sample_ms + contour_ms)
             # OpenVDB: particles (or the field) to a level set, then a mesh.
             median = float(np.median(radii))
             budget = (4.0 / 3.0 * np.pi * float(np.sum(radii ** 3)) / 5e7) ** (1.0 / 3.0)
@@ -282,22 +285,8 @@ def main():
                     t0 = time.perf_counter()
                     mesher.Update()
                     build_ms = 1000.0 * (time.perf_counter() - t0)
-                    surface = vtkPolyData()
-                    surface.ShallowCopy(mesher.GetOutput())
-                    mesh_mapper = vtkPolyDataMapper()
-                    mesh_mapper.SetInputData(surface)
-                    mesh_mapper.ScalarVisibilityOff()
-                    actor = material(vtkActor())
-                    actor.SetMapper(mesh_mapper)
-                    scene.show(actor, bounds)
-                    image = scene.image()
-                    draw_ms = scene.frame_ms(frames, before=surface.Modified)
-                    rows.append(dict(input=name, balls=n, size=label, method=label_method,
-                                     setting="voxel R/%d" % round(median / voxel),
-                                     frame_ms="%.1f" % (build_ms + draw_ms),
-                                     build_ms="%.1f" % build_ms, render_ms="%.1f" % draw_ms,
-                                     pairs=surface.GetNumberOfCells(), incomplete=0,
-                                     rmse="%.4f" % np.sqrt(np.mean((image - reference) ** 2))))
+                    mesh_row(label_method, "voxel R/%d" % round(median / voxel),
+                             mesher.GetOutput(), build_ms)
             fluid = vtkOpenGLFluidMapper()
             fluid.SetInputData(poly)
             fluid.SetParticleRadius(float(np.median(radii)) * 0.5)
