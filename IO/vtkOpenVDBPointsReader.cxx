@@ -27,10 +27,13 @@
 #include <openvdb/points/AttributeGroup.h>
 #include <openvdb/points/PointDataGrid.h>
 
+#include <cstring>
 #include <fstream>
+#include <istream>
 #include <map>
 #include <numeric>
 #include <set>
+#include <streambuf>
 
 vtkStandardNewMacro(vtkOpenVDBPointsReader);
 
@@ -242,6 +245,57 @@ bool CopyTyped(const std::string& type,
   return true;
 }
 
+// The file's bytes as a stream that refuses, before copying anything, a read
+// reaching past the end. OpenVDB 10.0.1 sizes some reads from counts in the
+// file and checks them only after reading (see Testing/Fuzz/README.md); a
+// damaged count beyond the end of the file then throws here instead of
+// writing past OpenVDB's buffer. Counts that still fit the file are beyond
+// the reader's reach.
+class BoundedBuffer : public std::streambuf
+{
+public:
+  explicit BoundedBuffer(std::vector<char>& bytes)
+  {
+    this->setg(bytes.data(), bytes.data(), bytes.data() + bytes.size());
+  }
+
+protected:
+  std::streamsize xsgetn(char* s, std::streamsize n) override
+  {
+    if (n > this->egptr() - this->gptr())
+    {
+      throw std::ios_base::failure(
+        "a read of " + std::to_string(n) + " bytes reaches past the end of the file");
+    }
+    std::memcpy(s, this->gptr(), static_cast<size_t>(n));
+    this->setg(this->eback(), this->gptr() + n, this->egptr());
+    return n;
+  }
+  int_type underflow() override { return traits_type::eof(); }
+  pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode) override
+  {
+    char* base = dir == std::ios_base::beg ? this->eback()
+      : dir == std::ios_base::cur          ? this->gptr()
+                                           : this->egptr();
+    return this->Seek(base + off);
+  }
+  pos_type seekpos(pos_type pos, std::ios_base::openmode) override
+  {
+    return this->Seek(this->eback() + static_cast<off_type>(pos));
+  }
+
+private:
+  pos_type Seek(char* at)
+  {
+    if (at < this->eback() || at > this->egptr())
+    {
+      return pos_type(off_type(-1));
+    }
+    this->setg(this->eback(), at, this->egptr());
+    return pos_type(at - this->eback());
+  }
+};
+
 // A leaf whose offsets or arrays disagree would be read out of bounds.
 bool LeafConsistent(const ovp::PointDataTree::LeafNodeType& leaf, std::string& why)
 {
@@ -329,9 +383,16 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
   std::vector<ovp::PointDataGrid::Ptr> grids;
   try
   {
-    std::ifstream in;
+    std::vector<char> bytes;
+    {
+      std::ifstream file(this->FileName, std::ios::binary | std::ios::ate);
+      bytes.resize(static_cast<size_t>(file.tellg()));
+      file.seekg(0);
+      file.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    }
+    BoundedBuffer buffer(bytes);
+    std::istream in(&buffer);
     in.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
-    in.open(this->FileName, std::ios::binary);
     openvdb::io::Stream stream(in, /*delayLoad=*/false);
     openvdb::GridPtrVecPtr all = stream.getGrids();
     for (const openvdb::GridBase::Ptr& base : *all)
