@@ -3,9 +3,8 @@
 #include "vtkOpenVDBPointsReader.h"
 
 #include "vtkCellArray.h"
-#include "vtkDoubleArray.h"
+#include "vtkDataArray.h"
 #include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -14,12 +13,9 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkShortArray.h"
-#include "vtkSignedCharArray.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
-#include "vtkTypeInt64Array.h"
-#include "vtkUnsignedCharArray.h"
+#include "vtkType.h"
 
 #include <openvdb/io/Stream.h>
 #include <openvdb/openvdb.h>
@@ -81,37 +77,42 @@ struct Output
   std::string Type; // the VDB value type (or "string", "group")
 };
 
-// The VTK array for a VDB value type, or null for a type we do not read.
-vtkSmartPointer<vtkDataArray> NewArray(const std::string& type)
+// The VDB value types this reader converts: the VTK data type of their
+// array and their components per point (before an array attribute's stride).
+struct ValueType
 {
-  if (type == "bool" || type == "group")
+  const char* Name;
+  int VTKType;
+  int Components;
+};
+constexpr ValueType ValueTypes[] = { { "bool", VTK_UNSIGNED_CHAR, 1 },
+  { "group", VTK_UNSIGNED_CHAR, 1 },
+  { "int8", VTK_SIGNED_CHAR, 1 },
+  { "int16", VTK_SHORT, 1 },
+  { "int32", VTK_INT, 1 },
+  { "int64", VTK_TYPE_INT64, 1 },
+  { "half", VTK_FLOAT, 1 },
+  { "float", VTK_FLOAT, 1 },
+  { "double", VTK_DOUBLE, 1 },
+  { "vec3i", VTK_INT, 3 },
+  { "vec3s", VTK_FLOAT, 3 },
+  { "vec3d", VTK_DOUBLE, 3 },
+  { "quats", VTK_FLOAT, 4 },
+  { "quatd", VTK_DOUBLE, 4 },
+  { "mat3s", VTK_FLOAT, 9 },
+  { "mat3d", VTK_DOUBLE, 9 },
+  { "mat4s", VTK_FLOAT, 16 },
+  { "mat4d", VTK_DOUBLE, 16 } };
+
+// The entry for a VDB value type, or null for a type this reader does not convert.
+const ValueType* FindValueType(const std::string& name)
+{
+  for (const ValueType& type : ValueTypes)
   {
-    return vtkSmartPointer<vtkUnsignedCharArray>::New();
-  }
-  if (type == "int8")
-  {
-    return vtkSmartPointer<vtkSignedCharArray>::New();
-  }
-  if (type == "int16")
-  {
-    return vtkSmartPointer<vtkShortArray>::New();
-  }
-  if (type == "int32" || type == "vec3i")
-  {
-    return vtkSmartPointer<vtkIntArray>::New();
-  }
-  if (type == "int64")
-  {
-    return vtkSmartPointer<vtkTypeInt64Array>::New();
-  }
-  if (type == "float" || type == "half" || type == "vec3s" || type == "mat3s" || type == "mat4s" ||
-    type == "quats")
-  {
-    return vtkSmartPointer<vtkFloatArray>::New();
-  }
-  if (type == "double" || type == "vec3d" || type == "mat3d" || type == "mat4d" || type == "quatd")
-  {
-    return vtkSmartPointer<vtkDoubleArray>::New();
+    if (name == type.Name)
+    {
+      return &type;
+    }
   }
   return nullptr;
 }
@@ -139,28 +140,6 @@ void CopyValues(const ovp::AttributeArray& array,
       }
     }
   }
-}
-
-// Dispatch by value type; returns the components per point (0: not read).
-int ComponentsOf(const std::string& type)
-{
-  if (type == "vec3i" || type == "vec3s" || type == "vec3d")
-  {
-    return 3;
-  }
-  if (type == "mat3s" || type == "mat3d")
-  {
-    return 9;
-  }
-  if (type == "mat4s" || type == "mat4d")
-  {
-    return 16;
-  }
-  if (type == "quats" || type == "quatd")
-  {
-    return 4;
-  }
-  return NewArray(type) ? 1 : 0;
 }
 
 bool CopyTyped(const std::string& type,
@@ -481,7 +460,8 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
       }
       else
       {
-        vtkSmartPointer<vtkDataArray> data = NewArray(type);
+        auto data = vtkSmartPointer<vtkDataArray>::Take(
+          vtkDataArray::CreateDataArray(FindValueType(type)->VTKType));
         data->SetNumberOfComponents(components);
         data->SetNumberOfTuples(total);
         data->Fill(0.0);
@@ -563,15 +543,15 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
             continue;
           }
           const std::string type = array.type().first;
-          const int components = ComponentsOf(type);
-          if (components == 0)
+          const ValueType* known = FindValueType(type);
+          if (!known)
           {
             warnOnce("attribute \"" + entry.first + "\" has the type " + type +
               ", which this reader does not convert: skipped.");
             continue;
           }
           auto* out = vtkDataArray::SafeDownCast(
-            outputFor(entry.first, type, components * static_cast<int>(array.stride())));
+            outputFor(entry.first, type, known->Components * static_cast<int>(array.stride())));
           if (out)
           {
             CopyTyped(type, array, indices, out, next);
