@@ -202,7 +202,7 @@ bool ChooseVoxel(const BallSummary& balls,
     voxel = balls.MinRadius / 10.0;
     if (voxel < budget)
     {
-      warning = "a voxel of a tenth of the smallest radius (" + std::to_string(voxel) +
+      warning = "A voxel of a tenth of the smallest radius (" + std::to_string(voxel) +
         ") would sample more than MaximumVoxels = " + std::to_string(maximumVoxels) + ": using " +
         std::to_string(budget) + "; balls smaller than two voxels fade from the surface";
       voxel = budget;
@@ -419,19 +419,4 @@ vtkSmartPointer<vtkPolyData> MeshLevelSet(const openvdb::FloatGrid& grid,
   return mesh;
 }
 
-//------------------------------------------------------------------------------
-double LoneBallIsoRadius(MetaballKernel kernel, double threshold)
-{
-  if (!(threshold < KernelValue(kernel, 0.0)))
-  {
-    return 0.0;
-  }
-  double lo = 0.0, hi = 1.0; // in x = r^2 / R^2; the kernels decrease
-  for (int i = 0; i < 100; ++i)
-  {
-    const double mid = 0.5 * (lo + hi);
-    (KernelValue(kernel, mid) > threshold ? lo : hi) = mid;
-  }
-  return std::sqrt(0.5 * (lo + hi));
-}
 } // namespace pointsurfaces

@@ -108,9 +108,6 @@ openvdb::FloatGrid::Ptr SphereLevelSet(const MetaballSet& set,
 vtkSmartPointer<vtkPolyData> MeshLevelSet(const openvdb::FloatGrid& grid,
   const openvdb::Vec3d& centre,
   double adaptivity);
-
-/** The radius at which a lone ball of radius 1 and strength 1 reaches T (0 when it never does). */
-double LoneBallIsoRadius(MetaballKernel kernel, double threshold);
 } // namespace pointsurfaces
 
 #endif

@@ -12,10 +12,8 @@
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
-#include <vector>
+#include <string>
 
 vtkStandardNewMacro(vtkMetaballLevelSetWriter);
 
@@ -80,7 +78,7 @@ void vtkMetaballLevelSetWriter::WriteData()
   }
   if (!warning.empty())
   {
-    vtkWarningMacro(<< "A" << warning.substr(1) << ".");
+    vtkWarningMacro(<< warning << ".");
   }
   if (balls.Valid.empty())
   {

@@ -74,7 +74,7 @@ int vtkOpenVDBParticleMesher::RequestData(vtkInformation*,
   }
   if (!warning.empty())
   {
-    vtkWarningMacro(<< "A" << warning.substr(1) << ".");
+    vtkWarningMacro(<< warning << ".");
   }
   this->UsedVoxelSize = voxel;
   balls.CentreOn(voxel);

@@ -137,6 +137,22 @@ double KernelValue(MetaballKernel kernel, double x, double* derivative)
 }
 
 //------------------------------------------------------------------------------
+double LoneBallIsoRadius(MetaballKernel kernel, double threshold)
+{
+  if (!(threshold < KernelValue(kernel, 0.0)))
+  {
+    return 0.0;
+  }
+  double lo = 0.0, hi = 1.0; // in x = r^2 / R^2; the kernels decrease
+  for (int i = 0; i < 100; ++i)
+  {
+    const double mid = 0.5 * (lo + hi);
+    (KernelValue(kernel, mid) > threshold ? lo : hi) = mid;
+  }
+  return std::sqrt(0.5 * (lo + hi));
+}
+
+//------------------------------------------------------------------------------
 bool ValidBall(const MetaballSet& set, long long i)
 {
   const double* c = set.Centers + 3 * i;

@@ -39,6 +39,14 @@ POINTSURFACESFILTERS_EXPORT double KernelValue(MetaballKernel kernel,
   double x,
   double* derivative = nullptr);
 
+/**
+ * The radius, in units of R, at which a lone ball of strength 1 reaches
+ * `threshold`: sqrt(x) with K(x) = T, by bisection (the kernels decrease).
+ * 0 when T >= K(0), where a lone ball has no surface. Scale T by 1/q for a
+ * strength q, or by 1/n for n coincident balls.
+ */
+POINTSURFACESFILTERS_EXPORT double LoneBallIsoRadius(MetaballKernel kernel, double threshold);
+
 /** A set of balls: spans, not owned. */
 struct MetaballSet
 {

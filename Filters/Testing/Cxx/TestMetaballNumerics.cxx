@@ -59,13 +59,7 @@ GridView MakeView(const double eye[3], int size, int tile, int slabs)
 // The iso radius of one ball of radius R, strength 1, threshold T.
 double IsoRadius(MetaballKernel kernel, double R, double T)
 {
-  double lo = 0.0, hi = 1.0; // x = r^2 / R^2, f decreasing
-  for (int k = 0; k < 200; ++k)
-  {
-    const double m = 0.5 * (lo + hi);
-    (KernelValue(kernel, m) > T ? lo : hi) = m;
-  }
-  return R * std::sqrt(0.5 * (lo + hi));
+  return R * LoneBallIsoRadius(kernel, T);
 }
 } // namespace
 
@@ -96,6 +90,25 @@ int TestMetaballNumerics(int, char*[])
       }
     }
   }
+
+  // A lone ball's iso radius, against closed forms: the quartic reaches T at
+  // x = 1 - sqrt(T), the Gaussian at x = -ln(T (1 - e^-4) + e^-4) / 4;
+  // Wyvill's cubic has K(x) = T there. No surface when T >= K(0) = 1.
+  for (double T : { 1e-4, 0.1, 0.3, 0.5, 0.9 })
+  {
+    const double quartic = LoneBallIsoRadius(MetaballKernel::Quartic, T);
+    const double gaussian = LoneBallIsoRadius(MetaballKernel::Gaussian, T);
+    const double wyvill = LoneBallIsoRadius(MetaballKernel::Wyvill, T);
+    const double floor = std::exp(-4.0);
+    Check(std::abs(quartic - std::sqrt(1.0 - std::sqrt(T))) < 1e-12, "quartic iso radius");
+    Check(std::abs(gaussian - std::sqrt(-std::log(T * (1.0 - floor) + floor) / 4.0)) < 1e-12,
+      "Gaussian iso radius");
+    Check(std::abs(KernelValue(MetaballKernel::Wyvill, wyvill * wyvill) - T) < 1e-12,
+      "Wyvill iso radius");
+  }
+  Check(LoneBallIsoRadius(MetaballKernel::Wyvill, 1.0) == 0.0 &&
+      LoneBallIsoRadius(MetaballKernel::Quartic, 2.0) == 0.0,
+    "no iso radius when T >= K(0)");
 
   // Field gradient over overlapping balls.
   std::mt19937 gen(11);

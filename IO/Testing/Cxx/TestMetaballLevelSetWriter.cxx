@@ -97,18 +97,6 @@ double Sample(const openvdb::FloatGrid& grid, const double p[3])
   openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(grid);
   return sampler.wsSample(openvdb::Vec3d(p[0], p[1], p[2]));
 }
-
-// The iso-radius of a lone ball of radius 1: K(x) = T for x = r^2.
-double IsoRadius(pointsurfaces::MetaballKernel kernel, double threshold)
-{
-  double lo = 0.0, hi = 1.0;
-  for (int i = 0; i < 200; ++i)
-  {
-    const double mid = 0.5 * (lo + hi);
-    (pointsurfaces::KernelValue(kernel, mid) > threshold ? lo : hi) = mid;
-  }
-  return std::sqrt(0.5 * (lo + hi));
-}
 } // namespace
 
 int TestMetaballLevelSetWriter(int, char*[])
@@ -153,8 +141,8 @@ int TestMetaballLevelSetWriter(int, char*[])
         return EXIT_FAILURE;
       }
       const double voxel = writer->GetUsedVoxelSize();
-      const double iso =
-        radius * IsoRadius(static_cast<pointsurfaces::MetaballKernel>(kernel), 0.5);
+      const double iso = radius *
+        pointsurfaces::LoneBallIsoRadius(static_cast<pointsurfaces::MetaballKernel>(kernel), 0.5);
       double worst = 0.0;
       std::mt19937 rng(1);
       std::normal_distribution<double> g;

@@ -117,14 +117,9 @@ int TestMetaballMapperBadInput(int, char*[])
   look(0, 0, 0, 6.0);
   Warnings = Errors = 0;
   const int coveredSame = render("coincident balls");
-  double lo = 0.0, hi = 1.0; // 1000 f(x) = T
-  for (int k = 0; k < 100; ++k)
-  {
-    const double m = 0.5 * (lo + hi);
-    (1000.0 * pointsurfaces::KernelValue(pointsurfaces::MetaballKernel::Wyvill, m) > 0.5 ? lo
-                                                                                         : hi) = m;
-  }
-  const double iso = std::sqrt(0.5 * (lo + hi));
+  // 1000 f(x) = T: a lone ball at T / 1000.
+  const double iso =
+    pointsurfaces::LoneBallIsoRadius(pointsurfaces::MetaballKernel::Wyvill, 0.5 / 1000.0);
   // The silhouette of a sphere of radius a seen from distance D: half-angle asin(a / D).
   const double halfAngle = std::asin(iso / 6.0);
   const double pixels = size / (2.0 * std::tan(3.14159265358979 / 12.0)) * std::tan(halfAngle);
