@@ -1,7 +1,8 @@
 # SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 # SPDX-License-Identifier: BSD-3-Clause
 # The installed CMake package: find_package(PointSurfaces) gives the targets
-# PointSurfaces::Filters, PointSurfaces::Rendering and PointSurfaces::IO.
+# PointSurfaces::Filters, PointSurfaces::FiltersParallel, PointSurfaces::Rendering and
+# PointSurfaces::IO.
 include(CMakePackageConfigHelpers)
 set(_ps_cmake_dest "${CMAKE_INSTALL_LIBDIR}/cmake/PointSurfaces")
 

@@ -6,9 +6,9 @@
 #
 # Usage: scripts/install-deps.sh [--dry-run] [--paraview]
 #   --dry-run   only list the packages that are missing
-#   --paraview  also what the `paraview` preset needs: paraview, paraview-dev,
-#               Qt's xmlpatterns (the plugin's help pages) and Open MPI's
-#               mpiexec; and python3-paraview, downloaded and unpacked into
+#   --paraview  also what the `paraview` preset needs: paraview, paraview-dev
+#               and Qt's xmlpatterns (the plugin's help pages); and
+#               python3-paraview, downloaded and unpacked into
 #               build/paraview-sdk/root (it can never be installed beside
 #               python3-vtk9)
 set -euo pipefail
@@ -29,6 +29,8 @@ packages=(
   python3-matplotlib
   # the fuzz preset: clang with libFuzzer and the sanitizer runtimes
   clang libclang-rt-14-dev
+  # mpiexec: the ghost-ball test runs over three MPI ranks
+  openmpi-bin
 )
 dryrun=0
 paraview=0
@@ -41,7 +43,7 @@ for arg in "$@"; do
   esac
 done
 if [ "$paraview" = 1 ]; then
-  packages+=(paraview paraview-dev qtxmlpatterns5-dev-tools openmpi-bin)
+  packages+=(paraview paraview-dev qtxmlpatterns5-dev-tools)
 fi
 missing=()
 for p in "${packages[@]}"; do

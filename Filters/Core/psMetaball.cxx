@@ -163,6 +163,58 @@ bool ValidBall(const MetaballSet& set, long long i)
 }
 
 //------------------------------------------------------------------------------
+void SupportBounds(const MetaballSet& set, double bounds[6])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    bounds[2 * a] = std::numeric_limits<double>::infinity();
+    bounds[2 * a + 1] = -std::numeric_limits<double>::infinity();
+  }
+  for (long long i = 0; i < set.Count; ++i)
+  {
+    if (!ValidBall(set, i))
+    {
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = std::min(bounds[2 * a], set.Centers[3 * i + a] - set.Radii[i]);
+      bounds[2 * a + 1] = std::max(bounds[2 * a + 1], set.Centers[3 * i + a] + set.Radii[i]);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+std::vector<long long> BallsReachingBox(const MetaballSet& set, const double bounds[6])
+{
+  std::vector<long long> ids;
+  if (!(bounds[0] <= bounds[1] && bounds[2] <= bounds[3] && bounds[4] <= bounds[5]))
+  {
+    return ids;
+  }
+  for (long long i = 0; i < set.Count; ++i)
+  {
+    if (!ValidBall(set, i))
+    {
+      continue;
+    }
+    // Squared distance from the centre to the box, against R^2.
+    double d2 = 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double c = set.Centers[3 * i + a];
+      const double gap = std::max({ bounds[2 * a] - c, c - bounds[2 * a + 1], 0.0 });
+      d2 += gap * gap;
+    }
+    if (d2 <= set.Radii[i] * set.Radii[i])
+    {
+      ids.push_back(i);
+    }
+  }
+  return ids;
+}
+
+//------------------------------------------------------------------------------
 double FieldValue(const MetaballSet& set,
   const double x[3],
   double gradient[3],

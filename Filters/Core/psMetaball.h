@@ -71,6 +71,30 @@ POINTSURFACESFILTERS_EXPORT double FieldValue(const MetaballSet& set,
   const unsigned* ids = nullptr,
   long long idCount = 0);
 
+/**
+ * The box that the supports of the valid balls cover (centre +- R_i), as
+ * xmin, xmax, ymin, ymax, zmin, zmax; min > max on every axis when no ball
+ * is valid.
+ */
+POINTSURFACESFILTERS_EXPORT void SupportBounds(const MetaballSet& set, double bounds[6]);
+
+/**
+ * The valid balls whose support, the sphere of radius R_i around the centre,
+ * meets the closed box `bounds` (ascending ids; none for an empty box).
+ *
+ * Ghost balls for a set split into parts (processes): give each part the
+ * balls of the other parts that reach the SupportBounds of its own balls.
+ * Then at any point inside the support of one of a part's own balls, the
+ * part's field (own plus ghosts) equals the whole set's field, because every
+ * ball that contributes there reaches that support and so that box. With
+ * non-negative strengths a part's field is nowhere above the whole field,
+ * so each part's first hit along a ray is never nearer than the true one,
+ * and the part owning a ball around the true hit finds it: keeping the
+ * nearest hit over the parts (depth compositing) gives the whole surface.
+ */
+POINTSURFACESFILTERS_EXPORT std::vector<long long> BallsReachingBox(const MetaballSet& set,
+  const double bounds[6]);
+
 /** The view for the perspective grid. Matrices are row-major, column vectors. */
 struct GridView
 {

@@ -12,7 +12,12 @@
 //   a voxel that lists the ball;
 // - bad input: NaN centres and radii, zero radii skipped and counted; balls
 //   behind the eye culled; a ball around the eye covers every tile; all
-//   balls at one point.
+//   balls at one point;
+// - ghost balls for a split set (SupportBounds, BallsReachingBox): a box
+//   corner a ball's bounding box reaches but its sphere does not; and,
+//   split into three slabs, each part's field (own and ghosts) equals the
+//   whole field wherever one of its own balls reaches, while without the
+//   ghosts it does not.
 #include "psMetaball.h"
 
 #include <cmath>
@@ -309,6 +314,131 @@ int TestMetaballNumerics(int, char*[])
     Check(hit.Hit && std::abs(hit.T - (5.0 - iso)) < 1e-9, "coincident balls");
     const PerspectiveGrid one = BuildPerspectiveGrid(clump, MakeView(o, 64, 16, 4));
     Check(one.Culled == 0 && one.Pairs >= 100 && one.MaxPerVoxel == 100, "coincident balls grid");
+  }
+
+  // Ghost balls for a split set.
+  {
+    const double c[6] = { 0, 0, 0, 3, 3, 3 }, r[2] = { 1, 1 };
+    MetaballSet two;
+    two.Centers = c;
+    two.Radii = r;
+    two.Count = 2;
+    double b[6];
+    SupportBounds(two, b);
+    Check(b[0] == -1 && b[1] == 4 && b[2] == -1 && b[5] == 4, "support bounds");
+    // The first ball's bounding box reaches the box's corner (0.9, 0.9, 0.9),
+    // its sphere does not (1.56 away); the second's sphere does (0.87 away).
+    const double corner[6] = { 0.9, 2.5, 0.9, 2.5, 0.9, 2.5 },
+                 far[6] = { 0.5, 2.5, 0.5, 2.5, 0.5, 2.5 };
+    Check(BallsReachingBox(two, corner) == std::vector<long long>{ 1 }, "sphere misses box corner");
+    Check(BallsReachingBox(two, far).size() == 2, "sphere meets box");
+    const double nan[3] = { std::numeric_limits<double>::quiet_NaN(), 0, 0 }, zero[1] = { 0 };
+    MetaballSet bad;
+    bad.Centers = nan;
+    bad.Radii = r;
+    bad.Count = 1;
+    SupportBounds(bad, b);
+    Check(b[0] > b[1] && BallsReachingBox(two, b).empty(), "no valid ball: empty bounds");
+    bad.Centers = c;
+    bad.Radii = zero;
+    Check(BallsReachingBox(bad, far).empty(), "zero radius reaches nothing");
+
+    // 3000 balls split into three slabs along x.
+    std::mt19937 split(5);
+    std::uniform_real_distribution<double> pos(-4.0, 4.0), rr(0.2, 0.6), qq(0.5, 1.5);
+    const int m = 3000;
+    std::vector<double> cs(3 * m), rs(m), qs(m);
+    for (int i = 0; i < m; ++i)
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        cs[3 * i + a] = pos(split);
+      }
+      rs[i] = rr(split);
+      qs[i] = qq(split);
+    }
+    MetaballSet all;
+    all.Centers = cs.data();
+    all.Radii = rs.data();
+    all.Strengths = qs.data();
+    all.Count = m;
+    all.Kernel = MetaballKernel::Wyvill;
+    // Appends balls `ids` of (c, r, q) to (pc, pr, pq).
+    auto take = [](const std::vector<long long>& ids,
+                  const std::vector<double>& c,
+                  const std::vector<double>& r,
+                  const std::vector<double>& q,
+                  std::vector<double>& pc,
+                  std::vector<double>& pr,
+                  std::vector<double>& pq)
+    {
+      for (long long i : ids)
+      {
+        pc.insert(pc.end(), c.begin() + 3 * i, c.begin() + 3 * i + 3);
+        pr.push_back(r[i]);
+        pq.push_back(q[i]);
+      }
+    };
+    std::vector<long long> own[3];
+    for (int i = 0; i < m; ++i)
+    {
+      own[cs[3 * i] < -1.3 ? 0 : (cs[3 * i] < 1.4 ? 1 : 2)].push_back(i);
+    }
+    long long exact = 0, wrongWithout = 0, ghosts = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      std::vector<double> oc, orr, oq;
+      take(own[k], cs, rs, qs, oc, orr, oq);
+      MetaballSet mine = all;
+      mine.Centers = oc.data();
+      mine.Radii = orr.data();
+      mine.Strengths = oq.data();
+      mine.Count = static_cast<long long>(orr.size());
+      double box[6];
+      SupportBounds(mine, box);
+      std::vector<double> gc = oc, gr = orr, gq = oq;
+      for (int j = 0; j < 3; ++j)
+      {
+        if (j == k)
+        {
+          continue;
+        }
+        std::vector<double> jc, jr, jq;
+        take(own[j], cs, rs, qs, jc, jr, jq);
+        MetaballSet theirs = mine;
+        theirs.Centers = jc.data();
+        theirs.Radii = jr.data();
+        theirs.Strengths = jq.data();
+        theirs.Count = static_cast<long long>(jr.size());
+        std::vector<long long> reach = BallsReachingBox(theirs, box);
+        ghosts += static_cast<long long>(reach.size());
+        take(reach, jc, jr, jq, gc, gr, gq);
+      }
+      MetaballSet withGhosts = mine;
+      withGhosts.Centers = gc.data();
+      withGhosts.Radii = gr.data();
+      withGhosts.Strengths = gq.data();
+      withGhosts.Count = static_cast<long long>(gr.size());
+      // Points inside one of the part's own supports.
+      std::uniform_real_distribution<double> dir(-1.0, 1.0);
+      for (int s = 0; s < 2000; ++s)
+      {
+        const long long b = std::uniform_int_distribution<long long>(0, mine.Count - 1)(split);
+        double x[3];
+        for (int a = 0; a < 3; ++a)
+        {
+          x[a] = oc[3 * b + a] + 0.57 * orr[b] * dir(split);
+        }
+        const double whole = FieldValue(all, x);
+        exact += std::abs(FieldValue(withGhosts, x) - whole) <= 1e-12 * (1.0 + std::abs(whole));
+        wrongWithout += std::abs(FieldValue(mine, x) - whole) > 1e-6;
+      }
+    }
+    std::cout << "ghost balls: " << ghosts << " of " << m << " balls sent, " << exact
+              << " of 6000 samples exact with ghosts, " << wrongWithout << " wrong without\n";
+    Check(exact == 6000, "own and ghost balls give the whole field inside own supports");
+    Check(
+      wrongWithout > 100 && ghosts < 3 * m / 5, "the split matters and not every ball is a ghost");
   }
 
   if (Failures == 0)

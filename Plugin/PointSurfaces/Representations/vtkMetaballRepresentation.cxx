@@ -2,8 +2,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMetaballRepresentation.h"
 
+#include "vtkMetaballGhostBalls.h"
 #include "vtkMetaballMapper.h"
 #include "vtkObjectFactory.h"
+#include "vtkPVRenderView.h"
 #include "vtkPointSurfacesDelegatingMapper.h"
 
 vtkStandardNewMacro(vtkMetaballRepresentation);
@@ -11,7 +13,9 @@ vtkStandardNewMacro(vtkMetaballRepresentation);
 //------------------------------------------------------------------------------
 vtkMetaballRepresentation::vtkMetaballRepresentation()
 {
-  // Replace the superclass's mappers, then let it wire them up again.
+  // Replace the superclass's mappers, then let it wire them up again, with
+  // the ghost exchange.
+  this->Ghosts = vtkMetaballGhostBalls::New();
   this->Mapper->Delete();
   this->LODMapper->Delete();
   vtkMapper** slots[2] = { &this->Mapper, &this->LODMapper };
@@ -33,6 +37,33 @@ vtkMetaballRepresentation::~vtkMetaballRepresentation()
   {
     balls->Delete();
   }
+  this->Ghosts->Delete();
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballRepresentation::SetupDefaults()
+{
+  this->Superclass::SetupDefaults();
+  this->Ghosts->SetInputConnection(this->GeometryFilter->GetOutputPort());
+  this->MultiBlockMaker->SetInputConnection(this->Ghosts->GetOutputPort());
+}
+
+//------------------------------------------------------------------------------
+int vtkMetaballRepresentation::ProcessViewRequest(vtkInformationRequestKey* request_type,
+  vtkInformation* inInfo,
+  vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request_type, inInfo, outInfo))
+  {
+    return 0;
+  }
+  if (request_type == vtkPVView::REQUEST_UPDATE())
+  {
+    // Neither redistributable (the ghosts belong to this split) nor a
+    // partition for others.
+    vtkPVRenderView::SetOrderedCompositingConfiguration(inInfo, this, 0);
+  }
+  return 1;
 }
 
 #define PS_FORWARD(name, setter, type)                                                             \
@@ -44,18 +75,30 @@ vtkMetaballRepresentation::~vtkMetaballRepresentation()
     }                                                                                              \
     this->Modified();                                                                              \
   }
+// These also decide which balls reach other ranks.
+#define PS_FORWARD_GHOSTS(name, setter, type)                                                      \
+  void vtkMetaballRepresentation::SetMetaball##name(type value)                                    \
+  {                                                                                                \
+    for (vtkMetaballMapper * balls : this->Balls)                                                  \
+    {                                                                                              \
+      balls->Set##setter(value);                                                                   \
+    }                                                                                              \
+    this->Ghosts->Set##setter(value);                                                              \
+    this->MarkModified();                                                                          \
+  }
 PS_FORWARD(Kernel, Kernel, int)
 PS_FORWARD(Threshold, Threshold, double)
-PS_FORWARD(RadiusArray, RadiusArrayName, const char*)
-PS_FORWARD(Radius, Radius, double)
-PS_FORWARD(RadiusScale, RadiusScale, double)
-PS_FORWARD(StrengthArray, StrengthArrayName, const char*)
+PS_FORWARD_GHOSTS(RadiusArray, RadiusArrayName, const char*)
+PS_FORWARD_GHOSTS(Radius, Radius, double)
+PS_FORWARD_GHOSTS(RadiusScale, RadiusScale, double)
+PS_FORWARD_GHOSTS(StrengthArray, StrengthArrayName, const char*)
 PS_FORWARD(StepScale, StepScale, double)
 PS_FORWARD(Bisections, Bisections, int)
 PS_FORWARD(TileSize, TileSize, int)
 PS_FORWARD(Slabs, Slabs, int)
 PS_FORWARD(Shadows, Shadows, bool)
 #undef PS_FORWARD
+#undef PS_FORWARD_GHOSTS
 
 //------------------------------------------------------------------------------
 void vtkMetaballRepresentation::PrintSelf(ostream& os, vtkIndent indent)

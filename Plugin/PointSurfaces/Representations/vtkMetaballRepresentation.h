@@ -12,6 +12,14 @@
  * and its scale, strength array, marching step and bisections, tile size
  * and slabs, and shadows. ParaView's decimated interaction LOD is
  * suppressed: the metaball surface of decimated points is another surface.
+ *
+ * Split across server ranks, each rank's balls gain the other ranks' balls
+ * that reach them (vtkMetaballGhostBalls, between ParaView's geometry filter
+ * and the delivery), so the ranks' surfaces blend across the cuts and depth
+ * compositing gives the serial picture. The exchange runs in RequestData,
+ * which ParaView executes on every rank. Radii are taken in data
+ * coordinates: an actor scale that differs between axes can make the
+ * exchange miss balls near the cuts.
  */
 #ifndef vtkMetaballRepresentation_h
 #define vtkMetaballRepresentation_h
@@ -19,6 +27,7 @@
 #include "PointSurfacesParaViewRepresentationsModule.h" // For export macro
 #include "vtkGeometryRepresentationWithFaces.h"
 
+class vtkMetaballGhostBalls;
 class vtkMetaballMapper;
 
 class POINTSURFACESPARAVIEWREPRESENTATIONS_EXPORT vtkMetaballRepresentation
@@ -46,11 +55,27 @@ public:
 
   void SetSuppressLOD(bool) override { this->Superclass::SetSuppressLOD(true); }
 
+  /**
+   * As the superclass, but the view must not move this data between ranks:
+   * its ghost balls are made for this split (and ordered compositing is
+   * never needed for it: the surface is opaque).
+   */
+  int ProcessViewRequest(vtkInformationRequestKey* request_type,
+    vtkInformation* inInfo,
+    vtkInformation* outInfo) override;
+
 protected:
   vtkMetaballRepresentation();
   ~vtkMetaballRepresentation() override;
 
+  /** The superclass's pipeline with the ghost exchange after its geometry filter. */
+  void SetupDefaults() override;
+
+  /** Opaque: no ordered compositing, whatever the colouring. */
+  bool NeedsOrderedCompositing() override { return false; }
+
   vtkMetaballMapper* Balls[2];
+  vtkMetaballGhostBalls* Ghosts;
 
 private:
   vtkMetaballRepresentation(const vtkMetaballRepresentation&) = delete;

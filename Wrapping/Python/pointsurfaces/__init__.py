@@ -20,6 +20,7 @@ change it from code.
 from vtkmodules import vtkRenderingOpenGL2 as _vtkRenderingOpenGL2  # noqa: F401
 
 from .PointSurfacesFilters import *  # noqa: F401,F403
+from .PointSurfacesFiltersParallel import *  # noqa: F401,F403
 from .PointSurfacesIO import *  # noqa: F401,F403
 from .PointSurfacesRendering import *  # noqa: F401,F403
 from .PointSurfacesRendering import vtkPointSurfacesRenderWindowFactory as _Factory

@@ -1,0 +1,359 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkMetaballGhostBalls.h"
+
+#include "psMetaball.h"
+
+#include "vtkCellArray.h"
+#include "vtkCompositeDataIterator.h"
+#include "vtkCompositeDataSet.h"
+#include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include <cmath>
+#include <vector>
+
+vtkStandardNewMacro(vtkMetaballGhostBalls);
+vtkCxxSetObjectMacro(vtkMetaballGhostBalls, Controller, vtkMultiProcessController);
+
+namespace
+{
+// The input's ghost flags: a point another process owns is not a ball of ours.
+bool Duplicate(vtkUnsignedCharArray* ghosts, vtkIdType i)
+{
+  return ghosts && (ghosts->GetValue(i) & vtkDataSetAttributes::DUPLICATEPOINT);
+}
+
+// The point data without the ghost flags (they are made anew).
+vtkSmartPointer<vtkPointData> WithoutGhostFlags(vtkPointData* pd)
+{
+  auto copy = vtkSmartPointer<vtkPointData>::New();
+  copy->ShallowCopy(pd);
+  copy->RemoveArray(vtkDataSetAttributes::GhostArrayName());
+  return copy;
+}
+
+// Points and point data of several sets, keeping `keep[k][i]` points of set
+// k (all when empty), with the point arrays all the sets share, as a point
+// cloud: one vertex per point. Points in double when any set's are.
+vtkSmartPointer<vtkPolyData> MergePoints(const std::vector<vtkPointSet*>& sets,
+  const std::vector<std::vector<vtkIdType>>& keep)
+{
+  std::vector<vtkSmartPointer<vtkPointData>> data;
+  vtkDataSetAttributes::FieldList fields(static_cast<int>(sets.size()));
+  vtkIdType total = 0;
+  int pointType = VTK_FLOAT;
+  for (size_t k = 0; k < sets.size(); ++k)
+  {
+    data.push_back(WithoutGhostFlags(sets[k]->GetPointData()));
+    if (k == 0)
+    {
+      fields.InitializeFieldList(data.back());
+    }
+    else
+    {
+      fields.IntersectFieldList(data.back());
+    }
+    total += keep[k].size();
+    if (sets[k]->GetPoints() && sets[k]->GetPoints()->GetDataType() == VTK_DOUBLE)
+    {
+      pointType = VTK_DOUBLE;
+    }
+  }
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataType(pointType);
+  points->SetNumberOfPoints(total);
+  out->GetPointData()->CopyAllocate(fields, total);
+  vtkIdType next = 0;
+  for (size_t k = 0; k < sets.size(); ++k)
+  {
+    for (vtkIdType i : keep[k])
+    {
+      points->SetPoint(next, sets[k]->GetPoint(i));
+      out->GetPointData()->CopyData(fields, data[k], static_cast<int>(k), i, next);
+      ++next;
+    }
+  }
+  out->SetPoints(points);
+  vtkNew<vtkCellArray> verts;
+  verts->AllocateExact(total, total);
+  for (vtkIdType i = 0; i < total; ++i)
+  {
+    verts->InsertNextCell(1, &i);
+  }
+  out->SetVerts(verts);
+  return out;
+}
+
+// All point ids of a set.
+std::vector<vtkIdType> AllIds(vtkIdType n)
+{
+  std::vector<vtkIdType> ids(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    ids[i] = i;
+  }
+  return ids;
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkMetaballGhostBalls::vtkMetaballGhostBalls()
+{
+  this->SetController(vtkMultiProcessController::GetGlobalController());
+}
+
+//------------------------------------------------------------------------------
+vtkMetaballGhostBalls::~vtkMetaballGhostBalls()
+{
+  this->SetController(nullptr);
+}
+
+//------------------------------------------------------------------------------
+int vtkMetaballGhostBalls::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkCompositeDataSet");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkMetaballGhostBalls::RequestDataObject(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkDataObject* output = vtkDataObject::GetData(outInfo);
+  if (vtkCompositeDataSet::SafeDownCast(input))
+  {
+    if (!output || !output->IsA(input->GetClassName()))
+    {
+      vtkSmartPointer<vtkDataObject> made =
+        vtkSmartPointer<vtkDataObject>::Take(input->NewInstance());
+      outInfo->Set(vtkDataObject::DATA_OBJECT(), made);
+    }
+  }
+  else if (!vtkPolyData::SafeDownCast(output))
+  {
+    outInfo->Set(vtkDataObject::DATA_OBJECT(), vtkSmartPointer<vtkPolyData>::New());
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkMetaballGhostBalls::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
+  vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
+  this->NumberOfGhostBalls = 0;
+
+  // The point-set leaves, in order.
+  std::vector<vtkPointSet*> leaves;
+  vtkCompositeDataSet* composite = vtkCompositeDataSet::SafeDownCast(input);
+  if (composite)
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> it =
+      vtkSmartPointer<vtkCompositeDataIterator>::Take(composite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      if (vtkPointSet* leaf = vtkPointSet::SafeDownCast(it->GetCurrentDataObject()))
+      {
+        leaves.push_back(leaf);
+      }
+    }
+  }
+  else if (vtkPointSet* set = vtkPointSet::SafeDownCast(input))
+  {
+    leaves.push_back(set);
+  }
+
+  // Our own balls: every point not flagged as another process's duplicate.
+  std::vector<std::vector<vtkIdType>> own(leaves.size());
+  std::vector<double> centres, radii;
+  bool negative = false, noRadii = false;
+  for (size_t k = 0; k < leaves.size(); ++k)
+  {
+    vtkPointSet* leaf = leaves[k];
+    vtkPointData* pd = leaf->GetPointData();
+    auto* ghosts =
+      vtkUnsignedCharArray::SafeDownCast(pd->GetArray(vtkDataSetAttributes::GhostArrayName()));
+    vtkDataArray* r =
+      this->RadiusArrayName.empty() ? nullptr : pd->GetArray(this->RadiusArrayName.c_str());
+    vtkDataArray* q =
+      this->StrengthArrayName.empty() ? nullptr : pd->GetArray(this->StrengthArrayName.c_str());
+    noRadii = noRadii || (!this->RadiusArrayName.empty() && !r && leaf->GetNumberOfPoints() > 0);
+    for (vtkIdType i = 0; i < leaf->GetNumberOfPoints(); ++i)
+    {
+      if (Duplicate(ghosts, i))
+      {
+        continue;
+      }
+      own[k].push_back(i);
+      double p[3];
+      leaf->GetPoint(i, p);
+      centres.insert(centres.end(), p, p + 3);
+      radii.push_back(this->RadiusScale * (r ? r->GetComponent(i, 0) : this->Radius));
+      negative = negative || (q && q->GetComponent(i, 0) < 0.0);
+    }
+  }
+  if (noRadii)
+  {
+    vtkWarningMacro(<< "No point array \"" << this->RadiusArrayName
+                    << "\" for the radii: every ball has radius " << this->Radius << ".");
+  }
+  const int ranks = this->Controller ? this->Controller->GetNumberOfProcesses() : 1;
+  if (negative && ranks > 1)
+  {
+    vtkWarningMacro("Some balls have negative strengths: a process's field may exceed the whole "
+                    "field near the cuts between processes, and the composited surface may show "
+                    "seams there.");
+  }
+
+  // Received ghosts, when split across processes.
+  vtkSmartPointer<vtkPolyData> received;
+  if (ranks > 1)
+  {
+    pointsurfaces::MetaballSet balls;
+    balls.Centers = centres.data();
+    balls.Radii = radii.data();
+    balls.Count = static_cast<long long>(radii.size());
+    double box[6];
+    pointsurfaces::SupportBounds(balls, box);
+    std::vector<double> boxes(6 * ranks);
+    this->Controller->AllGather(box, boxes.data(), 6);
+
+    // Our balls that reach each process's box, as (leaf, point) lists.
+    const int me = this->Controller->GetLocalProcessId();
+    std::vector<vtkSmartPointer<vtkDataObject>> pieces;
+    for (int rank = 0; rank < ranks; ++rank)
+    {
+      std::vector<std::vector<vtkIdType>> send(leaves.size());
+      if (rank != me)
+      {
+        const std::vector<long long> ids =
+          pointsurfaces::BallsReachingBox(balls, boxes.data() + 6 * rank);
+        size_t k = 0;
+        long long first = 0; // ball id of own[k][0]
+        for (long long id : ids)
+        {
+          while (id - first >= static_cast<long long>(own[k].size()))
+          {
+            first += static_cast<long long>(own[k].size());
+            ++k;
+          }
+          send[k].push_back(own[k][id - first]);
+        }
+      }
+      vtkSmartPointer<vtkDataObject> piece = vtkSmartPointer<vtkPolyData>::New();
+      if (!leaves.empty())
+      {
+        piece = MergePoints(leaves, send);
+      }
+      std::vector<vtkSmartPointer<vtkDataObject>> gathered;
+      this->Controller->Gather(piece, gathered, rank);
+      if (rank == me)
+      {
+        pieces = gathered;
+      }
+    }
+    std::vector<vtkPointSet*> from;
+    std::vector<std::vector<vtkIdType>> all;
+    for (vtkDataObject* piece : pieces)
+    {
+      vtkPointSet* set = vtkPointSet::SafeDownCast(piece);
+      if (set && set->GetNumberOfPoints() > 0)
+      {
+        from.push_back(set);
+        all.push_back(AllIds(set->GetNumberOfPoints()));
+      }
+    }
+    if (!from.empty())
+    {
+      received = MergePoints(from, all);
+      this->NumberOfGhostBalls = received->GetNumberOfPoints();
+    }
+  }
+
+  // Each leaf as a point cloud of its own balls; the ghosts follow the first
+  // non-empty one, flagged.
+  std::vector<vtkSmartPointer<vtkPolyData>> clouds;
+  bool placed = false;
+  for (size_t k = 0; k < leaves.size(); ++k)
+  {
+    std::vector<vtkPointSet*> sets{ leaves[k] };
+    std::vector<std::vector<vtkIdType>> keep{ own[k] };
+    const bool here = received && !placed && !own[k].empty();
+    if (here)
+    {
+      sets.push_back(received);
+      keep.push_back(AllIds(received->GetNumberOfPoints()));
+      placed = true;
+    }
+    vtkSmartPointer<vtkPolyData> cloud = MergePoints(sets, keep);
+    if (ranks > 1)
+    {
+      vtkNew<vtkUnsignedCharArray> flags;
+      flags->SetName(vtkDataSetAttributes::GhostArrayName());
+      flags->SetNumberOfValues(cloud->GetNumberOfPoints());
+      flags->FillValue(0);
+      for (vtkIdType i = static_cast<vtkIdType>(own[k].size()); i < cloud->GetNumberOfPoints(); ++i)
+      {
+        flags->SetValue(i, vtkDataSetAttributes::DUPLICATEPOINT);
+      }
+      cloud->GetPointData()->AddArray(flags);
+    }
+    clouds.push_back(cloud);
+  }
+  if (received && !placed)
+  {
+    this->NumberOfGhostBalls = 0; // no own ball: nothing could have reached us
+  }
+
+  if (composite)
+  {
+    vtkCompositeDataSet* out = vtkCompositeDataSet::SafeDownCast(output);
+    out->CopyStructure(composite);
+    vtkSmartPointer<vtkCompositeDataIterator> it =
+      vtkSmartPointer<vtkCompositeDataIterator>::Take(composite->NewIterator());
+    size_t k = 0;
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      if (vtkPointSet::SafeDownCast(it->GetCurrentDataObject()))
+      {
+        out->SetDataSet(it, clouds[k++]);
+      }
+    }
+  }
+  else if (!clouds.empty())
+  {
+    vtkPolyData::SafeDownCast(output)->ShallowCopy(clouds[0]);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballGhostBalls::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Controller: " << this->Controller << "\n";
+  os << indent << "RadiusArrayName: " << this->RadiusArrayName << "\n";
+  os << indent << "Radius: " << this->Radius << "\n";
+  os << indent << "RadiusScale: " << this->RadiusScale << "\n";
+  os << indent << "StrengthArrayName: " << this->StrengthArrayName << "\n";
+  os << indent << "NumberOfGhostBalls: " << this->NumberOfGhostBalls << "\n";
+}
