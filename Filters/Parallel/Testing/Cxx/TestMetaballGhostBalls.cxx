@@ -12,6 +12,10 @@
 //   of the pixels may differ by more than 40/255. The same composite of the
 //   ranks' own balls alone (the seams this filter removes) is measured too,
 //   and must differ more;
+// - a composite input (a multiblock of a poly data and an unstructured grid
+//   holding a rank's balls, the latter with a copy of another rank's ball
+//   flagged as a duplicate point): the same structure back, the copy
+//   dropped, the same ghosts, which follow the first leaf;
 // - bad input: a rank with no balls, NaN centres and zero radii take part
 //   without hanging or sending them.
 #include "vtkMetaballGhostBalls.h"
@@ -24,6 +28,7 @@
 #include "vtkFloatArray.h"
 #include "vtkMPIController.h"
 #include "vtkMetaballMapper.h"
+#include "vtkMultiBlockDataSet.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -32,6 +37,7 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -232,6 +238,58 @@ int TestMetaballGhostBalls(int argc, char* argv[])
               << " % of pixels differ with ghost balls, " << 100 * ownOnly << " % without\n";
     check(withGhosts <= 5e-4, "composite with ghosts matches the serial render");
     check(ranks == 1 || ownOnly > 4 * withGhosts + 1e-3, "without ghosts the seams show");
+  }
+
+  // A composite input: the first half of our balls in a poly data, the rest
+  // in an unstructured grid with a flagged copy of another rank's ball.
+  {
+    const vtkIdType half = own / 2;
+    vtkSmartPointer<vtkPolyData> firstHalf = vtkSmartPointer<vtkPolyData>::New();
+    vtkSmartPointer<vtkUnstructuredGrid> rest = vtkSmartPointer<vtkUnstructuredGrid>::New();
+    vtkNew<vtkPoints> p0, p1;
+    firstHalf->SetPoints(p0);
+    rest->SetPoints(p1);
+    firstHalf->GetPointData()->CopyAllocate(mine->GetPointData());
+    rest->GetPointData()->CopyAllocate(mine->GetPointData());
+    for (vtkIdType i = 0; i < own; ++i)
+    {
+      vtkPointSet* to = i < half ? static_cast<vtkPointSet*>(firstHalf) : rest;
+      const vtkIdType id = to->GetPoints()->InsertNextPoint(mine->GetPoint(i));
+      to->GetPointData()->CopyData(mine->GetPointData(), i, id);
+    }
+    // A foreign ball (the other ranks' first) as a duplicate point.
+    vtkSmartPointer<vtkPolyData> other = MakeBalls((rank + 1) % ranks, ranks, false);
+    const vtkIdType copy = ranks > 1 ? rest->GetPoints()->InsertNextPoint(other->GetPoint(0)) : -1;
+    if (copy >= 0)
+    {
+      rest->GetPointData()->CopyData(other->GetPointData(), 0, copy);
+    }
+    vtkNew<vtkUnsignedCharArray> flags2;
+    flags2->SetName(vtkDataSetAttributes::GhostArrayName());
+    flags2->SetNumberOfValues(rest->GetNumberOfPoints());
+    flags2->FillValue(0);
+    if (copy >= 0)
+    {
+      flags2->SetValue(copy, vtkDataSetAttributes::DUPLICATEPOINT);
+    }
+    rest->GetPointData()->AddArray(flags2);
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetNumberOfBlocks(2);
+    blocks->SetBlock(0, firstHalf);
+    blocks->SetBlock(1, rest);
+    vtkNew<vtkMetaballGhostBalls> split;
+    split->SetInputDataObject(blocks);
+    split->SetRadiusArrayName("Radius");
+    split->Update();
+    auto* result = vtkMultiBlockDataSet::SafeDownCast(split->GetOutputDataObject(0));
+    auto* leaf0 = result ? vtkPolyData::SafeDownCast(result->GetBlock(0)) : nullptr;
+    auto* leaf1 = result ? vtkPolyData::SafeDownCast(result->GetBlock(1)) : nullptr;
+    check(leaf0 && leaf1 && result->GetNumberOfBlocks() == 2, "composite: same structure");
+    check(split->GetNumberOfGhostBalls() == ghosts->GetNumberOfGhostBalls(),
+      "composite: the same ghosts");
+    check(leaf0 && leaf0->GetNumberOfPoints() == half + split->GetNumberOfGhostBalls(),
+      "composite: ghosts follow the first leaf");
+    check(leaf1 && leaf1->GetNumberOfPoints() == own - half, "composite: duplicate point dropped");
   }
 
   // Bad input: the last rank has no balls; NaN and zero radii elsewhere.
