@@ -4,6 +4,7 @@
 
 #include "vtkMetaballGhostBalls.h"
 #include "vtkMetaballMapper.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVRenderView.h"
 #include "vtkPointSurfacesDelegatingMapper.h"
@@ -16,6 +17,11 @@ vtkMetaballRepresentation::vtkMetaballRepresentation()
   // Replace the superclass's mappers, then let it wire them up again, with
   // the ghost exchange.
   this->Ghosts = vtkMetaballGhostBalls::New();
+  for (vtkMetaballGhostBalls*& alone : this->Alone)
+  {
+    alone = vtkMetaballGhostBalls::New();
+    alone->SetController(nullptr);
+  }
   this->Mapper->Delete();
   this->LODMapper->Delete();
   vtkMapper** slots[2] = { &this->Mapper, &this->LODMapper };
@@ -38,6 +44,10 @@ vtkMetaballRepresentation::~vtkMetaballRepresentation()
     balls->Delete();
   }
   this->Ghosts->Delete();
+  for (vtkMetaballGhostBalls* alone : this->Alone)
+  {
+    alone->Delete();
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -62,6 +72,26 @@ int vtkMetaballRepresentation::ProcessViewRequest(vtkInformationRequestKey* requ
     // Neither redistributable (the ghosts belong to this split) nor a
     // partition for others.
     vtkPVRenderView::SetOrderedCompositingConfiguration(inInfo, this, 0);
+  }
+  else if (request_type == vtkPVView::REQUEST_RENDER())
+  {
+    // Alone, this process renders every rank's balls, each rank's ghosts
+    // among them: drop the ghosts (each ball is there once, from its owner).
+    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+    if (!controller || controller->GetNumberOfProcesses() <= 1)
+    {
+      vtkMapper* mappers[2] = { this->Mapper, this->LODMapper };
+      for (int k = 0; k < 2; ++k)
+      {
+        vtkDataObject* delivered = mappers[k]->GetInputDataObject(0, 0);
+        if (delivered && delivered != this->Alone[k]->GetOutputDataObject(0))
+        {
+          this->Alone[k]->SetInputDataObject(delivered);
+          this->Alone[k]->Update();
+          mappers[k]->SetInputDataObject(this->Alone[k]->GetOutputDataObject(0));
+        }
+      }
+    }
   }
   return 1;
 }
