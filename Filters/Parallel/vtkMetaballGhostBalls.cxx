@@ -9,6 +9,8 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkMultiProcessController.h"
@@ -22,6 +24,8 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <cmath>
+#include <set>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkMetaballGhostBalls);
@@ -44,56 +48,126 @@ vtkSmartPointer<vtkPointData> WithoutGhostFlags(vtkPointData* pd)
   return copy;
 }
 
-// Points and point data of several sets, keeping `keep[k][i]` points of set
-// k (all when empty), with the point arrays all the sets share, as a point
-// cloud: one vertex per point. Points in double when any set's are.
-vtkSmartPointer<vtkPolyData> MergePoints(const std::vector<vtkPointSet*>& sets,
-  const std::vector<std::vector<vtkIdType>>& keep)
+// One vertex per point.
+vtkSmartPointer<vtkCellArray> Vertices(vtkIdType n)
 {
-  std::vector<vtkSmartPointer<vtkPointData>> data;
-  vtkDataSetAttributes::FieldList fields(static_cast<int>(sets.size()));
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(n + 1);
+  connectivity->SetNumberOfValues(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    offsets->SetValue(i, i);
+    connectivity->SetValue(i, i);
+  }
+  offsets->SetValue(n, n);
+  auto verts = vtkSmartPointer<vtkCellArray>::New();
+  verts->SetData(offsets, connectivity);
+  return verts;
+}
+
+// Points `keep[k]` of the sets `sets[k]`, in order, as a point cloud (one
+// vertex per point) with the point arrays of the first set that gives
+// points (its active attributes too). A later set's array of the same name
+// and kind fills its points' tuples; where a set lacks one, its tuples stay
+// zero (empty strings) and the array's name goes into `missing`. Points in
+// double when any set's are. One set kept whole is shared, not copied.
+vtkSmartPointer<vtkPolyData> MergePoints(const std::vector<vtkPointSet*>& sets,
+  const std::vector<std::vector<vtkIdType>>& keep,
+  std::set<std::string>& missing)
+{
+  std::vector<size_t> giving;
   vtkIdType total = 0;
   int pointType = VTK_FLOAT;
   for (size_t k = 0; k < sets.size(); ++k)
   {
-    data.push_back(WithoutGhostFlags(sets[k]->GetPointData()));
-    if (k == 0)
+    if (!keep[k].empty())
     {
-      fields.InitializeFieldList(data.back());
-    }
-    else
-    {
-      fields.IntersectFieldList(data.back());
-    }
-    total += keep[k].size();
-    if (sets[k]->GetPoints() && sets[k]->GetPoints()->GetDataType() == VTK_DOUBLE)
-    {
-      pointType = VTK_DOUBLE;
+      giving.push_back(k);
+      total += static_cast<vtkIdType>(keep[k].size());
+      if (sets[k]->GetPoints()->GetDataType() == VTK_DOUBLE)
+      {
+        pointType = VTK_DOUBLE;
+      }
     }
   }
   auto out = vtkSmartPointer<vtkPolyData>::New();
+  if (giving.empty())
+  {
+    // No points: keep the first set's arrays, empty.
+    if (!sets.empty())
+    {
+      out->GetPointData()->CopyAllocate(WithoutGhostFlags(sets[0]->GetPointData()), 0);
+    }
+    out->SetPoints(vtkNew<vtkPoints>());
+    return out;
+  }
+  vtkPointSet* first = sets[giving[0]];
+  vtkSmartPointer<vtkPointData> firstData = WithoutGhostFlags(first->GetPointData());
+  if (giving.size() == 1 && total == first->GetNumberOfPoints() &&
+    keep[giving[0]].back() == total - 1)
+  {
+    // Kept whole and in order (ids ascend): share points and arrays.
+    out->SetPoints(first->GetPoints());
+    out->GetPointData()->ShallowCopy(firstData);
+    out->SetVerts(Vertices(total));
+    return out;
+  }
+
   vtkNew<vtkPoints> points;
   points->SetDataType(pointType);
   points->SetNumberOfPoints(total);
-  out->GetPointData()->CopyAllocate(fields, total);
-  vtkIdType next = 0;
-  for (size_t k = 0; k < sets.size(); ++k)
+  vtkPointData* pd = out->GetPointData();
+  for (int a = 0; a < firstData->GetNumberOfArrays(); ++a)
   {
+    vtkAbstractArray* from = firstData->GetAbstractArray(a);
+    vtkSmartPointer<vtkAbstractArray> to =
+      vtkSmartPointer<vtkAbstractArray>::Take(from->NewInstance());
+    to->SetName(from->GetName());
+    to->SetNumberOfComponents(from->GetNumberOfComponents());
+    to->SetNumberOfTuples(total);
+    if (auto* numbers = vtkDataArray::SafeDownCast(to))
+    {
+      numbers->Fill(0.0);
+    }
+    pd->AddArray(to);
+  }
+  for (int t = 0; t < vtkDataSetAttributes::NUM_ATTRIBUTES; ++t)
+  {
+    vtkAbstractArray* active = firstData->GetAbstractAttribute(t);
+    if (active && active->GetName())
+    {
+      pd->SetActiveAttribute(active->GetName(), t);
+    }
+  }
+  vtkIdType next = 0;
+  for (size_t k : giving)
+  {
+    vtkPointData* source = sets[k]->GetPointData();
+    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+    {
+      vtkAbstractArray* to = pd->GetAbstractArray(a);
+      vtkAbstractArray* from = source->GetAbstractArray(to->GetName());
+      const bool fits = from && from->GetNumberOfComponents() == to->GetNumberOfComponents() &&
+        (from->IsA(to->GetClassName()) ||
+          (vtkDataArray::SafeDownCast(from) && vtkDataArray::SafeDownCast(to)));
+      if (!fits)
+      {
+        missing.insert(to->GetName());
+        continue;
+      }
+      vtkIdType row = next;
+      for (vtkIdType i : keep[k])
+      {
+        to->SetTuple(row++, i, from);
+      }
+    }
     for (vtkIdType i : keep[k])
     {
-      points->SetPoint(next, sets[k]->GetPoint(i));
-      out->GetPointData()->CopyData(fields, data[k], static_cast<int>(k), i, next);
-      ++next;
+      points->SetPoint(next++, sets[k]->GetPoint(i));
     }
   }
   out->SetPoints(points);
-  vtkNew<vtkCellArray> verts;
-  verts->AllocateExact(total, total);
-  for (vtkIdType i = 0; i < total; ++i)
-  {
-    verts->InsertNextCell(1, &i);
-  }
-  out->SetVerts(verts);
+  out->SetVerts(Vertices(total));
   return out;
 }
 
@@ -226,6 +300,7 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
 
   // Received ghosts, when split across processes.
   vtkSmartPointer<vtkPolyData> received;
+  std::set<std::string> missing; // point arrays some pieces lack
   if (ranks > 1)
   {
     pointsurfaces::MetaballSet balls;
@@ -262,7 +337,7 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
       vtkSmartPointer<vtkDataObject> piece = vtkSmartPointer<vtkPolyData>::New();
       if (!leaves.empty())
       {
-        piece = MergePoints(leaves, send);
+        piece = MergePoints(leaves, send, missing);
       }
       std::vector<vtkSmartPointer<vtkDataObject>> gathered;
       this->Controller->Gather(piece, gathered, rank);
@@ -284,7 +359,7 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
     }
     if (!from.empty())
     {
-      received = MergePoints(from, all);
+      received = MergePoints(from, all, missing);
       this->NumberOfGhostBalls = received->GetNumberOfPoints();
     }
   }
@@ -304,7 +379,7 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
       keep.push_back(AllIds(received->GetNumberOfPoints()));
       placed = true;
     }
-    vtkSmartPointer<vtkPolyData> cloud = MergePoints(sets, keep);
+    vtkSmartPointer<vtkPolyData> cloud = MergePoints(sets, keep, missing);
     if (ranks > 1)
     {
       vtkNew<vtkUnsignedCharArray> flags;
@@ -323,6 +398,16 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
   {
     this->NumberOfGhostBalls = 0; // no own ball: nothing could have reached us
   }
+  if (!missing.empty())
+  {
+    std::string names;
+    for (const std::string& name : missing)
+    {
+      names += (names.empty() ? "\"" : ", \"") + name + "\"";
+    }
+    vtkWarningMacro(<< "Some balls (other leaves' or other processes') lack the point arrays "
+                    << names << ": their values there are zero.");
+  }
 
   if (composite)
   {
@@ -333,14 +418,22 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
     size_t k = 0;
     for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
     {
-      if (vtkPointSet::SafeDownCast(it->GetCurrentDataObject()))
+      vtkDataObject* leaf = it->GetCurrentDataObject();
+      if (vtkPointSet::SafeDownCast(leaf))
       {
+        clouds[k]->GetFieldData()->PassData(leaf->GetFieldData());
         out->SetDataSet(it, clouds[k++]);
       }
+      else
+      {
+        out->SetDataSet(it, leaf); // not balls: passed through
+      }
     }
+    out->GetFieldData()->PassData(composite->GetFieldData());
   }
   else if (!clouds.empty())
   {
+    clouds[0]->GetFieldData()->PassData(leaves[0]->GetFieldData());
     vtkPolyData::SafeDownCast(output)->ShallowCopy(clouds[0]);
   }
   return 1;

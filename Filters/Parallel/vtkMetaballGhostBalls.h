@@ -11,27 +11,36 @@
  * the blend at the cut and composites a seam. This filter gives each rank
  * copies of the other ranks' balls whose support (the sphere of radius R)
  * reaches the box that its own balls' supports cover. With non-negative
- * strengths that is enough for depth compositing to give exactly the serial
- * surface, colours and normals included: wherever a rank's own ball
- * reaches, its field equals the whole field, and elsewhere it is nowhere
- * above the whole field, so its hits are never nearer than the true ones
- * (see pointsurfaces::BallsReachingBox). No clipping to regions is needed,
- * and it holds for any split, not only spatial ones, although only a
- * spatial split keeps the ghosts few. Negative strengths break the bound:
- * the filter warns and the seam may show.
+ * strengths that makes depth compositing give the serial surface: wherever
+ * a rank's own ball reaches, its field equals the whole field, and elsewhere
+ * it is nowhere above the whole field, so its hits are never nearer than the
+ * true ones (see pointsurfaces::BallsReachingBox). The field at every hit,
+ * and so colour and normal, is the serial one; only the ray marcher's
+ * sampling differs between ranks (its step follows each rank's smallest
+ * radius). No clipping to regions is needed, and it holds for any split,
+ * but only a spatial split keeps the ghosts few: where the ranks' boxes
+ * overlap widely, most balls go to most ranks. Negative strengths break the
+ * bound (the filter warns, and seams may show). Shadows see only a rank's
+ * own and ghost balls: occluders further away on other ranks cast none.
  *
  * Radii are found as vtkMetaballMapper finds them (RadiusArrayName, else
  * Radius, times RadiusScale); give the filter the mapper's values. The
- * exchange is two collective steps on the controller (an all-gather of
- * boxes and a gather per rank), so every rank must execute the filter.
+ * exchange is collective (an all-gather of boxes, then a gather to each
+ * rank in turn), so every rank must execute the filter.
  *
- * Output: a vtkPolyData for a vtkPointSet input (its points, point data and,
- * for polydata, its cells), or, for a composite input, the same structure
- * with each point-set leaf so converted. The ghosts follow the points of
- * the first non-empty leaf, with the point arrays the two share, and are
- * marked vtkDataSetAttributes::DUPLICATEPOINT in a vtkGhostType array
- * (created with zeros for the own points when the input has none). With one
- * process, or no controller, the output is the input so converted.
+ * Output: the balls as point clouds (one vertex per point; input cells and
+ * cell data are not kept): a vtkPolyData for a vtkPointSet input, or, for a
+ * composite input, the same structure with each point-set leaf so converted
+ * (other leaves passed through). Point data and field data are kept. Input
+ * points flagged vtkDataSetAttributes::DUPLICATEPOINT in vtkGhostType are
+ * another process's balls: they are dropped, and their owner sends them
+ * where they reach. With more than one process, the ghosts follow the own
+ * points of the first leaf that has any, flagged DUPLICATEPOINT in a new
+ * vtkGhostType array (0 for the own points); point arrays the ghosts lack
+ * are zero there, with a warning. With one process, or no controller, the
+ * output is the input's non-duplicate points, sharing the input's arrays
+ * when nothing is dropped: vtkMetaballRepresentation uses this to drop
+ * ghosts before one process renders every rank's balls.
  */
 #ifndef vtkMetaballGhostBalls_h
 #define vtkMetaballGhostBalls_h

@@ -8,9 +8,10 @@ ground truth) is drawn in the same process and window by:
 
 - the original triangle mesh, smooth-shaded and 4 x 4 supersampled: the
   reference image; and the same mesh without supersampling;
-- algebraic splats of degree 1 to 4 at several qualities s, blended, with
-  adaptive anti-aliasing off, 2 x 2 and 3 x 3, and with full-screen 2 x 2
-  supersampling (the window drawn at twice the size, then averaged);
+- algebraic splats of degree 1 to 4 at several qualities s, blended (two
+  passes) and opaque; the cubic ones at s = 1 also with adaptive
+  anti-aliasing 2 x 2 and 3 x 3, and with full-screen 2 x 2 supersampling
+  (the window drawn at twice the size, then averaged);
 - vtkPointGaussianMapper (sphere-shaded sprites) and vtkOpenGLSphereMapper
   over all the original points, at several radii (multiples of the mean
   point spacing).
@@ -21,6 +22,15 @@ primitive count and the bytes per primitive in GPU vertex buffers, and its
 frame time as a ratio to the best (lowest-error) vtkPointGaussianMapper run at
 the same size. CSV goes to stdout and <out>/splat_render.csv; the plot
 <out>/splat_render_<size>.png draws error against frame time.
+
+At equal error: for each peer's lowest-error run, the fastest splat run (no
+supersampling) whose error is no larger, with its frame time as a ratio to
+the peer's and its share of the primitives (<out>/splat_render_equal_error.csv,
+also printed as # lines).
+
+--points N draws N points sampled uniformly (by area, seeded) on the mesh's
+triangles instead of its vertices: a dense scan, the case the thesis's
+figures are for, where the peers draw every point and the splats stay few.
 
 The timings depend on the GL implementation: on llvmpipe every fragment is
 computed on the CPU, so cost follows the shaded fragments, not the primitive
@@ -37,8 +47,8 @@ import numpy as np
 
 import pointsurfaces  # noqa: F401  (registers the EGL window factory)
 from pointsurfaces import vtkAlgebraicSplatFitter, vtkAlgebraicSplatMapper
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
+from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkPoints, vtkUnsignedCharArray
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData, vtkStaticPointLocator
 from vtkmodules.vtkCommonCore import vtkIdList
 from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
@@ -160,6 +170,48 @@ def mean_spacing(points, samples=2000):
     return total / count
 
 
+def sample_surface(mesh, n, seed=1):
+    """n points uniformly (by area) on the mesh's triangles."""
+    xyz = vtk_to_numpy(mesh.GetPoints().GetData()).astype(np.float64)
+    tri = vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+    a, b, c = xyz[tri[:, 0]], xyz[tri[:, 1]], xyz[tri[:, 2]]
+    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    rng = np.random.default_rng(seed)
+    pick = rng.choice(len(tri), size=n, p=area / area.sum())
+    r1, r2 = np.sqrt(rng.random(n))[:, None], rng.random(n)[:, None]
+    sample = (1 - r1) * a[pick] + r1 * (1 - r2) * b[pick] + r1 * r2 * c[pick]
+    out = vtkPoints()
+    out.SetData(numpy_to_vtk(sample, deep=True))
+    return out
+
+
+def equal_error(rows):
+    """Per size and peer: its lowest-error run against the fastest splat run at no more error."""
+    result = []
+    for label in sorted({r["size"] for r in rows}):
+        splats = [r for r in rows if r["size"] == label and r["method"] == "algebraic"
+                  and r["aa"] == 1]
+        for peer in ("point-gaussian", "sphere"):
+            runs = [r for r in rows if r["size"] == label and r["method"] == peer]
+            if not runs:
+                continue
+            best = min(runs, key=lambda r: float(r["rmse"]))
+            reach = [r for r in splats if float(r["rmse"]) <= float(best["rmse"])]
+            fastest = min(reach, key=lambda r: float(r["frame_ms"])) if reach else None
+            e = dict(size=label, peer=peer, peer_setting=best["s"], peer_rmse=best["rmse"],
+                     peer_ms=best["frame_ms"], splat="", splat_rmse="", splat_ms="",
+                     time_ratio="", primitive_ratio="")
+            if fastest:
+                e.update(splat="degree %s, s = %s, %s" % (
+                    fastest["degree"], fastest["s"],
+                    "blended" if fastest["blend"] == 1 else "opaque"),
+                    splat_rmse=fastest["rmse"], splat_ms=fastest["frame_ms"],
+                    time_ratio="%.3f" % (float(fastest["frame_ms"]) / float(best["frame_ms"])),
+                    primitive_ratio="%.2f%%" % (100.0 * fastest["primitives"] / best["primitives"]))
+            result.append(e)
+    return result
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -169,6 +221,8 @@ def main():
     parser.add_argument("--frames", type=int, default=7)
     parser.add_argument("--smoke", action="store_true", help="tiny sizes and few runs (CI)")
     parser.add_argument("--images", action="store_true", help="also write each run's image")
+    parser.add_argument("--points", type=int, default=0,
+                        help="sample this many points on the mesh instead of its vertices")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
     sizes = [parse_size(s) for s in (args.size or (["96"] if args.smoke else ["512", "1024"]))]
@@ -182,14 +236,13 @@ def main():
         print("bench_splat_render.py: %s has no triangles for the reference image" % args.mesh)
         return 1
     points = vtkPolyData()
-    points.SetPoints(mesh.GetPoints())
+    points.SetPoints(sample_surface(mesh, args.points) if args.points > 0 else mesh.GetPoints())
+    n_points = points.GetNumberOfPoints()
     verts = vtkCellArray()  # vtkOpenGLSphereMapper draws vertex cells
-    for i in range(mesh.GetNumberOfPoints()):
-        verts.InsertNextCell(1)
-        verts.InsertCellPoint(i)
+    verts.SetData(numpy_to_vtkIdTypeArray(np.arange(n_points + 1, dtype=np.int64), deep=True),
+                  numpy_to_vtkIdTypeArray(np.arange(n_points, dtype=np.int64), deep=True))
     points.SetVerts(verts)
-    spacing = mean_spacing(mesh.GetPoints())
-    n_points = mesh.GetNumberOfPoints()
+    spacing = mean_spacing(points.GetPoints())
     scene = Scene(mesh)
 
     normals = vtkPolyDataNormals()
@@ -202,7 +255,7 @@ def main():
 
     # Splat sets, fitted once each.
     degrees = [3] if args.smoke else [1, 2, 3, 4]
-    qualities = [1.0] if args.smoke else [1.0, 2.0]
+    qualities = [1.0] if args.smoke else [1.0, 2.0, 4.0]
     splat_sets = {}
     for degree in degrees:
         for s in qualities:
@@ -222,7 +275,8 @@ def main():
         reference = supersampled(scene, size, 4)
         label = "%dx%d" % size
 
-        def record(method, actor, prims, bytes_per, degree="", s="", aa="", image=None, ms=None):
+        def record(method, actor, prims, bytes_per, degree="", s="", aa="", image=None, ms=None,
+                   blend=""):
             scene.show(actor)
             if image is None:
                 image = scene.image(size)
@@ -232,7 +286,8 @@ def main():
                 name = "%s_%s_d%s_s%s_aa%s.png" % (label, method, degree, s, aa)
                 write_png(os.path.join(args.out, name), image)
             rows.append(
-                dict(size=label, method=method, degree=degree, s=s, aa=aa, primitives=prims,
+                dict(size=label, method=method, degree=degree, s=s, aa=aa, blend=blend,
+                     primitives=prims,
                      primitive_fraction="%.4f" % (prims / n_points), frame_ms="%.2f" % ms,
                      rmse="%.5f" % rmse(image, reference), gpu_bytes_per_primitive=bytes_per))
 
@@ -241,15 +296,17 @@ def main():
         for (degree, s), (splats, _) in splat_sets.items():
             aas = [1, 2, 3] if degree == 3 and s == qualities[0] else [1]
             for aa in aas:
-                mapper = vtkAlgebraicSplatMapper()
-                mapper.SetInputData(splats)
-                mapper.SetAntiAliasing(aa)
-                actor = material(vtkActor())
-                actor.SetMapper(mapper)
-                scene.show(actor)
-                scene.image(size)
-                record("algebraic", actor, splats.GetNumberOfPoints(),
-                       mapper.GetGPUBytesPerSplat(), degree, s, aa)
+                for blend in ((1, 0) if aa == 1 else (1,)):
+                    mapper = vtkAlgebraicSplatMapper()
+                    mapper.SetInputData(splats)
+                    mapper.SetAntiAliasing(aa)
+                    mapper.SetBlending(blend)
+                    actor = material(vtkActor())
+                    actor.SetMapper(mapper)
+                    scene.show(actor)
+                    scene.image(size)
+                    record("algebraic", actor, splats.GetNumberOfPoints(),
+                           mapper.GetGPUBytesPerSplat(), degree, s, aa, blend=blend)
             if degree == 3 and s == qualities[0]:
                 # Full-screen 2 x 2 supersampling of the same splats.
                 mapper = vtkAlgebraicSplatMapper()
@@ -260,7 +317,8 @@ def main():
                 image = supersampled(scene, size, 2)
                 ms = scene.frame_ms((2 * size[0], 2 * size[1]), frames)
                 record("algebraic-fsaa2", actor, splats.GetNumberOfPoints(),
-                       mapper.GetGPUBytesPerSplat(), degree, s, "fsaa2", image=image, ms=ms)
+                       mapper.GetGPUBytesPerSplat(), degree, s, "fsaa2", image=image, ms=ms,
+                       blend=1)
 
         # Radii in mean point spacings: below 1 the peers leave holes.
         factors = [1.5] if args.smoke else [1.5, 3.0, 5.0]
@@ -288,7 +346,7 @@ def main():
             if r["size"] == label:
                 r["time_vs_gaussian"] = "%.3f" % (float(r["frame_ms"]) / float(best["frame_ms"]))
 
-    fields = ["size", "method", "degree", "s", "aa", "primitives", "primitive_fraction",
+    fields = ["size", "method", "degree", "s", "aa", "blend", "primitives", "primitive_fraction",
               "frame_ms", "time_vs_gaussian", "rmse", "gpu_bytes_per_primitive"]
     path = os.path.join(args.out, "splat_render.csv")
     with open(path, "w", newline="") as f:
@@ -298,6 +356,18 @@ def main():
     writer = csv.DictWriter(sys.stdout, fieldnames=fields)
     writer.writeheader()
     writer.writerows(rows)
+    equal = equal_error(rows)
+    with open(os.path.join(args.out, "splat_render_equal_error.csv"), "w", newline="") as f:
+        eq_writer = csv.DictWriter(f, fieldnames=list(equal[0].keys()) if equal else ["size"])
+        eq_writer.writeheader()
+        eq_writer.writerows(equal)
+    for e in equal:
+        print("# equal error, %s, against %s %s (RMSE %s, %s ms): %s" % (
+            e["size"], e["peer"], e["peer_setting"], e["peer_rmse"], e["peer_ms"],
+            "no splat run reaches it" if not e["splat"] else
+            "%s (RMSE %s) in %s ms: %sx the time with %s of the primitives" % (
+                e["splat"], e["splat_rmse"], e["splat_ms"], e["time_ratio"],
+                e["primitive_ratio"])))
     for (degree, s), (splats, seconds) in splat_sets.items():
         print("# fit degree %d s=%g: %d splats (%.1f%% of %d points) in %.2f s" % (
             degree, s, splats.GetNumberOfPoints(), 100.0 * splats.GetNumberOfPoints() / n_points,
@@ -317,7 +387,8 @@ def main():
                        marker=marker, label=method)
             for r in sel:
                 if method.startswith("algebraic"):
-                    ax.annotate("d%s s%s aa%s" % (r["degree"], r["s"], r["aa"]),
+                    ax.annotate("d%s s%s aa%s%s" % (r["degree"], r["s"], r["aa"],
+                                                   "" if r["blend"] == 1 else " opaque"),
                                 (float(r["frame_ms"]), float(r["rmse"])), fontsize=6)
         ax.set_xlabel("frame time (ms, median)")
         ax.set_ylabel("RMSE vs 4x4-supersampled mesh")

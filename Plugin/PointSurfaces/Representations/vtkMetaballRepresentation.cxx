@@ -17,11 +17,6 @@ vtkMetaballRepresentation::vtkMetaballRepresentation()
   // Replace the superclass's mappers, then let it wire them up again, with
   // the ghost exchange.
   this->Ghosts = vtkMetaballGhostBalls::New();
-  for (vtkMetaballGhostBalls*& alone : this->Alone)
-  {
-    alone = vtkMetaballGhostBalls::New();
-    alone->SetController(nullptr);
-  }
   this->Mapper->Delete();
   this->LODMapper->Delete();
   vtkMapper** slots[2] = { &this->Mapper, &this->LODMapper };
@@ -44,10 +39,6 @@ vtkMetaballRepresentation::~vtkMetaballRepresentation()
     balls->Delete();
   }
   this->Ghosts->Delete();
-  for (vtkMetaballGhostBalls* alone : this->Alone)
-  {
-    alone->Delete();
-  }
 }
 
 //------------------------------------------------------------------------------
@@ -75,21 +66,19 @@ int vtkMetaballRepresentation::ProcessViewRequest(vtkInformationRequestKey* requ
   }
   else if (request_type == vtkPVView::REQUEST_RENDER())
   {
-    // Alone, this process renders every rank's balls, each rank's ghosts
-    // among them: drop the ghosts (each ball is there once, from its owner).
+    // Ghosts belong where each rank renders its own piece; anywhere else
+    // (data gathered to a client, tile and CAVE displays) they would count
+    // beside their owners.
+    auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
     vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-    if (!controller || controller->GetNumberOfProcesses() <= 1)
+    const bool piecewise = view ? view->GetUseDistributedRenderingForRender() &&
+        !view->InTileDisplayMode() && !view->InCaveDisplayMode()
+                                : controller && controller->GetNumberOfProcesses() > 1;
+    for (vtkMapper* mapper : { this->Mapper, this->LODMapper })
     {
-      vtkMapper* mappers[2] = { this->Mapper, this->LODMapper };
-      for (int k = 0; k < 2; ++k)
+      if (auto* delegating = vtkPointSurfacesDelegatingMapper::SafeDownCast(mapper))
       {
-        vtkDataObject* delivered = mappers[k]->GetInputDataObject(0, 0);
-        if (delivered && delivered != this->Alone[k]->GetOutputDataObject(0))
-        {
-          this->Alone[k]->SetInputDataObject(delivered);
-          this->Alone[k]->Update();
-          mappers[k]->SetInputDataObject(this->Alone[k]->GetOutputDataObject(0));
-        }
+        delegating->SetSkipDuplicatePoints(!piecewise);
       }
     }
   }

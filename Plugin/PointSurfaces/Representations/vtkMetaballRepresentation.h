@@ -17,10 +17,10 @@
  * that reach them (vtkMetaballGhostBalls, between ParaView's geometry filter
  * and the delivery), so the ranks' surfaces blend across the cuts and depth
  * compositing gives the serial picture. The exchange runs in RequestData,
- * which ParaView executes on every rank. Where one process renders what
- * several made (a client rendering locally what pvserver ranks computed),
- * the ghosts would count twice beside their owners: there the delivered
- * data goes through the filter once more, alone, which drops them. Radii are taken in data
+ * which ParaView executes on every rank. Where the view does not render
+ * each rank's own piece (a client rendering locally what pvserver ranks
+ * computed; tile and CAVE displays), the ghosts would count twice beside
+ * their owners: there the mappers leave them out. Radii are taken in data
  * coordinates: an actor scale that differs between axes can make the
  * exchange miss balls near the cuts.
  */
@@ -61,8 +61,8 @@ public:
   /**
    * As the superclass, but the view must not move this data between ranks:
    * its ghost balls are made for this split (and ordered compositing is
-   * never needed for it: the surface is opaque). A process rendering alone
-   * drops the ghosts from what it renders.
+   * never needed for it: the surface is opaque). Unless the view renders
+   * each rank's piece where it is, the mappers skip the ghosts.
    */
   int ProcessViewRequest(vtkInformationRequestKey* request_type,
     vtkInformation* inInfo,
@@ -80,7 +80,6 @@ protected:
 
   vtkMetaballMapper* Balls[2];
   vtkMetaballGhostBalls* Ghosts;
-  vtkMetaballGhostBalls* Alone[2]; // drop ghosts before a lone process renders
 
 private:
   vtkMetaballRepresentation(const vtkMetaballRepresentation&) = delete;

@@ -7,6 +7,7 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkInformation.h"
 #include "vtkMath.h"
+#include "vtkMetaballGhostBalls.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
@@ -34,6 +35,42 @@ void vtkPointSurfacesDelegatingMapper::SetDelegate(vtkMapper* delegate)
 }
 
 //------------------------------------------------------------------------------
+void vtkPointSurfacesDelegatingMapper::SetSkipDuplicatePoints(bool skip)
+{
+  if (this->SkipDuplicatePoints != skip)
+  {
+    this->SkipDuplicatePoints = skip;
+    this->FlatTime = vtkTimeStamp();
+    this->Modified();
+  }
+}
+
+namespace
+{
+// Does any point-set piece of `data` flag points as ghosts?
+bool HasGhostPoints(vtkDataObject* data)
+{
+  const char* name = vtkDataSetAttributes::GhostArrayName();
+  if (auto* composite = vtkCompositeDataSet::SafeDownCast(data))
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> it;
+    it.TakeReference(composite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      auto* leaf = vtkPointSet::SafeDownCast(it->GetCurrentDataObject());
+      if (leaf && leaf->GetPointData()->GetArray(name))
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+  auto* set = vtkPointSet::SafeDownCast(data);
+  return set && set->GetPointData()->GetArray(name);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
 int vtkPointSurfacesDelegatingMapper::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
@@ -53,6 +90,17 @@ vtkDataObject* vtkPointSurfacesDelegatingMapper::Flatten()
   if (this->Flat && this->FlatTime > input->GetMTime())
   {
     return this->Flat;
+  }
+  if (this->SkipDuplicatePoints && HasGhostPoints(input))
+  {
+    if (!this->Skipper)
+    {
+      this->Skipper = vtkSmartPointer<vtkMetaballGhostBalls>::New();
+      this->Skipper->SetController(nullptr); // alone: only drops the duplicates
+    }
+    this->Skipper->SetInputDataObject(input);
+    this->Skipper->Update();
+    input = this->Skipper->GetOutputDataObject(0);
   }
   std::vector<vtkPointSet*> leaves;
   if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))

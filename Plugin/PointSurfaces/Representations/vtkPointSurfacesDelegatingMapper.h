@@ -12,7 +12,8 @@
  * place: it gathers the point-set leaves of the composite input (appending
  * them when there are several, once per input change), hands the result
  * and its own colouring settings to the delegate, and forwards rendering,
- * bounds and resource release.
+ * bounds and resource release. With SkipDuplicatePoints, points flagged as
+ * another process's (DUPLICATEPOINT in vtkGhostType) are left out first.
  */
 #ifndef vtkPointSurfacesDelegatingMapper_h
 #define vtkPointSurfacesDelegatingMapper_h
@@ -23,6 +24,7 @@
 #include "vtkTimeStamp.h"    // For the flattening time
 
 class vtkDataObject;
+class vtkMetaballGhostBalls;
 
 class POINTSURFACESPARAVIEWREPRESENTATIONS_EXPORT vtkPointSurfacesDelegatingMapper
   : public vtkMapper
@@ -36,6 +38,16 @@ public:
   /** The mapper that draws (a vtkAlgebraicSplatMapper or a vtkMetaballMapper). */
   void SetDelegate(vtkMapper* delegate);
   vtkMapper* GetDelegate() { return this->Delegate; }
+  ///@}
+
+  ///@{
+  /**
+   * Leave out points flagged DUPLICATEPOINT (another process's ghost balls)
+   * before the delegate sees the data; off by default. On where one process
+   * renders what several made, so that no ghost counts beside its owner.
+   */
+  void SetSkipDuplicatePoints(bool skip);
+  bool GetSkipDuplicatePoints() { return this->SkipDuplicatePoints; }
   ///@}
 
   void Render(vtkRenderer* ren, vtkActor* act) override;
@@ -55,6 +67,8 @@ protected:
   vtkDataObject* Flatten();
 
   vtkSmartPointer<vtkMapper> Delegate;
+  bool SkipDuplicatePoints = false;
+  vtkSmartPointer<vtkMetaballGhostBalls> Skipper; // drops duplicate points, alone
   vtkSmartPointer<vtkDataObject> Flat;
   vtkTimeStamp FlatTime;
 

@@ -13,9 +13,10 @@
 //   ranks' own balls alone (the seams this filter removes) is measured too,
 //   and must differ more;
 // - a composite input (a multiblock of a poly data and an unstructured grid
-//   holding a rank's balls, the latter with a copy of another rank's ball
-//   flagged as a duplicate point): the same structure back, the copy
-//   dropped, the same ghosts, which follow the first leaf;
+//   holding a rank's balls, the latter with an array of its own and a copy
+//   of another rank's ball flagged as a duplicate point, and an empty leaf
+//   without arrays): the same structure back, the copy dropped, the same
+//   ghosts, which follow the first leaf, and every leaf keeps its arrays;
 // - bad input: a rank with no balls, NaN centres and zero radii take part
 //   without hanging or sending them.
 #include "vtkMetaballGhostBalls.h"
@@ -247,6 +248,8 @@ int TestMetaballGhostBalls(int argc, char* argv[])
     vtkSmartPointer<vtkPolyData> firstHalf = vtkSmartPointer<vtkPolyData>::New();
     vtkSmartPointer<vtkUnstructuredGrid> rest = vtkSmartPointer<vtkUnstructuredGrid>::New();
     vtkNew<vtkPoints> p0, p1;
+    p0->SetDataTypeToDouble();
+    p1->SetDataTypeToDouble();
     firstHalf->SetPoints(p0);
     rest->SetPoints(p1);
     firstHalf->GetPointData()->CopyAllocate(mine->GetPointData());
@@ -257,26 +260,27 @@ int TestMetaballGhostBalls(int argc, char* argv[])
       const vtkIdType id = to->GetPoints()->InsertNextPoint(mine->GetPoint(i));
       to->GetPointData()->CopyData(mine->GetPointData(), i, id);
     }
-    // A foreign ball (the other ranks' first) as a duplicate point.
+    // A foreign ball (the next rank's first; alone, our own first) as a
+    // duplicate point: dropped, with one process too (ParaView's client).
     vtkSmartPointer<vtkPolyData> other = MakeBalls((rank + 1) % ranks, ranks, false);
-    const vtkIdType copy = ranks > 1 ? rest->GetPoints()->InsertNextPoint(other->GetPoint(0)) : -1;
-    if (copy >= 0)
-    {
-      rest->GetPointData()->CopyData(other->GetPointData(), 0, copy);
-    }
+    const vtkIdType copy = rest->GetPoints()->InsertNextPoint(other->GetPoint(0));
+    rest->GetPointData()->CopyData(other->GetPointData(), 0, copy);
     vtkNew<vtkUnsignedCharArray> flags2;
     flags2->SetName(vtkDataSetAttributes::GhostArrayName());
     flags2->SetNumberOfValues(rest->GetNumberOfPoints());
     flags2->FillValue(0);
-    if (copy >= 0)
-    {
-      flags2->SetValue(copy, vtkDataSetAttributes::DUPLICATEPOINT);
-    }
+    flags2->SetValue(copy, vtkDataSetAttributes::DUPLICATEPOINT);
     rest->GetPointData()->AddArray(flags2);
+    vtkNew<vtkFloatArray> extra;
+    extra->SetName("Extra");
+    extra->SetNumberOfValues(rest->GetNumberOfPoints());
+    extra->FillValue(7.0f);
+    rest->GetPointData()->AddArray(extra);
     vtkNew<vtkMultiBlockDataSet> blocks;
-    blocks->SetNumberOfBlocks(2);
+    blocks->SetNumberOfBlocks(3);
     blocks->SetBlock(0, firstHalf);
     blocks->SetBlock(1, rest);
+    blocks->SetBlock(2, vtkNew<vtkPolyData>());
     vtkNew<vtkMetaballGhostBalls> split;
     split->SetInputDataObject(blocks);
     split->SetRadiusArrayName("Radius");
@@ -284,12 +288,28 @@ int TestMetaballGhostBalls(int argc, char* argv[])
     auto* result = vtkMultiBlockDataSet::SafeDownCast(split->GetOutputDataObject(0));
     auto* leaf0 = result ? vtkPolyData::SafeDownCast(result->GetBlock(0)) : nullptr;
     auto* leaf1 = result ? vtkPolyData::SafeDownCast(result->GetBlock(1)) : nullptr;
-    check(leaf0 && leaf1 && result->GetNumberOfBlocks() == 2, "composite: same structure");
+    check(leaf0 && leaf1 && result->GetNumberOfBlocks() == 3, "composite: same structure");
     check(split->GetNumberOfGhostBalls() == ghosts->GetNumberOfGhostBalls(),
       "composite: the same ghosts");
     check(leaf0 && leaf0->GetNumberOfPoints() == half + split->GetNumberOfGhostBalls(),
       "composite: ghosts follow the first leaf");
     check(leaf1 && leaf1->GetNumberOfPoints() == own - half, "composite: duplicate point dropped");
+    check(leaf0 && leaf0->GetPointData()->GetArray("Radius") && leaf0->GetPointData()->GetScalars(),
+      "composite: the first leaf and its ghosts keep radii and scalars");
+    check(leaf1 && leaf1->GetPointData()->GetArray("Extra") &&
+        leaf1->GetPointData()->GetArray("Extra")->GetComponent(0, 0) == 7.0,
+      "composite: a leaf keeps an array the others lack");
+    if (leaf0 && ghosts->GetNumberOfGhostBalls() > 0)
+    {
+      // The ghosts' radii arrived: the field inside own supports is whole
+      // (each Field subtracts the threshold T = 0.5 once).
+      double x[3];
+      firstHalf->GetPoint(0, x);
+      const double whole = Field(all, x);
+      const double parts = Field(leaf0, x) + Field(leaf1, x) + 0.5;
+      check(std::abs(parts - whole) <= 1e-12 * (1.0 + std::abs(whole)),
+        "composite: leaves and ghosts give the whole field");
+    }
   }
 
   // Bad input: the last rank has no balls; NaN and zero radii elsewhere.
