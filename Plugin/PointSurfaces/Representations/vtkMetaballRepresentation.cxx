@@ -85,23 +85,22 @@ int vtkMetaballRepresentation::ProcessViewRequest(vtkInformationRequestKey* requ
   return 1;
 }
 
+#define PS_FORWARD_TO_MAPPERS(setter)                                                              \
+  for (vtkMetaballMapper * balls : this->Balls)                                                    \
+  {                                                                                                \
+    balls->Set##setter(value);                                                                     \
+  }
 #define PS_FORWARD(name, setter, type)                                                             \
   void vtkMetaballRepresentation::SetMetaball##name(type value)                                    \
   {                                                                                                \
-    for (vtkMetaballMapper * balls : this->Balls)                                                  \
-    {                                                                                              \
-      balls->Set##setter(value);                                                                   \
-    }                                                                                              \
+    PS_FORWARD_TO_MAPPERS(setter)                                                                  \
     this->Modified();                                                                              \
   }
-// These also decide which balls reach other ranks.
+// These also decide which balls reach other ranks: the data must update.
 #define PS_FORWARD_GHOSTS(name, setter, type)                                                      \
   void vtkMetaballRepresentation::SetMetaball##name(type value)                                    \
   {                                                                                                \
-    for (vtkMetaballMapper * balls : this->Balls)                                                  \
-    {                                                                                              \
-      balls->Set##setter(value);                                                                   \
-    }                                                                                              \
+    PS_FORWARD_TO_MAPPERS(setter)                                                                  \
     this->Ghosts->Set##setter(value);                                                              \
     this->MarkModified();                                                                          \
   }
@@ -117,6 +116,7 @@ PS_FORWARD(TileSize, TileSize, int)
 PS_FORWARD(Slabs, Slabs, int)
 PS_FORWARD(Shadows, Shadows, bool)
 #undef PS_FORWARD
+#undef PS_FORWARD_TO_MAPPERS
 #undef PS_FORWARD_GHOSTS
 
 //------------------------------------------------------------------------------
