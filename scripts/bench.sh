@@ -19,7 +19,11 @@ for b in counts million tradeoff; do
   /usr/bin/python3 "$root/Testing/Benchmarks/bench_splat_fit.py" "$b" --out "$out"
 done
 env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \
-  "$root/Testing/Benchmarks/bench_splat_render.py" --out "$out"
+  "$root/Testing/Benchmarks/bench_splat_render.py" --frames 5 --out "$out/render-bunny"
+# A dense scan: 1M points sampled on the Bunny's triangles.
+env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \
+  "$root/Testing/Benchmarks/bench_splat_render.py" --frames 5 --points 1000000 \
+  --out "$out/render-bunny-1M"
 env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \
   "$root/Testing/Benchmarks/bench_metaballs.py" --out "$out"
 env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl "$build/bin/BenchComputeTiles" | tee "$out/compute_tiles.csv"
