@@ -7,7 +7,8 @@
 # Usage: scripts/test.sh [PRESET] [-- extra ctest arguments]
 #   PRESET: vtk (default), debug, asan (the unit tests only), fuzz (the
 #           readers' libFuzzer smoke runs) or paraview (the plugin against
-#           Debian's ParaView, in pvbatch, serial and over two MPI ranks)
+#           Debian's ParaView, in pvbatch, serial and over two MPI ranks,
+#           and a pvpython client of two pvserver ranks)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
