@@ -11,6 +11,7 @@
 //   an empty input writes an empty level set with a warning, a voxel size
 //   beyond the budget is an error and writes nothing, automatic voxels are
 //   coarsened within the budget with a warning.
+#include "psIOTestSupport.h"
 #include "vtkCallbackCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkMetaballLevelSetWriter.h"
@@ -34,55 +35,10 @@
 #include <string>
 #include <vector>
 
+using namespace pointsurfaces_test;
+
 namespace
 {
-int Errors = 0, Warnings = 0;
-void CountError(vtkObject*, unsigned long, void*, void*)
-{
-  ++Errors;
-}
-void CountWarning(vtkObject*, unsigned long, void*, void*)
-{
-  ++Warnings;
-}
-int Failures = 0;
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
-
-vtkSmartPointer<vtkPolyData> Balls(const std::vector<double>& xyz,
-  const std::vector<double>& radii,
-  const std::vector<double>& strengths = {})
-{
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkDoubleArray> r, q;
-  r->SetName("Radius");
-  q->SetName("Strength");
-  for (size_t i = 0; i < radii.size(); ++i)
-  {
-    points->InsertNextPoint(&xyz[3 * i]);
-    r->InsertNextValue(radii[i]);
-    if (!strengths.empty())
-    {
-      q->InsertNextValue(strengths[i]);
-    }
-  }
-  poly->SetPoints(points);
-  poly->GetPointData()->AddArray(r);
-  if (!strengths.empty())
-  {
-    poly->GetPointData()->AddArray(q);
-  }
-  return poly;
-}
-
 openvdb::FloatGrid::Ptr ReadBack(const std::string& path)
 {
   openvdb::io::File file(path);

@@ -6,6 +6,7 @@
 // (written by vtkSTLWriter); and on bad files: missing, empty, an unknown
 // extension, a truncated OFF, a truncated binary STL, garbage. Bad files
 // must give one error each and an empty output.
+#include "psIOTestSupport.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCellData.h"
 #include "vtkDataArray.h"
@@ -26,22 +27,10 @@
 #include <iostream>
 #include <string>
 
+using namespace pointsurfaces_test;
+
 namespace
 {
-int Errors = 0;
-void Count(vtkObject*, unsigned long, void*, void*)
-{
-  ++Errors;
-}
-int Failures = 0;
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
 std::string Write(const std::string& dir, const std::string& name, const std::string& text)
 {
   const std::string path = dir + "/" + name;
@@ -56,7 +45,7 @@ int TestOpenMeshReader(int, char*[])
   const std::string dir = temp ? temp : ".";
   vtkNew<vtkOpenMeshReader> reader;
   vtkNew<vtkCallbackCommand> counter;
-  counter->SetCallback(Count);
+  counter->SetCallback(CountError);
   reader->AddObserver(vtkCommand::ErrorEvent, counter);
   auto read = [&](const std::string& path)
   {

@@ -10,6 +10,7 @@
 // - bad input: NaN and zero radii skipped and counted with one warning, an
 //   empty input, a voxel beyond the budget (error, empty mesh), spheres under
 //   1.5 voxels skipped by OpenVDB and counted with a warning.
+#include "psIOTestSupport.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
@@ -31,55 +32,10 @@
 #include <string>
 #include <vector>
 
+using namespace pointsurfaces_test;
+
 namespace
 {
-int Errors = 0, Warnings = 0;
-void CountError(vtkObject*, unsigned long, void*, void*)
-{
-  ++Errors;
-}
-void CountWarning(vtkObject*, unsigned long, void*, void*)
-{
-  ++Warnings;
-}
-int Failures = 0;
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
-
-vtkSmartPointer<vtkPolyData> Balls(const std::vector<double>& xyz,
-  const std::vector<double>& radii,
-  const std::vector<double>& strengths = {})
-{
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  vtkNew<vtkDoubleArray> r, q;
-  r->SetName("Radius");
-  q->SetName("Strength");
-  for (size_t i = 0; i < radii.size(); ++i)
-  {
-    points->InsertNextPoint(&xyz[3 * i]);
-    r->InsertNextValue(radii[i]);
-    if (!strengths.empty())
-    {
-      q->InsertNextValue(strengths[i]);
-    }
-  }
-  poly->SetPoints(points);
-  poly->GetPointData()->AddArray(r);
-  if (!strengths.empty())
-  {
-    poly->GetPointData()->AddArray(q);
-  }
-  return poly;
-}
-
 // Fraction of polygons whose winding normal points along their vertices' normals.
 double OutwardFraction(vtkPolyData* mesh)
 {

@@ -8,6 +8,7 @@
 // quantum, attributes exact (half floats within half precision). Then bad
 // files: missing, empty, garbage, not a VDB, truncated at many lengths, one
 // with no point grid: one error each, an empty output, no crash.
+#include "psIOTestSupport.h"
 #include "vtkCallbackCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -32,23 +33,11 @@
 #include <string>
 #include <vector>
 
+using namespace pointsurfaces_test;
+
 namespace
 {
 namespace ovp = openvdb::points;
-int Errors = 0;
-void Count(vtkObject*, unsigned long, void*, void*)
-{
-  ++Errors;
-}
-int Failures = 0;
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
 
 struct Source
 {
@@ -136,7 +125,7 @@ int TestOpenVDBPointsReader(int, char*[])
 
   vtkNew<vtkOpenVDBPointsReader> reader;
   vtkNew<vtkCallbackCommand> counter;
-  counter->SetCallback(Count);
+  counter->SetCallback(CountError);
   reader->AddObserver(vtkCommand::ErrorEvent, counter);
   auto read = [&](const std::string& path, const char* grid = "")
   {

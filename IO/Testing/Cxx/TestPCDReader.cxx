@@ -3,6 +3,7 @@
 // vtkPCDReader on a real binary_compressed Kinect subset, on an ASCII file
 // with normals, colours and a NaN point, and on missing, truncated and
 // garbage files (clear error, empty output, no crash).
+#include "psIOTestSupport.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkExecutive.h"
@@ -20,17 +21,10 @@
 #include <string>
 #include <vector>
 
+using namespace pointsurfaces_test;
+
 namespace
 {
-int Failures = 0;
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
 
 // Read `file` expecting an error that mentions `expected`; the output must be empty.
 void ExpectError(const std::string& file, const std::string& expected)

@@ -1,0 +1,81 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file psIOTestSupport.h
+ * @brief What the IO tests share: failure and event counters, and balls as poly data.
+ *
+ * The tests are one executable and each ctest run calls one of them, so the
+ * counters are per run.
+ */
+#ifndef psIOTestSupport_h
+#define psIOTestSupport_h
+
+#include "vtkDoubleArray.h"
+#include "vtkNew.h"
+#include "vtkObject.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace pointsurfaces_test
+{
+inline int Failures = 0;
+inline int Errors = 0;
+inline int Warnings = 0;
+
+/** Prints and counts a failed check. */
+inline void Check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::cerr << "FAILED: " << what << "\n";
+    ++Failures;
+  }
+}
+
+/** vtkCallbackCommand callbacks for ErrorEvent and WarningEvent. */
+inline void CountError(vtkObject*, unsigned long, void*, void*)
+{
+  ++Errors;
+}
+inline void CountWarning(vtkObject*, unsigned long, void*, void*)
+{
+  ++Warnings;
+}
+
+/** Balls at `xyz` with point arrays "Radius" and, when given, "Strength". */
+inline vtkSmartPointer<vtkPolyData> Balls(const std::vector<double>& xyz,
+  const std::vector<double>& radii,
+  const std::vector<double>& strengths = {})
+{
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkDoubleArray> r, q;
+  r->SetName("Radius");
+  q->SetName("Strength");
+  for (size_t i = 0; i < radii.size(); ++i)
+  {
+    points->InsertNextPoint(&xyz[3 * i]);
+    r->InsertNextValue(radii[i]);
+    if (!strengths.empty())
+    {
+      q->InsertNextValue(strengths[i]);
+    }
+  }
+  poly->SetPoints(points);
+  poly->GetPointData()->AddArray(r);
+  if (!strengths.empty())
+  {
+    poly->GetPointData()->AddArray(q);
+  }
+  return poly;
+}
+} // namespace pointsurfaces_test
+
+#endif
