@@ -36,15 +36,16 @@ import sys
 
 from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
-from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pointsurfaces_plugin_test import SIZE, differing_pixels, new_view, show_protein  # noqa: E402
 
 plugin, data, baselines, out = sys.argv[1:5]
 mpi = "--mpi" in sys.argv[5:]
 RANK = servermanager.vtkProcessModule.GetProcessModule().GetPartitionId()
 os.makedirs(out, exist_ok=True)
 failures = []
-SIZE = [320, 320]
 
 
 def check(ok, what):
@@ -68,22 +69,10 @@ def compare(view, name, tolerance=0.005):
         print("wrote baseline " + baseline)
         return
 
-    def pixels(file):
-        reader = vtkPNGReader()
-        reader.SetFileName(file)
-        reader.Update()
-        image = reader.GetOutput()
-        array = vtk_to_numpy(image.GetPointData().GetScalars()).astype(int)
-        return image.GetDimensions(), array[:, :3]
-
-    if not os.path.exists(baseline):
-        check(False, "%s: no baseline %s" % (name, baseline))
+    differ, why = differing_pixels(path, baseline)
+    if why:
+        check(False, "%s: %s" % (name, why))
         return
-    (dims, a), (dims_b, b) = pixels(path), pixels(baseline)
-    if dims != dims_b:
-        check(False, "%s: image size %s, baseline %s" % (name, dims, dims_b))
-        return
-    differ = (abs(a - b).max(axis=1) > 40).mean()
     check(differ <= tolerance, "%s: %.3f %% of the pixels differ from the baseline (at most %.1f %%)"
           % (name, 100 * differ, 100 * tolerance))
 
@@ -101,12 +90,7 @@ for proxy in ("AlgebraicSplatFitter", "MultiResolutionSplatBuilder", "SplatError
 for proxy in ("OpenMeshReader", "OpenVDBPointsReader"):
     check(pxm.GetPrototypeProxy("sources", proxy) is not None, "reader " + proxy)
 
-view = CreateRenderView()
-view.ViewSize = SIZE
-view.OrientationAxesVisibility = 0
-view.Background = [0.32, 0.34, 0.43]
-view.UseColorPaletteForBackground = 0
-view.UseFXAA = 0  # screen-space anti-aliasing differs between serial and composited images
+view = new_view()
 
 # A real scan to algebraic splats.
 scan = XMLPolyDataReader(FileName=[os.path.join(data, "bunny.vtp")])
@@ -172,26 +156,7 @@ if not mpi:
 Hide(shown, view)
 
 # A protein chain as metaballs, with element colours, through a plane.
-atoms = PDBReader(FileName=os.path.join(data, "hemoglobin_chainA.pdb"))
-balls = Show(RedistributeDataSet(Input=atoms) if mpi else atoms, view)
-balls.SetRepresentationType("Metaballs")
-balls.MetaballRadiusArray = "radius"
-balls.MetaballRadiusScale = 2.0
-ColorBy(balls, ("POINTS", "rgb_colors"))
-balls.MapScalars = 0
-abounds = atoms.GetDataInformation().GetBounds()
-centre = [0.5 * (abounds[2 * k] + abounds[2 * k + 1]) for k in range(3)]
-plane = Plane(Origin=[abounds[0] - 5, abounds[2] - 5, centre[2]],
-              Point1=[abounds[1] + 5, abounds[2] - 5, centre[2]],
-              Point2=[abounds[0] - 5, abounds[3] + 5, centre[2]])
-plane_display = Show(plane, view)
-plane_display.DiffuseColor = [0.8, 0.8, 0.8]
-plane_display.Opacity = 1.0
-Render(view)
-view.CameraFocalPoint = centre
-view.CameraPosition = [centre[0] + 50, centre[1] - 75, centre[2] + 75]
-view.CameraViewUp = [0, 0, 1]
-Render(view)
+show_protein(view, data, split=mpi)
 # Split metaballs blend across the cut through their ghost balls (see above).
 compare(view, "PluginMetaballs", tolerance=0.001 if mpi else 0.005)
 
