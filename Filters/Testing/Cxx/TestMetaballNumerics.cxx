@@ -379,6 +379,16 @@ int TestMetaballNumerics(int, char*[])
         pq.push_back(q[i]);
       }
     };
+    // The set `all` describes, over other storage.
+    auto over = [&all](const std::vector<double>& c, const std::vector<double>& r,
+                  const std::vector<double>& q) {
+      MetaballSet set = all;
+      set.Centers = c.data();
+      set.Radii = r.data();
+      set.Strengths = q.data();
+      set.Count = static_cast<long long>(r.size());
+      return set;
+    };
     std::vector<long long> own[3];
     for (int i = 0; i < m; ++i)
     {
@@ -389,11 +399,7 @@ int TestMetaballNumerics(int, char*[])
     {
       std::vector<double> oc, orr, oq;
       take(own[k], cs, rs, qs, oc, orr, oq);
-      MetaballSet mine = all;
-      mine.Centers = oc.data();
-      mine.Radii = orr.data();
-      mine.Strengths = oq.data();
-      mine.Count = static_cast<long long>(orr.size());
+      const MetaballSet mine = over(oc, orr, oq);
       double box[6];
       SupportBounds(mine, box);
       std::vector<double> gc = oc, gr = orr, gq = oq;
@@ -405,20 +411,11 @@ int TestMetaballNumerics(int, char*[])
         }
         std::vector<double> jc, jr, jq;
         take(own[j], cs, rs, qs, jc, jr, jq);
-        MetaballSet theirs = mine;
-        theirs.Centers = jc.data();
-        theirs.Radii = jr.data();
-        theirs.Strengths = jq.data();
-        theirs.Count = static_cast<long long>(jr.size());
-        std::vector<long long> reach = BallsReachingBox(theirs, box);
+        std::vector<long long> reach = BallsReachingBox(over(jc, jr, jq), box);
         ghosts += static_cast<long long>(reach.size());
         take(reach, jc, jr, jq, gc, gr, gq);
       }
-      MetaballSet withGhosts = mine;
-      withGhosts.Centers = gc.data();
-      withGhosts.Radii = gr.data();
-      withGhosts.Strengths = gq.data();
-      withGhosts.Count = static_cast<long long>(gr.size());
+      const MetaballSet withGhosts = over(gc, gr, gq);
       // Points inside one of the part's own supports.
       std::uniform_real_distribution<double> dir(-1.0, 1.0);
       for (int s = 0; s < 2000; ++s)
