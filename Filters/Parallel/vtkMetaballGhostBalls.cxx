@@ -256,7 +256,9 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
     leaves.push_back(set);
   }
 
-  // Our own balls: every point not flagged as another process's duplicate.
+  // Our own balls: every point not flagged as another process's duplicate;
+  // their centres and radii only when there are others to send them to.
+  const int ranks = this->Controller ? this->Controller->GetNumberOfProcesses() : 1;
   std::vector<std::vector<vtkIdType>> own(leaves.size());
   std::vector<double> centres, radii;
   bool negative = false, noRadii = false;
@@ -278,6 +280,10 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
         continue;
       }
       own[k].push_back(i);
+      if (ranks <= 1)
+      {
+        continue;
+      }
       double p[3];
       leaf->GetPoint(i, p);
       centres.insert(centres.end(), p, p + 3);
@@ -290,8 +296,7 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
     vtkWarningMacro(<< "No point array \"" << this->RadiusArrayName
                     << "\" for the radii: every ball has radius " << this->Radius << ".");
   }
-  const int ranks = this->Controller ? this->Controller->GetNumberOfProcesses() : 1;
-  if (negative && ranks > 1)
+  if (negative)
   {
     vtkWarningMacro("Some balls have negative strengths: a process's field may exceed the whole "
                     "field near the cuts between processes, and the composited surface may show "

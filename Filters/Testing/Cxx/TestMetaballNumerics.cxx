@@ -380,8 +380,10 @@ int TestMetaballNumerics(int, char*[])
       }
     };
     // The set `all` describes, over other storage.
-    auto over = [&all](const std::vector<double>& c, const std::vector<double>& r,
-                  const std::vector<double>& q) {
+    auto over = [&all](const std::vector<double>& c,
+                  const std::vector<double>& r,
+                  const std::vector<double>& q)
+    {
       MetaballSet set = all;
       set.Centers = c.data();
       set.Radii = r.data();
