@@ -27,6 +27,8 @@ from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkIOPLY import vtkPLYReader
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 
+from surface_sampling import sample_surface
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 SCANS = os.path.normpath(os.path.join(ROOT, "..", "shared", "data", "scans"))
@@ -130,14 +132,7 @@ def million(args):
     reader.SetFileName(os.path.join(ROOT, "Testing", "Data", "bunny.vtp"))
     reader.Update()
     mesh = reader.GetOutput()
-    xyz = vtk_to_numpy(mesh.GetPoints().GetData()).astype(np.float64)
-    tri = vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).reshape(-1, 3)
-    a, b, c = xyz[tri[:, 0]], xyz[tri[:, 1]], xyz[tri[:, 2]]
-    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
-    rng = np.random.default_rng(1)
-    pick = rng.choice(len(tri), size=n, p=area / area.sum())
-    r1, r2 = np.sqrt(rng.random(n))[:, None], rng.random(n)[:, None]
-    sample = (1 - r1) * a[pick] + r1 * (1 - r2) * b[pick] + r1 * r2 * c[pick]
+    sample = sample_surface(mesh, n)
     pd = points(sample)
     rows = []
     for order, name in ((0, "random"), (2, "front")):

@@ -57,6 +57,8 @@ from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderWi
 from vtkmodules.vtkRenderingCore import vtkPointGaussianMapper
 from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLSphereMapper
 
+from surface_sampling import sample_surface
+
 # VTK's own sphere-like sprite for vtkPointGaussianMapper (its examples' shading).
 SPHERE_SPRITE = """//VTK::Color::Impl
   float dist = dot(offsetVCVSOutput.xy, offsetVCVSOutput.xy);
@@ -170,21 +172,6 @@ def mean_spacing(points, samples=2000):
     return total / count
 
 
-def sample_surface(mesh, n, seed=1):
-    """n points uniformly (by area) on the mesh's triangles."""
-    xyz = vtk_to_numpy(mesh.GetPoints().GetData()).astype(np.float64)
-    tri = vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).reshape(-1, 3)
-    a, b, c = xyz[tri[:, 0]], xyz[tri[:, 1]], xyz[tri[:, 2]]
-    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
-    rng = np.random.default_rng(seed)
-    pick = rng.choice(len(tri), size=n, p=area / area.sum())
-    r1, r2 = np.sqrt(rng.random(n))[:, None], rng.random(n)[:, None]
-    sample = (1 - r1) * a[pick] + r1 * (1 - r2) * b[pick] + r1 * r2 * c[pick]
-    out = vtkPoints()
-    out.SetData(numpy_to_vtk(sample, deep=True))
-    return out
-
-
 def equal_error(rows):
     """Per size and peer: its lowest-error run against the fastest splat run at no more error."""
     result = []
@@ -236,7 +223,12 @@ def main():
         print("bench_splat_render.py: %s has no triangles for the reference image" % args.mesh)
         return 1
     points = vtkPolyData()
-    points.SetPoints(sample_surface(mesh, args.points) if args.points > 0 else mesh.GetPoints())
+    if args.points > 0:
+        sampled = vtkPoints()
+        sampled.SetData(numpy_to_vtk(sample_surface(mesh, args.points), deep=True))
+        points.SetPoints(sampled)
+    else:
+        points.SetPoints(mesh.GetPoints())
     n_points = points.GetNumberOfPoints()
     verts = vtkCellArray()  # vtkOpenGLSphereMapper draws vertex cells
     verts.SetData(numpy_to_vtkIdTypeArray(np.arange(n_points + 1, dtype=np.int64), deep=True),
