@@ -241,6 +241,9 @@ void vtkAlgebraicSplatMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkS
 
   const std::string degree =
     "#define SPLAT_DEGREE " + std::to_string(std::max(1, this->Degree)) + "\n";
+  const std::string variant = "#define SPLAT_PASS " + std::to_string(this->Variant.Pass) +
+    "\n#define SPLAT_SAMPLES " + std::to_string(this->Variant.Samples) +
+    "\n#define SPLAT_SHOW_SILHOUETTE " + (this->Variant.ShowSilhouette ? "1" : "0") + "\n";
   vtkShaderProgram::Substitute(VSSource, "//VTK::SplatDegree::Dec", degree);
   vtkShaderProgram::Substitute(VSSource, "//VTK::Camera::Dec", "uniform mat4 MCVCMatrix;");
   vtkShaderProgram::Substitute(FSSource, "//VTK::PositionVC::Dec", "in vec4 vertexVCVSOutput;");
@@ -253,7 +256,7 @@ void vtkAlgebraicSplatMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkS
     "//VTK::System::Dec\n#extension GL_ARB_conservative_depth : enable\n");
   vtkShaderProgram::Substitute(FSSource,
     "//VTK::Normal::Dec",
-    degree +
+    degree + variant +
       "#ifdef GL_ARB_conservative_depth\nlayout(depth_greater) out float gl_FragDepth;\n#endif\n" +
       declarations);
   vtkShaderProgram::Substitute(FSSource, "//VTK::Depth::Impl", Block(fs, "SplatImpl"));
@@ -264,6 +267,7 @@ void vtkAlgebraicSplatMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkS
   shaders[vtkShader::Vertex]->SetSource(VSSource);
   shaders[vtkShader::Fragment]->SetSource(FSSource);
   this->ShaderDegree = this->Degree;
+  this->BuiltVariant = this->Variant;
   this->Superclass::ReplaceShaderValues(shaders, ren, act);
 
   // vtkShadowMapBakerPass stores the fragment's depth from gl_FragCoord,
@@ -289,9 +293,11 @@ bool vtkAlgebraicSplatMapper::GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO,
   vtkActor* act)
 {
   // The superclass must always run: it records the lighting complexity that
-  // the shader is then built for. The degree is compiled into the shader.
+  // the shader is then built for. The degree and the variant are compiled
+  // into the shader; switching back to a variant built before finds its
+  // program in the window's shader cache.
   const bool changed = this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act);
-  return changed || this->ShaderDegree != this->Degree;
+  return changed || this->ShaderDegree != this->Degree || this->BuiltVariant != this->Variant;
 }
 
 //------------------------------------------------------------------------------
@@ -678,18 +684,17 @@ void vtkAlgebraicSplatMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   {
     return;
   }
-  this->UpdateShaders(this->Primitives[PrimitiveTris], ren, act);
-  vtkShaderProgram* program = this->Primitives[PrimitiveTris].Program;
-  program->SetUniformi("splatPass", 0);
-  program->SetUniformi("splatSamples", 1);
-  program->SetUniformf("splatSilhouetteCos", static_cast<float>(this->SilhouetteThreshold));
-  program->SetUniformi("splatShowSilhouette", this->ShowSilhouettePixels ? 1 : 0);
-  program->SetUniformf("splatBlendSharpness", static_cast<float>(this->BlendSharpness));
   // Picking numbers primitives per draw call: draw everything in one, opaque.
   // The light's view of a shadow map needs the hits' depth only.
   const bool picking = ren->GetSelector() != nullptr;
   if (picking || IsShadowMapBake(act) || (!this->Blending && this->AntiAliasing <= 1))
   {
+    ShaderVariant opaque;
+    opaque.ShowSilhouette = this->ShowSilhouettePixels && !picking;
+    if (!this->UseVariant(opaque, ren, act))
+    {
+      return;
+    }
     this->DrawSplats(ren, act, !picking);
     return;
   }
@@ -697,11 +702,28 @@ void vtkAlgebraicSplatMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
 }
 
 //------------------------------------------------------------------------------
+vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(
+  const ShaderVariant& variant, vtkRenderer* ren, vtkActor* act)
+{
+  this->Variant = variant;
+  vtkOpenGLHelper& cellBO = this->Primitives[PrimitiveTris];
+  this->UpdateShaders(cellBO, ren, act);
+  vtkShaderProgram* program = cellBO.Program;
+  if (!program)
+  {
+    vtkErrorMacro(<< "The splat shader (pass " << variant.Pass << ") did not compile.");
+    return nullptr;
+  }
+  program->SetUniformf("splatSilhouetteCos", static_cast<float>(this->SilhouetteThreshold));
+  program->SetUniformf("splatBlendSharpness", static_cast<float>(this->BlendSharpness));
+  return program;
+}
+
+//------------------------------------------------------------------------------
 void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
 {
   auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
   vtkOpenGLState* ostate = renWin->GetState();
-  vtkShaderProgram* program = this->Primitives[PrimitiveTris].Program;
   BlendTargets& t = *this->Targets;
 
   GLint viewport[4];
@@ -783,15 +805,18 @@ void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
   glClearBufferfv(GL_COLOR, 0, zero);
   glClearBufferfv(GL_COLOR, 1, one);
 
-  // Visibility: the nearest hits pushed back by delta h.
+  // Visibility: the nearest hits pushed back by delta h. The nearest hit of
+  // the pixel centre's ray is enough here: no supersampling.
+  ShaderVariant visibility;
+  visibility.Pass = 1;
+  vtkShaderProgram* program = this->UseVariant(visibility, ren, act);
+  if (!program)
+  {
+    ostate->Pop();
+    return;
+  }
   const float offset = static_cast<float>(this->Blending ? this->BlendDepthOffset : 1e-3);
   program->SetUniformf("splatBlendOffset", offset);
-  program->SetUniformf(
-    "splatBlendSharpness", static_cast<float>(this->Blending ? this->BlendSharpness : 0.0));
-  // The nearest hit of the pixel centre's ray is enough here: no supersampling.
-  program->SetUniformi("splatSamples", 1);
-  program->SetUniformi("splatShowSilhouette", 0);
-  program->SetUniformi("splatPass", 1);
   ostate->vtkglEnable(GL_DEPTH_TEST);
   ostate->vtkglDepthFunc(GL_LESS);
   ostate->vtkglDepthMask(GL_TRUE);
@@ -800,9 +825,18 @@ void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
   this->DrawSplats(ren, act, true);
 
   // Blending: every hit in front of that depth, weighted.
-  program->SetUniformi("splatPass", 2);
-  program->SetUniformi("splatSamples", this->AntiAliasing);
-  program->SetUniformi("splatShowSilhouette", this->ShowSilhouettePixels ? 1 : 0);
+  ShaderVariant blending;
+  blending.Pass = 2;
+  blending.Samples = this->AntiAliasing;
+  blending.ShowSilhouette = this->ShowSilhouettePixels;
+  program = this->UseVariant(blending, ren, act);
+  if (!program)
+  {
+    ostate->Pop();
+    return;
+  }
+  program->SetUniformf(
+    "splatBlendSharpness", static_cast<float>(this->Blending ? this->BlendSharpness : 0.0));
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   ostate->vtkglDepthFunc(GL_LEQUAL);
   ostate->vtkglDepthMask(GL_FALSE);

@@ -176,8 +176,33 @@ protected:
   void DrawOctree(vtkRenderer* ren, vtkActor* act);
   void RenderBlended(vtkRenderer* ren, vtkActor* act);
 
+  /**
+   * What a fragment shader is compiled for besides the degree: the pass
+   * (0 opaque, 1 visibility, 2 blending), the silhouette pixels' n x n
+   * rays and whether they are painted. Constants rather than uniforms, so
+   * that a software rasteriser does not run the branches no pixel takes.
+   */
+  struct ShaderVariant
+  {
+    int Pass = 0;
+    int Samples = 1;
+    bool ShowSilhouette = false;
+    bool operator!=(const ShaderVariant& o) const
+    {
+      return this->Pass != o.Pass || this->Samples != o.Samples ||
+        this->ShowSilhouette != o.ShowSilhouette;
+    }
+  };
+  /**
+   * Makes the program of `variant` current (from the shader cache after its
+   * first build) and sets the uniforms every pass reads; returns it.
+   */
+  vtkShaderProgram* UseVariant(const ShaderVariant& variant, vtkRenderer* ren, vtkActor* act);
+
   int Degree = -1;
   int ShaderDegree = -1;
+  ShaderVariant Variant;       // the one to build
+  ShaderVariant BuiltVariant;  // the one the current program was built for
   bool Culling = true;
   double LODPixelError = 0.0;
   vtkIdType NumberOfRenderedSplats = 0;

@@ -20,28 +20,31 @@
 // splat when its ray hits the patch at a grazing angle (|cos| between the
 // normal and the ray below splatSilhouetteCos, i.e. dF/dt is small), or
 // misses it by less than the pixel's footprint at an extremum of F inside
-// the disc. Only those pixels cast splatSamples x splatSamples sub-pixel rays;
+// the disc. Only those pixels cast SPLAT_SAMPLES x SPLAT_SAMPLES sub-pixel rays;
 // the fragment then carries the mean normal of the rays that hit, the
 // nearest hit's depth, and their fraction as coverage.
 //
-// Passes (uniform splatPass): 0 draws the splat opaque; 1 is the visibility
-// pass of the two-pass blend (thesis 4.2), which writes only the depth
-// pushed back along the ray by splatBlendOffset h; 2 is the blending pass,
-// which writes (w C, w) to target 0 for the Gaussian weight w of the hit's
+// Passes (SPLAT_PASS): 0 draws the splat opaque; 1 is the visibility pass
+// of the two-pass blend (thesis 4.2), which writes only the depth pushed
+// back along the ray by splatBlendOffset h; 2 is the blending pass, which
+// writes (w C, w) to target 0 for the Gaussian weight w of the hit's
 // distance from the splat centre (times its coverage), and (true depth,
 // 1 - coverage) to target 1, blended with MIN.
 //
-// SPLAT_DEGREE (1 to 4) is defined by the mapper.
+// The mapper defines SPLAT_DEGREE (1 to 4), SPLAT_PASS, SPLAT_SAMPLES (the
+// silhouette pixels' n, 1 for none) and SPLAT_SHOW_SILHOUETTE (0 or 1), and
+// builds one program per combination it draws with, rather than branching
+// on uniforms: a software rasteriser such as llvmpipe runs both sides of
+// every branch for its whole block of pixels, so a branch that no pixel
+// takes still costs its full price there (1.75x the frame time of opaque
+// quadratic splats at 1024^2 before this was compiled out).
 
 //VTK::SplatDecl::Begin
 
 uniform mat4 VCDCMatrix;
-uniform int splatPass;
 uniform float splatBlendOffset;
 uniform float splatBlendSharpness;
-uniform int splatSamples;
 uniform float splatSilhouetteCos;
-uniform int splatShowSilhouette;
 flat in vec3 splatCenterVCVSOutput;
 flat in vec3 splatAxisUVSOutput;
 flat in vec3 splatAxisVVSOutput;
@@ -254,7 +257,7 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
     : vec2(0.0, pixelSize / (length(vertexVCVSOutput.xyz) * splatH));
   vec3 rayO = cameraParallel != 0 ? vertexVC.xyz : vec3(0.0);
   vec3 rayD = cameraParallel != 0 ? vec3(0.0, 0.0, -1.0) : normalize(vertexVC.xyz);
-  bool probe = splatSamples > 1 || splatShowSilhouette != 0;
+  const bool probe = SPLAT_SAMPLES > 1 || SPLAT_SHOW_SILHOUETTE != 0;
   vec3 local;
   bool splatSilhouette;
   bool hit = psCastSplat(rayO, rayD, Minv, probe, footprint, local, splatSilhouette);
@@ -264,17 +267,18 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
   {
     nVC = psSplatNormal(local, Minv, rayD);
   }
-  if (splatSilhouette && splatSamples > 1)
+#if SPLAT_SAMPLES > 1
+  if (splatSilhouette)
   {
     // Supersample the silhouette pixel on an n x n grid.
     int hits = 0;
     float nearest = 1e30;
     vec3 normalSum = vec3(0.0);
-    for (int i = 0; i < splatSamples; ++i)
+    for (int i = 0; i < SPLAT_SAMPLES; ++i)
     {
-      for (int j = 0; j < splatSamples; ++j)
+      for (int j = 0; j < SPLAT_SAMPLES; ++j)
       {
-        vec2 offset = (vec2(i, j) + 0.5) / float(splatSamples) - 0.5;
+        vec2 offset = (vec2(i, j) + 0.5) / float(SPLAT_SAMPLES) - 0.5;
         vec3 q = vertexVCVSOutput.xyz + offset.x * pixelDX + offset.y * pixelDY;
         vec3 subO = cameraParallel != 0 ? q : vec3(0.0);
         vec3 subD = cameraParallel != 0 ? vec3(0.0, 0.0, -1.0) : normalize(q);
@@ -295,9 +299,10 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
       }
     }
     hit = hits > 0;
-    splatCoverage = float(hits) / float(splatSamples * splatSamples);
+    splatCoverage = float(hits) / float(SPLAT_SAMPLES * SPLAT_SAMPLES);
     nVC = hits > 0 ? normalize(normalSum) : nVC;
   }
+#endif
   if (!hit)
   {
     discard;
@@ -315,26 +320,26 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
   float splatDepth = 0.5 * (clipPos.z / clipPos.w) + 0.5;
   float splatClipW = clipPos.w;
   gl_FragDepth = splatDepth;
-  if (splatPass == 1)
-  {
-    // Visibility pass: the depth pushed back by delta h along the ray.
-    vec4 shifted = VCDCMatrix * vec4(hitVC + rayD * (splatBlendOffset * splatH), 1.0);
-    gl_FragDepth = clamp(0.5 * (shifted.z / shifted.w) + 0.5, 0.0, 1.0);
-    return;
-  }
+#if SPLAT_PASS == 1
+  // Visibility pass: the depth pushed back by delta h along the ray.
+  vec4 shifted = VCDCMatrix * vec4(hitVC + rayD * (splatBlendOffset * splatH), 1.0);
+  gl_FragDepth = clamp(0.5 * (shifted.z / shifted.w) + 0.5, 0.0, 1.0);
+  return;
+#endif
   float splatWeight = exp(-splatBlendSharpness * dot(local.xy, local.xy) /
     (splatRadiusVSOutput * splatRadiusVSOutput));
 //VTK::SplatImpl::End
 
 //VTK::SplatOutput::Begin
-  if (splatShowSilhouette != 0 && splatSilhouette)
+#if SPLAT_SHOW_SILHOUETTE
+  if (splatSilhouette)
   {
     gl_FragData[0].rgb = vec3(1.0, 0.0, 1.0);
   }
-  if (splatPass == 2)
-  {
-    float weight = splatWeight * splatCoverage;
-    gl_FragData[0] = vec4(gl_FragData[0].rgb * weight, weight);
-    gl_FragData[1] = vec4(splatDepth, 1.0 - splatCoverage, 0.0, 1.0);
-  }
+#endif
+#if SPLAT_PASS == 2
+  float weight = splatWeight * splatCoverage;
+  gl_FragData[0] = vec4(gl_FragData[0].rgb * weight, weight);
+  gl_FragData[1] = vec4(splatDepth, 1.0 - splatCoverage, 0.0, 1.0);
+#endif
 //VTK::SplatOutput::End
