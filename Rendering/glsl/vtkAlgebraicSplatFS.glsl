@@ -56,6 +56,7 @@ flat in vec4 splatC1VSOutput;
 flat in vec4 splatC2VSOutput;
 flat in vec4 splatC3VSOutput;
 
+#define PS_MAX_DEGREE SPLAT_DEGREE
 //VTK::SplatRoots::Dec
 
 float psSplatG(vec2 p, out vec2 grad)
@@ -174,7 +175,8 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
   int count = psSolvePolynomial(degree, a0, a1, a2, a3, a4, roots);
   if (degree < SPLAT_DEGREE)
   {
-    for (int k = 0; k < 4; ++k)
+    // A lowered degree has at most SPLAT_DEGREE - 1 roots.
+    for (int k = 0; k < SPLAT_DEGREE - 1; ++k)
     {
       if (k < count)
       {
@@ -186,9 +188,9 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
   // of the eye is the visible surface.
   float sEye = -sc / step; // tau of the ray origin
   bool perspective = cameraParallel == 0;
-  for (int k = 0; k < 4; ++k)
+  for (int k = 0; k < SPLAT_DEGREE; ++k)
   {
-    float tau = roots[min(k, 3)];
+    float tau = roots[k];
     if (k >= count || (perspective && tau <= sEye))
     {
       continue;
@@ -212,9 +214,9 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
     // A grazing miss: F comes close to zero at one of its extrema on the ray.
     vec4 extrema;
     int e = psSolvePolynomial(max(degree - 1, 1), a1, 2.0 * a2, 3.0 * a3, 4.0 * a4, 0.0, extrema);
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < max(SPLAT_DEGREE - 1, 1); ++k)
     {
-      float tau = extrema[min(k, 3)];
+      float tau = extrema[k];
       if (k >= e || abs(tau) > 2.0 || (perspective && tau <= sEye))
       {
         continue;

@@ -21,6 +21,14 @@
 // - A leading coefficient below psLeadingEpsilon times the largest one
 //   lowers the degree: the roots it drops lie beyond about 1/psLeadingEpsilon
 //   times the scale of the others, outside any splat's bounding volume.
+//
+// PS_MAX_DEGREE (default 4), defined before this file, leaves the solvers of
+// higher degrees out of psSolvePolynomial: the splat shader of degree 2
+// never needs a cubic, and a software rasteriser would run it anyway.
+
+#ifndef PS_MAX_DEGREE
+#define PS_MAX_DEGREE 4
+#endif
 
 const float psLeadingEpsilon = 1e-7;
 
@@ -272,6 +280,7 @@ int psSolvePolynomial(int degree, float c0, float c1, float c2, float c3, float 
     r.xy = q;
     return n;
   }
+#if PS_MAX_DEGREE >= 3
   if (degree == 3)
   {
     vec3 q;
@@ -279,5 +288,10 @@ int psSolvePolynomial(int degree, float c0, float c1, float c2, float c3, float 
     r.xyz = q;
     return n;
   }
+#endif
+#if PS_MAX_DEGREE >= 4
   return psSolveQuartic(c0, c1, c2, c3, c4, r);
+#else
+  return 0;
+#endif
 }
