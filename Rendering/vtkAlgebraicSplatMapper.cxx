@@ -702,8 +702,9 @@ void vtkAlgebraicSplatMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
 }
 
 //------------------------------------------------------------------------------
-vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(
-  const ShaderVariant& variant, vtkRenderer* ren, vtkActor* act)
+vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(const ShaderVariant& variant,
+  vtkRenderer* ren,
+  vtkActor* act)
 {
   this->Variant = variant;
   vtkOpenGLHelper& cellBO = this->Primitives[PrimitiveTris];

@@ -6,9 +6,11 @@
  *
  * Renders the output of vtkAlgebraicSplatFitter (the splat data model of
  * DESIGN.md section 3) after chapter 4 of "Algebraic Splats and Metaballs":
- * each splat is drawn as a screen-space quad that bounds its volume (the
- * disc of radius R times the height range of g over it, built in a geometry
- * shader), and each fragment casts its ray in the splat's normalised frame,
+ * each splat is drawn as the eye-facing faces of a box that bounds its
+ * volume (the square around its disc of radius R times the height range of
+ * g over the disc, built in a geometry shader; a quad at the near plane
+ * where the box crosses it), so that each pixel the splat may cover is ray
+ * cast once, and each fragment casts its ray in the splat's normalised frame,
  * solves F(t) = g(u, v) - w = 0 in closed form (degree 1 to 4, the float
  * solvers of glsl/vtkSplatRoots.glsl), keeps the nearest root inside the
  * disc, shades it with VTK's lights and material using the normal from the
@@ -201,8 +203,8 @@ protected:
 
   int Degree = -1;
   int ShaderDegree = -1;
-  ShaderVariant Variant;       // the one to build
-  ShaderVariant BuiltVariant;  // the one the current program was built for
+  ShaderVariant Variant;      // the one to build
+  ShaderVariant BuiltVariant; // the one the current program was built for
   bool Culling = true;
   double LODPixelError = 0.0;
   vtkIdType NumberOfRenderedSplats = 0;

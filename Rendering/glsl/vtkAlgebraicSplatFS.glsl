@@ -250,13 +250,18 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
   mat3 M = mat3(splatAxisUVSOutput, splatAxisVVSOutput, splatAxisNVSOutput);
   mat3 Minv = splatInverseVSOutput;
   float splatH = length(splatAxisNVSOutput);
-  // The pixel's extent on the quad (a plane of constant view depth).
-  vec3 pixelDX = dFdx(vertexVCVSOutput.xyz);
-  vec3 pixelDY = dFdy(vertexVCVSOutput.xyz);
+  // The fragment's ray through a plane of constant view depth (z = -1 for
+  // a perspective camera), where pixels are evenly spaced whatever the tilt
+  // of the bounding face it was drawn on; the pixel's steps there offset the
+  // sub-pixel rays, and its size is the footprint.
+  vec3 viewPlane = cameraParallel != 0 ? vec3(vertexVCVSOutput.xy, 0.0)
+                                       : vertexVCVSOutput.xyz / max(-vertexVCVSOutput.z, 1e-30);
+  vec3 pixelDX = dFdx(viewPlane);
+  vec3 pixelDY = dFdy(viewPlane);
   float pixelSize = max(length(pixelDX), length(pixelDY));
   vec2 footprint = cameraParallel != 0
     ? vec2(pixelSize / splatH, 0.0)
-    : vec2(0.0, pixelSize / (length(vertexVCVSOutput.xyz) * splatH));
+    : vec2(0.0, pixelSize / (length(viewPlane) * splatH));
   vec3 rayO = cameraParallel != 0 ? vertexVC.xyz : vec3(0.0);
   vec3 rayD = cameraParallel != 0 ? vec3(0.0, 0.0, -1.0) : normalize(vertexVC.xyz);
   const bool probe = SPLAT_SAMPLES > 1 || SPLAT_SHOW_SILHOUETTE != 0;
@@ -281,7 +286,8 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
       for (int j = 0; j < SPLAT_SAMPLES; ++j)
       {
         vec2 offset = (vec2(i, j) + 0.5) / float(SPLAT_SAMPLES) - 0.5;
-        vec3 q = vertexVCVSOutput.xyz + offset.x * pixelDX + offset.y * pixelDY;
+        vec3 q = (cameraParallel != 0 ? vertexVCVSOutput.xyz : viewPlane) + offset.x * pixelDX +
+          offset.y * pixelDY;
         vec3 subO = cameraParallel != 0 ? q : vec3(0.0);
         vec3 subD = cameraParallel != 0 ? vec3(0.0, 0.0, -1.0) : normalize(q);
         vec3 subLocal;
@@ -290,7 +296,10 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
         {
           ++hits;
           normalSum += psSplatNormal(subLocal, Minv, subD);
-          float distance = length(splatCenterVCVSOutput + M * subLocal - subO);
+          // Depth along the view: the sub-rays' origins lie on a face
+          // that may be tilted to it.
+          vec3 subHit = splatCenterVCVSOutput + M * subLocal;
+          float distance = cameraParallel != 0 ? -subHit.z : length(subHit);
           if (distance < nearest)
           {
             nearest = distance;

@@ -2,20 +2,23 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
 //
-// Geometry shader of vtkAlgebraicSplatMapper: a screen-aligned quad that
-// tightly bounds the splat's volume, the disc of radius R (u, v) times the
-// height range of g over it (w), at most R, so that only the pixels the splat can cover
-// are ray cast. The quad lies at the volume's nearest depth; the fragment
-// shader writes the true depth.
+// Geometry shader of vtkAlgebraicSplatMapper: bounds each splat's volume,
+// the square around its disc of radius R (u, v) times the height range of g
+// over the disc (w, within +-R), by a box, and emits the box's faces that
+// face the eye (at most three quads), so that only the pixels the splat can
+// cover are ray cast, each once. Where the box crosses the near plane it
+// falls back to a screen-aligned quad at the near plane. The fragment
+// shader writes the true depth, which is never nearer than the face's.
 
 //VTK::PrimID::Dec
 
 //VTK::Color::Dec
 
 layout(points) in;
-layout(triangle_strip, max_vertices = 4) out;
+layout(triangle_strip, max_vertices = 12) out;
 
 uniform mat4 VCDCMatrix;
+uniform int cameraParallel;
 
 in vec3 splatAxisUVSOutput[];
 in vec3 splatAxisVVSOutput[];
@@ -57,55 +60,113 @@ void main()
   {
     return; // an invalid splat (zero radius), or one culled by its level
   }
-  // |g| over the disc is at most sum |c_k| rho^(total degree of monomial k).
+  // The height range [lo, hi] of g over the disc |(u, v)| <= rho: the
+  // constant, the linear part's reach |grad| rho, the quadratic form's
+  // eigenvalues times rho^2 (each sign on its own side), and the cubic and
+  // quartic terms' sum |c_k| rho^k on both sides.
   vec4 c0 = splatC0VSOutput[0], c1 = splatC1VSOutput[0], c2 = splatC2VSOutput[0],
        c3 = splatC3VSOutput[0];
   float r2 = rho * rho;
-  float bound = abs(c0.x) + (abs(c0.y) + abs(c0.z)) * rho +
-    (abs(c0.w) + abs(c1.x) + abs(c1.y)) * r2 +
-    (abs(c1.z) + abs(c1.w) + abs(c2.x) + abs(c2.y)) * r2 * rho +
+  float linear = length(c0.yz) * rho;
+  float mean = 0.5 * (c0.w + c1.y);
+  float spread = length(vec2(0.5 * (c0.w - c1.y), 0.5 * c1.x));
+  float higher = (abs(c1.z) + abs(c1.w) + abs(c2.x) + abs(c2.y)) * r2 * rho +
     (abs(c2.z) + abs(c2.w) + abs(c3.x) + abs(c3.y) + abs(c3.z)) * r2 * r2;
   // The splat is bounded to its cylinder: |w| <= rho.
-  bound = min(bound, rho);
+  float hi = min(c0.x + linear + max(mean + spread, 0.0) * r2 + higher, rho);
+  float lo = max(c0.x - linear + min(mean - spread, 0.0) * r2 - higher, -rho);
+  if (!(lo <= hi))
+  {
+    return; // the patch leaves the cylinder over the whole disc (or is NaN)
+  }
 
-  vec2 lo = vec2(1e30), hi = vec2(-1e30);
+  vec3 U = splatAxisUVSOutput[0] * rho, V = splatAxisVVSOutput[0] * rho,
+       W = splatAxisNVSOutput[0];
+  vec4 clip[8];
+  vec3 corner[8];
+  vec2 lower = vec2(1e30), upper = vec2(-1e30);
   float nearest = 1.0;
-  bool behind = false;
+  bool behind = false, cut = false;
   for (int k = 0; k < 8; ++k)
   {
-    vec3 corner = centre + splatAxisUVSOutput[0] * ((k & 1) != 0 ? rho : -rho) +
-      splatAxisVVSOutput[0] * ((k & 2) != 0 ? rho : -rho) +
-      splatAxisNVSOutput[0] * ((k & 4) != 0 ? bound : -bound);
-    vec4 clip = VCDCMatrix * vec4(corner, 1.0);
-    if (clip.w <= 0.0)
+    corner[k] = centre + U * ((k & 1) != 0 ? 1.0 : -1.0) + V * ((k & 2) != 0 ? 1.0 : -1.0) +
+      W * ((k & 4) != 0 ? hi : lo);
+    clip[k] = VCDCMatrix * vec4(corner[k], 1.0);
+    if (clip[k].w <= 0.0)
     {
       behind = true;
       continue;
     }
-    vec3 ndc = clip.xyz / clip.w;
-    lo = min(lo, ndc.xy);
-    hi = max(hi, ndc.xy);
+    vec3 ndc = clip[k].xyz / clip[k].w;
+    lower = min(lower, ndc.xy);
+    upper = max(upper, ndc.xy);
     nearest = min(nearest, ndc.z);
   }
   if (behind)
   {
     // The volume reaches behind the eye: cover the whole viewport.
-    lo = vec2(-1.0);
-    hi = vec2(1.0);
+    lower = vec2(-1.0);
+    upper = vec2(1.0);
     nearest = -1.0;
   }
-  if (lo.x > 1.0 || lo.y > 1.0 || hi.x < -1.0 || hi.y < -1.0)
+  if (lower.x > 1.0 || lower.y > 1.0 || upper.x < -1.0 || upper.y < -1.0)
   {
     return; // off screen
   }
-  lo = max(lo, vec2(-1.0));
-  hi = min(hi, vec2(1.0));
-  nearest = clamp(nearest, -1.0, 1.0);
-  mat4 dcvc = inverse(VCDCMatrix);
   mat3 toLocal = inverse(mat3(splatAxisUVSOutput[0], splatAxisVVSOutput[0], splatAxisNVSOutput[0]));
+  if (!behind && nearest >= -1.0)
+  {
+    // The box's faces that face the eye: together they cover its projection
+    // exactly once (a convex solid), tighter than any screen-aligned quad,
+    // and each pixel's ray enters the box there, so the hit is never nearer
+    // than the fragment (conservative depth holds).
+    vec3 faceNormal[3] = vec3[3](cross(V, W), cross(W, U), cross(U, V));
+    vec3 axis[3] = vec3[3](U, V, W);
+    for (int f = 0; f < 6; ++f)
+    {
+      int a = f / 2; // the axis the face is normal to
+      bool high = (f & 1) != 0;
+      int bit = 1 << a;
+      // The face's corners: the other two axes' bits, in strip order.
+      int b0 = a == 0 ? 2 : 1, b1 = a == 2 ? 2 : 4;
+      int base = high ? bit : 0;
+      int ids[4] = int[4](base, base | b0, base | b1, base | b0 | b1);
+      vec3 outward = faceNormal[a] * (dot(faceNormal[a], axis[a]) > 0.0 ? 1.0 : -1.0) *
+        (high ? 1.0 : -1.0);
+      vec3 toEye = cameraParallel != 0 ? vec3(0.0, 0.0, 1.0) : -corner[ids[0]];
+      if (dot(outward, toEye) <= 0.0)
+      {
+        continue;
+      }
+      for (int k = 0; k < 4; ++k)
+      {
+        vertexVCGSOutput = vec4(corner[ids[k]], 1.0);
+        splatCenterVCGSOutput = centre;
+        splatAxisUGSOutput = splatAxisUVSOutput[0];
+        splatAxisVGSOutput = splatAxisVVSOutput[0];
+        splatAxisNGSOutput = splatAxisNVSOutput[0];
+        splatInverseGSOutput = toLocal;
+        splatRadiusGSOutput = rho;
+        splatC0GSOutput = c0;
+        splatC1GSOutput = c1;
+        splatC2GSOutput = c2;
+        splatC3GSOutput = c3;
+        gl_Position = clip[ids[k]];
+        EmitVertex();
+      }
+      EndPrimitive();
+    }
+    return;
+  }
+  // The box crosses the near plane (or reaches behind the eye): a
+  // screen-aligned quad at the near plane, which the rasteriser cannot clip.
+  lower = max(lower, vec2(-1.0));
+  upper = min(upper, vec2(1.0));
+  nearest = -1.0;
+  mat4 dcvc = inverse(VCDCMatrix);
   for (int k = 0; k < 4; ++k)
   {
-    vec4 ndc = vec4((k & 1) != 0 ? hi.x : lo.x, (k & 2) != 0 ? hi.y : lo.y, nearest, 1.0);
+    vec4 ndc = vec4((k & 1) != 0 ? upper.x : lower.x, (k & 2) != 0 ? upper.y : lower.y, nearest, 1.0);
     vec4 vc = dcvc * ndc;
     vertexVCGSOutput = vec4(vc.xyz / vc.w, 1.0);
     splatCenterVCGSOutput = centre;

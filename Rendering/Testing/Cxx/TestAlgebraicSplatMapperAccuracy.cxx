@@ -11,6 +11,23 @@
 // exact surface is seen at a grazing angle (|cos| < 0.2) are left out: their
 // footprint straddles the silhouette.
 //
+// Coverage: for the sphere, each pixel whose ray segment between the near
+// and far planes meets the exact sphere at its centre and its four corners
+// alike (not a silhouette or near-cut pixel) must be covered by the splats
+// exactly when the sphere is; at most 0.2 % of those may disagree (degree 2
+// and up: flat discs stick out past the silhouette). Besides the plain view,
+// the sphere is seen with the near plane cutting through it (the inside
+// shows) and through a parallel camera. (Overlapping splats hide a single
+// missing splat here; the paraboloid below is alone.)
+//
+// One hand-made quadratic splat, the paraboloid cap w = -(u^2 + v^2) / 2 over
+// the unit disc (exact at degree 2), is seen face-on from outside with the
+// near plane before it (the box's faces) and through it (the apex is cut
+// off: the near-plane fallback must still draw the ring behind it), and
+// from inside its box (the eye below the apex: the behind-the-eye
+// fallback). Its coverage, depth (1e-4) and normals (0.05 deg) are checked
+// the same way; the ring must cover at least 1 000 pixels.
+//
 // Both the opaque render (Blending off) and the two-pass blend are measured;
 // the bounds, on the 99th percentile of the pixels, hold for both:
 //
@@ -29,16 +46,21 @@
 #include "vtkAlgebraicSplatFitter.h"
 #include "vtkAlgebraicSplatMapper.h"
 #include "vtkCamera.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIntArray.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLState.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkShaderProperty.h"
+#include "vtkSplatDataModel.h"
 #include "vtk_glew.h"
 
 #include <algorithm>
@@ -60,10 +82,63 @@ struct Accuracy
   double DepthMax = 0.0, DepthP99 = 0.0, DepthRms = 0.0;    // relative to the radius
   double NormalMax = 0.0, NormalP99 = 0.0, NormalRms = 0.0; // degrees
   int Pixels = 0;
+  int CoverageChecked = 0, CoverageWrong = 0; // pixels, where the surface has a coverage test
 };
 
+// Does the segment from a to b meet the exact surface?
+using Segment = std::function<bool(const double a[3], const double b[3])>;
+
 // Renders into a float framebuffer and compares depth and normals per pixel.
-Accuracy Measure(vtkRenderWindow* renWin, vtkRenderer* ren, const Surface& surface)
+// Per pixel of ren's current view: 1 where the exact surface covers the
+// pixel's centre and its four corners, 0 where it covers none of them, -1
+// in between (silhouette and near-cut pixels).
+std::vector<signed char> ExactCoverage(vtkRenderer* ren, int w, int h, const Segment& meets)
+{
+  // The display point's ray between the clipping planes.
+  auto covers = [&](double x, double y)
+  {
+    double ends[2][4];
+    for (int k = 0; k < 2; ++k)
+    {
+      ren->SetDisplayPoint(x, y, k);
+      ren->DisplayToWorld();
+      ren->GetWorldPoint(ends[k]);
+      for (int c = 0; c < 3; ++c)
+      {
+        ends[k][c] /= ends[k][3];
+      }
+    }
+    return meets(ends[0], ends[1]);
+  };
+  std::vector<char> corners((w + 1) * (h + 1));
+  for (int y = 0; y <= h; ++y)
+  {
+    for (int x = 0; x <= w; ++x)
+    {
+      corners[y * (w + 1) + x] = covers(x, y);
+    }
+  }
+  std::vector<signed char> coverage(w * h);
+  for (int y = 0; y < h; ++y)
+  {
+    for (int x = 0; x < w; ++x)
+    {
+      const char centre = covers(x + 0.5, y + 0.5);
+      bool alike = true;
+      for (int k = 0; k < 4; ++k)
+      {
+        alike = alike && corners[(y + (k >> 1)) * (w + 1) + x + (k & 1)] == centre;
+      }
+      coverage[y * w + x] = alike ? centre : -1;
+    }
+  }
+  return coverage;
+}
+
+Accuracy Measure(vtkRenderWindow* renWin,
+  vtkRenderer* ren,
+  const Surface& surface,
+  const Segment& meets)
 {
   auto* gl = vtkOpenGLRenderWindow::SafeDownCast(renWin);
   renWin->Render(); // brings the pipeline and the context up
@@ -89,6 +164,8 @@ Accuracy Measure(vtkRenderWindow* renWin, vtkRenderer* ren, const Surface& surfa
   double eye[3];
   camera->GetPosition(eye);
   Accuracy a;
+  const std::vector<signed char> exact =
+    meets ? ExactCoverage(ren, w, h, meets) : std::vector<signed char>();
   double depth2 = 0.0, normal2 = 0.0;
   std::vector<double> depths, angles;
   for (int y = 0; y < h; ++y)
@@ -96,6 +173,11 @@ Accuracy Measure(vtkRenderWindow* renWin, vtkRenderer* ren, const Surface& surfa
     for (int x = 0; x < w; ++x)
     {
       const float z = depth[y * w + x];
+      if (!exact.empty() && exact[y * w + x] >= 0)
+      {
+        ++a.CoverageChecked;
+        a.CoverageWrong += (z < 1.0f) != (exact[y * w + x] == 1) ? 1 : 0;
+      }
       if (z >= 1.0f)
       {
         continue;
@@ -167,6 +249,34 @@ vtkSmartPointer<vtkPolyData> SpherePoints(int n)
   return poly;
 }
 
+// One quadratic splat at the origin, normal +z, h = R = 1, g = -(u^2 + v^2) / 2.
+vtkSmartPointer<vtkPolyData> ParaboloidSplat()
+{
+  vtkNew<vtkPoints> pts;
+  pts->InsertNextPoint(0, 0, 0);
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(pts);
+  auto add = [&poly](const char* name, std::vector<double> values)
+  {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->SetNumberOfComponents(static_cast<int>(values.size()));
+    a->InsertNextTuple(values.data());
+    poly->GetPointData()->AddArray(a);
+  };
+  add(vtkSplatDataModel::NormalName(), { 0, 0, 1 });
+  add(vtkSplatDataModel::TangentName(), { 1, 0, 0 });
+  add(vtkSplatDataModel::FeatureSizeName(), { 1 });
+  add(vtkSplatDataModel::RadiusName(), { 1 });
+  add(vtkSplatDataModel::CoefficientsName(), { 0, 0, 0, -0.5, 0, -0.5 });
+  vtkNew<vtkIntArray> degree;
+  degree->SetName(vtkSplatDataModel::DegreeName());
+  degree->InsertNextValue(2);
+  poly->GetFieldData()->AddArray(degree);
+  vtkSplatDataModel::AddVertexCells(poly);
+  return poly;
+}
+
 // Points spread evenly over the torus's area (rejection on the area element).
 vtkSmartPointer<vtkPolyData> TorusPoints(int n, double R, double r)
 {
@@ -206,6 +316,26 @@ int TestAlgebraicSplatMapperAccuracy(int, char*[])
     }
     return len - 1.0;
   };
+  const Segment sphereMeets = [](const double a[3], const double b[3])
+  {
+    // |a + t (b - a)| = 1 for some t in [0, 1].
+    double d[3], dd = 0.0, ad = 0.0, aa = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      d[c] = b[c] - a[c];
+      dd += d[c] * d[c];
+      ad += a[c] * d[c];
+      aa += a[c] * a[c];
+    }
+    const double disc = ad * ad - dd * (aa - 1.0);
+    if (disc < 0.0)
+    {
+      return false;
+    }
+    const double root = std::sqrt(disc);
+    const double t0 = (-ad - root) / dd, t1 = (-ad + root) / dd;
+    return (t0 >= 0.0 && t0 <= 1.0) || (t1 >= 0.0 && t1 <= 1.0);
+  };
   const Surface torus = [R, r](const double p[3], double n[3])
   {
     const double rho = std::sqrt(p[0] * p[0] + p[1] * p[1]);
@@ -223,7 +353,10 @@ int TestAlgebraicSplatMapperAccuracy(int, char*[])
     const char* Name;
     vtkSmartPointer<vtkPolyData> Points;
     Surface Exact;
+    Segment Meets; // empty: no coverage test
     double Eye[3];
+    double Near;           // the near clipping plane's distance
+    bool Parallel;         // a parallel camera (scale 1.2)
     double DepthBound[5];  // on the 99th percentile
     double NormalBound[5]; // degrees, on the 99th percentile
   };
@@ -231,13 +364,37 @@ int TestAlgebraicSplatMapperAccuracy(int, char*[])
     { "sphere",
       SpherePoints(20000),
       sphere,
+      sphereMeets,
       { 0.3, 0.4, 4.0 },
+      1.0,
+      false,
+      { 0, 1e-2, 2e-5, 2e-5, 3e-6 },
+      { 0, 8.0, 0.06, 0.06, 5e-4 } },
+    { "sphere cut by the near plane",
+      SpherePoints(20000),
+      sphere,
+      sphereMeets,
+      { 0.3, 0.4, 4.0 },
+      3.4,
+      false,
+      { 0, 1e-2, 2e-5, 2e-5, 3e-6 },
+      { 0, 8.0, 0.06, 0.06, 5e-4 } },
+    { "sphere, parallel camera",
+      SpherePoints(20000),
+      sphere,
+      sphereMeets,
+      { 0.3, 0.4, 4.0 },
+      1.0,
+      true,
       { 0, 1e-2, 2e-5, 2e-5, 3e-6 },
       { 0, 8.0, 0.06, 0.06, 5e-4 } },
     { "torus",
       TorusPoints(20000, R, r),
       torus,
+      nullptr,
       { 0.5, -2.5, 2.8 },
+      1.0,
+      false,
       { 0, 6e-2, 4e-3, 1.2e-3, 1.5e-4 },
       { 0, 25.0, 3.0, 1.2, 0.12 } },
   };
@@ -269,19 +426,27 @@ int TestAlgebraicSplatMapperAccuracy(int, char*[])
     camera->SetFocalPoint(0, 0, 0);
     camera->SetViewUp(0, 0, 1);
     camera->SetViewAngle(40);
-    camera->SetClippingRange(1.0, 8.0);
+    camera->SetClippingRange(c.Near, 8.0);
+    camera->SetParallelProjection(c.Parallel);
+    camera->SetParallelScale(1.2);
     for (int degree = 1; degree <= 4; ++degree)
     {
       fitter->SetDegree(degree);
       for (bool blending : { false, true })
       {
         mapper->SetBlending(blending);
-        const Accuracy a = Measure(renWin, renderer, c.Exact);
+        const Accuracy a = Measure(renWin, renderer, c.Exact, c.Meets);
         std::cout << c.Name << " degree " << degree << (blending ? " blended" : " opaque ") << ": "
                   << fitter->GetOutput()->GetNumberOfPoints() << " splats, " << a.Pixels
                   << " pixels, depth error max " << a.DepthMax << " p99 " << a.DepthP99 << " rms "
                   << a.DepthRms << ", normal error max " << a.NormalMax << " p99 " << a.NormalP99
-                  << " rms " << a.NormalRms << " deg\n";
+                  << " rms " << a.NormalRms << " deg";
+        if (c.Meets)
+        {
+          std::cout << ", coverage wrong at " << a.CoverageWrong << " of " << a.CoverageChecked
+                    << " pixels";
+        }
+        std::cout << "\n";
         if (a.Pixels < 5000 || !(a.DepthP99 < c.DepthBound[degree]) ||
           !(a.NormalP99 < c.NormalBound[degree]))
         {
@@ -289,6 +454,108 @@ int TestAlgebraicSplatMapperAccuracy(int, char*[])
                     << c.DepthBound[degree] << ", normal " << c.NormalBound[degree] << " deg)\n";
           ++failures;
         }
+        if (c.Meets && degree >= 2 && !(a.CoverageWrong <= 0.002 * a.CoverageChecked))
+        {
+          std::cerr << c.Name << " degree " << degree << ": the coverage is wrong at "
+                    << a.CoverageWrong << " pixels\n";
+          ++failures;
+        }
+      }
+    }
+  }
+
+  // The hand-made paraboloid: z = -(x^2 + y^2) / 2 over the unit disc.
+  const Surface paraboloid = [](const double p[3], double n[3])
+  {
+    // The first-order distance F / |grad F| of F = z + (x^2 + y^2) / 2.
+    const double g[3] = { p[0], p[1], 1.0 };
+    const double len = std::sqrt(g[0] * g[0] + g[1] * g[1] + 1.0);
+    for (int c = 0; c < 3; ++c)
+    {
+      n[c] = g[c] / len;
+    }
+    return (p[2] + 0.5 * (p[0] * p[0] + p[1] * p[1])) / len;
+  };
+  const Segment paraboloidMeets = [](const double a[3], const double b[3])
+  {
+    double d[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      d[c] = b[c] - a[c];
+    }
+    // a.z + t d.z + ((a.x + t d.x)^2 + (a.y + t d.y)^2) / 2 = 0, t in [0, 1].
+    const double qa = 0.5 * (d[0] * d[0] + d[1] * d[1]);
+    const double qb = d[2] + a[0] * d[0] + a[1] * d[1];
+    const double qc = a[2] + 0.5 * (a[0] * a[0] + a[1] * a[1]);
+    double roots[2];
+    int n = 0;
+    if (std::abs(qa) < 1e-15)
+    {
+      roots[n++] = -qc / qb;
+    }
+    else
+    {
+      const double disc = qb * qb - 4.0 * qa * qc;
+      if (disc < 0.0)
+      {
+        return false;
+      }
+      roots[n++] = (-qb - std::sqrt(disc)) / (2.0 * qa);
+      roots[n++] = (-qb + std::sqrt(disc)) / (2.0 * qa);
+    }
+    for (int k = 0; k < n; ++k)
+    {
+      const double t = roots[k];
+      const double x = a[0] + t * d[0], y = a[1] + t * d[1];
+      if (t >= 0.0 && t <= 1.0 && x * x + y * y <= 1.0)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  struct View
+  {
+    const char* Name;
+    double Eye[3];
+    double Focus[3];
+    double Near;
+  };
+  const View views[] = {
+    { "paraboloid splat, near plane before it", { 0.05, 0.1, 3.0 }, { 0.05, 0.1, 0.0 }, 1.0 },
+    { "paraboloid splat, apex cut by the near plane",
+      { 0.05, 0.1, 3.0 },
+      { 0.05, 0.1, 0.0 },
+      3.25 },
+    // Looking out and down at the ring from below the apex.
+    { "paraboloid splat, eye inside its box", { 0.05, 0.1, -0.1 }, { 0.8, 0.1, -0.5 }, 0.01 },
+  };
+  fitter->RemoveAllInputs();
+  mapper->SetInputData(ParaboloidSplat());
+  for (const View& v : views)
+  {
+    vtkCamera* camera = renderer->GetActiveCamera();
+    camera->SetParallelProjection(false);
+    camera->SetPosition(v.Eye);
+    camera->SetFocalPoint(v.Focus);
+    camera->SetViewUp(0, 1, 0);
+    camera->OrthogonalizeViewUp();
+    camera->SetViewAngle(60);
+    camera->SetClippingRange(v.Near, 20.0);
+    for (bool blending : { false, true })
+    {
+      mapper->SetBlending(blending);
+      const Accuracy a = Measure(renWin, renderer, paraboloid, paraboloidMeets);
+      std::cout << v.Name << (blending ? ", blended" : ", opaque") << ": " << a.Pixels
+                << " pixels, depth error max " << a.DepthMax << " p99 " << a.DepthP99
+                << ", normal error max " << a.NormalMax << " p99 " << a.NormalP99
+                << " deg, coverage wrong at " << a.CoverageWrong << " of " << a.CoverageChecked
+                << " pixels\n";
+      if (a.Pixels < 1000 || !(a.DepthP99 < 1e-4) || !(a.NormalP99 < 0.05) ||
+        !(a.CoverageWrong <= 0.002 * a.CoverageChecked))
+      {
+        std::cerr << v.Name << " is off its bounds\n";
+        ++failures;
       }
     }
   }
