@@ -9,8 +9,10 @@
 // In the splat's normalised frame (u, v, w) = M^-1 (x - centre), with
 // M = [h t, h b, h n], the ray meets F(s) = g(u(s), v(s)) - w(s) = 0. The ray
 // is re-centred at its closest approach to the splat and scaled so that the
-// volume spans |tau| <= 2; F is sampled at tau = -2..2, which gives its (at
-// most quartic) coefficients exactly, and solved in closed form. The nearest
+// volume spans |tau| <= 2. F's coefficients in tau come straight from g's
+// value, gradient and Hessian at degree 1 and 2; at degree 3 and 4, F is
+// sampled at tau = -2..2, which gives its (at most quartic) coefficients
+// exactly. F is then solved in closed form. The nearest
 // root inside the splat's cylinder (the disc, at most R above or below it,
 // as in the thesis's Figure 3.1) is the hit: its normal comes from the
 // gradient of g, its depth goes to gl_FragDepth, and VTK's lighting shades
@@ -141,8 +143,25 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
   // Half the volume's extent along the ray, in local units: |tau| <= 2 spans it.
   float halfSpan = (2.0 * rho + 2.0 * length(oc)) / len + 1e-6;
   float step = 0.5 * halfSpan;
-  float f[5];
   vec2 grad;
+  vec4 roots;
+#if SPLAT_DEGREE <= 2
+  // Along the ray F is exactly (at most) quadratic in tau: its coefficients
+  // from g's value, gradient and Hessian at oc. The cancellation-free
+  // quadratic formula copes with a vanishing leading coefficient, so no
+  // lowering or polishing is needed.
+  vec2 duv = d.xy * step;
+  float a0 = psSplatG(oc.xy, grad) - oc.z;
+  float a1 = dot(grad, duv) - d.z * step;
+  float a2 = 0.0, a3 = 0.0, a4 = 0.0;
+#if SPLAT_DEGREE == 2
+  a2 = splatC0VSOutput.w * duv.x * duv.x + splatC1VSOutput.x * duv.x * duv.y +
+    splatC1VSOutput.y * duv.y * duv.y;
+#endif
+  int degree = SPLAT_DEGREE;
+  int count = psSolvePolynomial(degree, a0, a1, a2, 0.0, 0.0, roots);
+#else
+  float f[5];
   for (int k = 0; k < 5; ++k)
   {
     vec3 p = oc + d * (step * float(k - 2));
@@ -171,7 +190,6 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
       break;
     }
   }
-  vec4 roots;
   int count = psSolvePolynomial(degree, a0, a1, a2, a3, a4, roots);
   if (degree < SPLAT_DEGREE)
   {
@@ -184,6 +202,7 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
       }
     }
   }
+#endif
   // Roots ascend along the ray: the first one inside the disc and in front
   // of the eye is the visible surface.
   float sEye = -sc / step; // tau of the ray origin
