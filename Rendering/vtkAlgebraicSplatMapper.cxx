@@ -74,6 +74,8 @@ struct vtkAlgebraicSplatMapper::BlendTargets
   vtkNew<vtkTextureObject> Accumulation;  // sum w C, sum w
   vtkNew<vtkTextureObject> DepthCoverage; // min true depth, min (1 - coverage)
   vtkNew<vtkTextureObject> Depth;         // the scene's depth, then the visibility pass
+  vtkNew<vtkOpenGLFramebufferObject> CopyFramebuffer;
+  vtkNew<vtkTextureObject> VisibleDepth; // a copy of Depth after the visibility pass
   std::unique_ptr<vtkOpenGLQuadHelper> Composite;
   int Width = 0;
   int Height = 0;
@@ -86,6 +88,8 @@ struct vtkAlgebraicSplatMapper::BlendTargets
     this->Accumulation->ReleaseGraphicsResources(win);
     this->DepthCoverage->ReleaseGraphicsResources(win);
     this->Depth->ReleaseGraphicsResources(win);
+    this->CopyFramebuffer->ReleaseGraphicsResources(win);
+    this->VisibleDepth->ReleaseGraphicsResources(win);
     if (this->Composite)
     {
       this->Composite->ReleaseGraphicsResources(win);
@@ -249,16 +253,16 @@ void vtkAlgebraicSplatMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkS
   vtkShaderProgram::Substitute(FSSource, "//VTK::PositionVC::Dec", "in vec4 vertexVCVSOutput;");
   vtkShaderProgram::Substitute(
     FSSource, "//VTK::PositionVC::Impl", "vec4 vertexVC = vertexVCVSOutput;\n");
-  // The quad lies at the nearest depth of the splat's volume, so the hit is
-  // never nearer: conservative depth keeps early depth rejection working.
+  // The bounding faces are never behind the hit: conservative depth keeps
+  // early depth rejection working. The blending pass does not write depth.
+  const std::string conservative =
+    "#ifdef GL_ARB_conservative_depth\nlayout(depth_greater) out float gl_FragDepth;\n#endif\n";
   vtkShaderProgram::Substitute(FSSource,
     "//VTK::System::Dec",
     "//VTK::System::Dec\n#extension GL_ARB_conservative_depth : enable\n");
   vtkShaderProgram::Substitute(FSSource,
     "//VTK::Normal::Dec",
-    degree + variant +
-      "#ifdef GL_ARB_conservative_depth\nlayout(depth_greater) out float gl_FragDepth;\n#endif\n" +
-      declarations);
+    degree + variant + (this->Variant.Pass == 2 ? std::string() : conservative) + declarations);
   vtkShaderProgram::Substitute(FSSource, "//VTK::Depth::Impl", Block(fs, "SplatImpl"));
   vtkShaderProgram::Substitute(FSSource, "//VTK::Normal::Impl", "");
   // The blend passes' outputs go last in main(), after VTK's lighting.
@@ -746,17 +750,24 @@ void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
     t.Accumulation->SetContext(renWin);
     t.DepthCoverage->SetContext(renWin);
     t.Depth->SetContext(renWin);
+    t.CopyFramebuffer->SetContext(renWin);
+    t.VisibleDepth->SetContext(renWin);
     t.Accumulation->Allocate2D(width, height, 4, VTK_FLOAT);
     t.DepthCoverage->Allocate2D(width, height, 2, VTK_FLOAT);
-    if (depthFormat == -2)
+    for (vtkTextureObject* depth : { t.Depth.GetPointer(), t.VisibleDepth.GetPointer() })
     {
-      t.Depth->AllocateDepthStencil(width, height);
+      if (depthFormat == -2)
+      {
+        depth->AllocateDepthStencil(width, height);
+      }
+      else
+      {
+        depth->AllocateDepth(
+          width, height, depthFormat >= 0 ? depthFormat : vtkTextureObject::Float32);
+      }
     }
-    else
-    {
-      t.Depth->AllocateDepth(
-        width, height, depthFormat >= 0 ? depthFormat : vtkTextureObject::Float32);
-    }
+    t.CopyFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+    t.CopyFramebuffer->AddDepthAttachment(t.VisibleDepth);
     t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
     t.Framebuffer->AddColorAttachment(0, t.Accumulation);
     t.Framebuffer->AddColorAttachment(1, t.DepthCoverage);
@@ -825,7 +836,22 @@ void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
   glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   this->DrawSplats(ren, act, true);
 
-  // Blending: every hit in front of that depth, weighted.
+  // Blending: every hit in front of that depth, weighted. The shader reads
+  // a copy of it, while the depth test drops fragments behind it unshaded.
+  t.Framebuffer->Bind(GL_READ_FRAMEBUFFER);
+  t.CopyFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  glBlitFramebuffer(0,
+    0,
+    width,
+    height,
+    0,
+    0,
+    width,
+    height,
+    depthFormat == -2 ? GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT : GL_DEPTH_BUFFER_BIT,
+    GL_NEAREST);
+  t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  t.Framebuffer->ActivateDrawBuffers(2);
   ShaderVariant blending;
   blending.Pass = 2;
   blending.Samples = this->AntiAliasing;
@@ -838,6 +864,18 @@ void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
   }
   program->SetUniformf(
     "splatBlendSharpness", static_cast<float>(this->Blending ? this->BlendSharpness : 0.0));
+  t.VisibleDepth->Activate();
+  program->SetUniformi("splatVisibleDepth", t.VisibleDepth->GetTextureUnit());
+  if (this->AntiAliasing > 1)
+  {
+    // A silhouette pixel's sub-pixel rays meet the box nearer than its
+    // centre does, by up to half the face's depth slope per pixel: pull the
+    // faces' depth forward by that much, so that the early test stays
+    // conservative for them too. (The face's plane lies in front of the box
+    // everywhere, since the box is convex.)
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(-1.0f, -1.0f);
+  }
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   ostate->vtkglDepthFunc(GL_LEQUAL);
   ostate->vtkglDepthMask(GL_FALSE);
@@ -847,6 +885,8 @@ void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
   glBlendEquationi(1, GL_MIN);
   glBlendFunci(1, GL_ONE, GL_ONE);
   this->DrawSplats(ren, act, true);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  t.VisibleDepth->Deactivate();
   ostate->Pop(); // the scene's framebuffer, viewport, blending and program
 
   // Normalise and composite with the true depth.

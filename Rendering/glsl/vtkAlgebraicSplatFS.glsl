@@ -31,7 +31,8 @@
 // back along the ray by splatBlendOffset h; 2 is the blending pass, which
 // writes (w C, w) to target 0 for the Gaussian weight w of the hit's
 // distance from the splat centre (times its coverage), and (true depth,
-// 1 - coverage) to target 1, blended with MIN.
+// 1 - coverage) to target 1, blended with MIN; it keeps the hits up to the
+// visibility depth.
 //
 // The mapper defines SPLAT_DEGREE (1 to 4), SPLAT_PASS, SPLAT_SAMPLES (the
 // silhouette pixels' n, 1 for none) and SPLAT_SHOW_SILHOUETTE (0 or 1), and
@@ -45,6 +46,9 @@
 
 uniform mat4 VCDCMatrix;
 uniform float splatBlendOffset;
+#if SPLAT_PASS == 2
+uniform sampler2D splatVisibleDepth; // the visibility pass's depth
+#endif
 uniform float splatBlendSharpness;
 uniform float splatSilhouetteCos;
 flat in vec3 splatCenterVCVSOutput;
@@ -349,7 +353,18 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
   }
   float splatDepth = 0.5 * (clipPos.z / clipPos.w) + 0.5;
   float splatClipW = clipPos.w;
+#if SPLAT_PASS == 2
+  // The blending pass leaves gl_FragDepth alone, so that the depth test runs
+  // before the shader on the face's depth, which is never behind the hit:
+  // fragments whose face is behind the visibility depth are dropped unshaded.
+  // The hit itself is tested here against a copy of that depth.
+  if (splatDepth > texelFetch(splatVisibleDepth, ivec2(gl_FragCoord.xy), 0).r)
+  {
+    discard;
+  }
+#else
   gl_FragDepth = splatDepth;
+#endif
 #if SPLAT_PASS == 1
   // Visibility pass: the depth pushed back by delta h along the ray.
   vec4 shifted = VCDCMatrix * vec4(hitVC + rayD * (splatBlendOffset * splatH), 1.0);
