@@ -4,6 +4,7 @@
 
 #include "psOctree.h"
 #include "psSplatBuilder.h"
+#include "psSplatOrientation.h"
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
@@ -202,6 +203,17 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
       abort = this->GetAbortExecute() != 0;
     },
     &abort);
+  const bool oriented = inNormals != nullptr || (this->OrientNormals && !abort.load());
+  if (!inNormals && oriented)
+  {
+    std::vector<pointsurfaces::Splat*> fitted;
+    fitted.reserve(built.Splats.size());
+    for (BuiltSplat& b : built.Splats)
+    {
+      fitted.push_back(&b.Fitted);
+    }
+    pointsurfaces::OrientSplats(fitted);
+  }
 
   if (this->BuildOctree)
   {
@@ -261,6 +273,7 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   AddCount(fd, "SplatInvalidInputPoints", this->NumberOfInvalidPoints);
   AddCount(fd, "SplatDegeneratePositions", this->NumberOfDegenerateSplats);
   AddCount(fd, "SplatReducedDegree", this->NumberOfReducedDegreeSplats);
+  AddCount(fd, vtkSplatDataModel::NormalsOrientedName(), oriented ? 1 : 0);
   return 1;
 }
 
@@ -336,4 +349,5 @@ void vtkAlgebraicSplatFitter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CoarsestQualityFactor: " << this->CoarsestQualityFactor << "\n";
   os << indent << "BuildOctree: " << this->BuildOctree << "\n";
   os << indent << "OctreeBucketSize: " << this->OctreeBucketSize << "\n";
+  os << indent << "OrientNormals: " << this->OrientNormals << "\n";
 }

@@ -213,6 +213,22 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Without input normals, orient the splats' normals consistently over
+   * each connected part of the splats (Hoppe et al.'s minimum spanning tree
+   * over their nearest neighbours; see psSplatOrientation.h), pointing up at
+   * each part's highest splat: outward on a closed surface. Off keeps the
+   * sign that each plane fit happens to give. With input normals the splats
+   * follow them either way. The field data's SplatNormalsOriented (1 or 0)
+   * tells the mapper whether back-face culling can trust the normals.
+   * Default on.
+   */
+  vtkSetMacro(OrientNormals, bool);
+  vtkGetMacro(OrientNormals, bool);
+  vtkBooleanMacro(OrientNormals, bool);
+  ///@}
+
+  ///@{
   /** Seed of every random choice. Default 1. */
   vtkSetMacro(RandomSeed, unsigned int);
   vtkGetMacro(RandomSeed, unsigned int);
@@ -252,6 +268,7 @@ protected:
   double CoarsestQualityFactor = 4.0;
   bool BuildOctree = true;
   int OctreeBucketSize = 64;
+  bool OrientNormals = true;
 
   vtkIdType NumberOfInvalidPoints = 0;
   vtkIdType NumberOfDegenerateSplats = 0;

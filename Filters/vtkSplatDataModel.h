@@ -31,6 +31,8 @@ public:
   static const char* RadiusName() { return "SplatRadius"; }
   static const char* LODName() { return "SplatLOD"; }
   static const char* DegreeName() { return "SplatDegree"; }
+  /** Field data: 1 when the splats' normals are consistently oriented. */
+  static const char* NormalsOrientedName() { return "SplatNormalsOriented"; }
   ///@}
 
   /** One vertex cell per point of `pd`, replacing its verts. */

@@ -36,6 +36,7 @@
 #include "vtkOpenGLVertexBufferObjectGroup.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkProperty.h"
 #include "vtkRenderer.h"
 #include "vtkSMPTools.h"
 #include "vtkShaderProgram.h"
@@ -247,7 +248,8 @@ void vtkAlgebraicSplatMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkS
     "#define SPLAT_DEGREE " + std::to_string(std::max(1, this->Degree)) + "\n";
   const std::string variant = "#define SPLAT_PASS " + std::to_string(this->Variant.Pass) +
     "\n#define SPLAT_SAMPLES " + std::to_string(this->Variant.Samples) +
-    "\n#define SPLAT_SHOW_SILHOUETTE " + (this->Variant.ShowSilhouette ? "1" : "0") + "\n";
+    "\n#define SPLAT_SHOW_SILHOUETTE " + (this->Variant.ShowSilhouette ? "1" : "0") +
+    "\n#define SPLAT_CULL_FACES " + std::to_string(this->Variant.Cull) + "\n";
   vtkShaderProgram::Substitute(VSSource, "//VTK::SplatDegree::Dec", degree);
   vtkShaderProgram::Substitute(VSSource, "//VTK::Camera::Dec", "uniform mat4 MCVCMatrix;");
   vtkShaderProgram::Substitute(FSSource, "//VTK::PositionVC::Dec", "in vec4 vertexVCVSOutput;");
@@ -353,6 +355,11 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
 {
   vtkPolyData* poly = this->CurrentInput;
   this->Degree = vtkSplatDataModel::GetSplatDegree(poly);
+  vtkDataArray* oriented =
+    poly ? poly->GetFieldData()->GetArray(vtkSplatDataModel::NormalsOrientedName()) : nullptr;
+  this->NormalsOriented =
+    oriented && oriented->GetNumberOfTuples() > 0 && oriented->GetTuple1(0) != 0.0;
+  this->WarnedUnoriented = false;
   this->Primitives[PrimitivePoints].IBO->IndexCount = 0;
   this->Primitives[PrimitiveLines].IBO->IndexCount = 0;
   this->Primitives[PrimitiveTriStrips].IBO->IndexCount = 0;
@@ -688,6 +695,12 @@ void vtkAlgebraicSplatMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   {
     return;
   }
+  // The property's face culling (GL_CULL_FACE, by winding) would cut the
+  // bounding faces, whose winding means nothing: the geometry shader culls
+  // by the splats' normals instead.
+  vtkOpenGLState* ostate = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow())->GetState();
+  vtkOpenGLState::ScopedglEnableDisable cullFace(ostate, GL_CULL_FACE);
+  ostate->vtkglDisable(GL_CULL_FACE);
   // Picking numbers primitives per draw call: draw everything in one, opaque.
   // The light's view of a shadow map needs the hits' depth only.
   const bool picking = ren->GetSelector() != nullptr;
@@ -710,7 +723,21 @@ vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(const ShaderVariant& varia
   vtkRenderer* ren,
   vtkActor* act)
 {
+  vtkProperty* property = act->GetProperty();
+  int cull = (property->GetBackfaceCulling() ? 1 : 0) | (property->GetFrontfaceCulling() ? 2 : 0);
+  if (cull && !this->NormalsOriented)
+  {
+    if (!this->WarnedUnoriented)
+    {
+      vtkWarningMacro(<< "Face culling needs consistently oriented splat normals "
+                         "(SplatNormalsOriented in the field data: input normals, or "
+                         "vtkAlgebraicSplatFitter's OrientNormals); nothing is culled.");
+      this->WarnedUnoriented = true;
+    }
+    cull = 0;
+  }
   this->Variant = variant;
+  this->Variant.Cull = cull;
   vtkOpenGLHelper& cellBO = this->Primitives[PrimitiveTris];
   this->UpdateShaders(cellBO, ren, act);
   vtkShaderProgram* program = cellBO.Program;
@@ -721,6 +748,7 @@ vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(const ShaderVariant& varia
   }
   program->SetUniformf("splatSilhouetteCos", static_cast<float>(this->SilhouetteThreshold));
   program->SetUniformf("splatBlendSharpness", static_cast<float>(this->BlendSharpness));
+  program->SetUniformi("splatCullFaces", cull);
   return program;
 }
 

@@ -39,6 +39,14 @@
  * a pixel near such an angle) cast n x n sub-pixel rays; all other pixels
  * cast one. ShowSilhouettePixels paints those pixels magenta.
  *
+ * Face culling follows the actor's property (BackfaceCulling,
+ * FrontfaceCulling) by the splats' oriented normals: a splat is skipped
+ * when every normal of its patch faces away from (or towards) the eye. The
+ * normals must be consistently oriented (SplatNormalsOriented in the field
+ * data: input normals, or vtkAlgebraicSplatFitter's OrientNormals);
+ * otherwise a warning says so and nothing is culled. It assumes a uniform
+ * actor scale.
+ *
  * Shadows (thesis 4.3.2) work through VTK's vtkShadowMapBakerPass and
  * vtkShadowMapPass: the light's depth map is drawn from the ray-cast hits,
  * and the shadow lookup uses the hit point.
@@ -181,7 +189,8 @@ protected:
   /**
    * What a fragment shader is compiled for besides the degree: the pass
    * (0 opaque, 1 visibility, 2 blending), the silhouette pixels' n x n
-   * rays and whether they are painted. Constants rather than uniforms, so
+   * rays, whether they are painted, and the faces culled (filled in by
+   * UseVariant from the actor's property). Constants rather than uniforms, so
    * that a software rasteriser does not run the branches no pixel takes.
    */
   struct ShaderVariant
@@ -189,10 +198,11 @@ protected:
     int Pass = 0;
     int Samples = 1;
     bool ShowSilhouette = false;
+    int Cull = 0; // face culling: bit 0 back faces, bit 1 front faces
     bool operator!=(const ShaderVariant& o) const
     {
       return this->Pass != o.Pass || this->Samples != o.Samples ||
-        this->ShowSilhouette != o.ShowSilhouette;
+        this->ShowSilhouette != o.ShowSilhouette || this->Cull != o.Cull;
     }
   };
   /**
@@ -203,6 +213,8 @@ protected:
 
   int Degree = -1;
   int ShaderDegree = -1;
+  bool NormalsOriented = false; // the input's SplatNormalsOriented
+  bool WarnedUnoriented = false;
   ShaderVariant Variant;      // the one to build
   ShaderVariant BuiltVariant; // the one the current program was built for
   bool Culling = true;

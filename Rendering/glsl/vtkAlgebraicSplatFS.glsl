@@ -35,7 +35,8 @@
 // visibility depth.
 //
 // The mapper defines SPLAT_DEGREE (1 to 4), SPLAT_PASS, SPLAT_SAMPLES (the
-// silhouette pixels' n, 1 for none) and SPLAT_SHOW_SILHOUETTE (0 or 1), and
+// silhouette pixels' n, 1 for none), SPLAT_SHOW_SILHOUETTE (0 or 1) and
+// SPLAT_CULL_FACES (bit 0: back faces, bit 1: front faces), and
 // builds one program per combination it draws with, rather than branching
 // on uniforms: a software rasteriser such as llvmpipe runs both sides of
 // every branch for its whole block of pixels, so a branch that no pixel
@@ -221,6 +222,25 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
     vec3 p = oc + d * (step * tau);
     if (dot(p.xy, p.xy) <= rho * rho && abs(p.z) <= rho)
     {
+#if SPLAT_CULL_FACES != 0
+      // Face culling: a hit whose oriented normal (-grad g, 1), in the
+      // splat's frame, faces away from the eye (or towards it) is not
+      // there; the ray goes on to the next root.
+      psSplatG(p.xy, grad);
+      float facing = dot(vec3(-grad, 1.0), d);
+#if (SPLAT_CULL_FACES & 1) != 0
+      if (facing > 0.0)
+      {
+        continue;
+      }
+#endif
+#if (SPLAT_CULL_FACES & 2) != 0
+      if (facing < 0.0)
+      {
+        continue;
+      }
+#endif
+#endif
       local = p;
       if (probe)
       {

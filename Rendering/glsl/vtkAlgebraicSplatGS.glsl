@@ -19,6 +19,7 @@ layout(triangle_strip, max_vertices = 12) out;
 
 uniform mat4 VCDCMatrix;
 uniform int cameraParallel;
+uniform int splatCullFaces; // bit 0: back faces, bit 1: front faces
 
 in vec3 splatAxisUVSOutput[];
 in vec3 splatAxisVVSOutput[];
@@ -82,11 +83,36 @@ void main()
 
   vec3 U = splatAxisUVSOutput[0] * rho, V = splatAxisVVSOutput[0] * rho,
        W = splatAxisNVSOutput[0];
+  if (splatCullFaces != 0)
+  {
+    // Face culling by the splat's oriented normal: a splat goes when every
+    // normal of its patch faces away from (or towards) every ray from the
+    // eye to its box. The patch's normals lie within atan(G) of the disc's,
+    // G a bound on |grad g| over the disc; the rays to the box lie within
+    // asin(r / d) of the ray to its centre (r the box's radius, d its
+    // distance).
+    float slope = length(c0.yz) + 2.0 * (abs(mean) + spread) * rho +
+      3.0 * (abs(c1.z) + abs(c1.w) + abs(c2.x) + abs(c2.y)) * r2 +
+      4.0 * (abs(c2.z) + abs(c2.w) + abs(c3.x) + abs(c3.y) + abs(c3.z)) * r2 * rho;
+    float reach = length(U + V) + max(abs(lo), abs(hi)) * length(W);
+    vec3 toEye = cameraParallel != 0 ? vec3(0.0, 0.0, 1.0) : -centre;
+    float distance = length(toEye);
+    vec3 n = normalize(cross(U, V));
+    n = dot(n, W) < 0.0 ? -n : n;
+    float cone = atan(slope) + (cameraParallel != 0 ? 0.0 : asin(min(reach / distance, 1.0)));
+    float margin = cone < 1.5707963 ? sin(cone) : 2.0;
+    float facing = dot(n, toEye) / distance;
+    if (((splatCullFaces & 1) != 0 && facing < -margin) ||
+      ((splatCullFaces & 2) != 0 && facing > margin))
+    {
+      return;
+    }
+  }
   vec4 clip[8];
   vec3 corner[8];
   vec2 lower = vec2(1e30), upper = vec2(-1e30);
   float nearest = 1.0;
-  bool behind = false, cut = false;
+  bool behind = false;
   for (int k = 0; k < 8; ++k)
   {
     corner[k] = centre + U * ((k & 1) != 0 ? 1.0 : -1.0) + V * ((k & 2) != 0 ? 1.0 : -1.0) +

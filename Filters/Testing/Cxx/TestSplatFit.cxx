@@ -3,19 +3,23 @@
 // Unit tests of the splat kernel and the set builder (plain numerics):
 // exact recovery through the whole kernel, convergence order on a sphere,
 // invariance of the whole build under offsets of 1e7 and scales of 1e-6 and
-// 1e6, LOP/WLOP uniformity, the octree's invariants and the error metric
-// against exactly known distances.
+// 1e6, LOP/WLOP uniformity, the octree's invariants, the error metric
+// against exactly known distances, and the orientation of splat normals
+// (a flipped splat is the same surface; propagation makes a sphere's and a
+// torus's normals all point outward, each part of a two-part set too).
 #include "psOctree.h"
 #include "psPointIndex.h"
 #include "psSplatBuilder.h"
 #include "psSplatError.h"
 #include "psSplatFit.h"
+#include "psSplatOrientation.h"
 
 #include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <iostream>
 #include <random>
 #include <vector>
@@ -461,6 +465,125 @@ void TestErrorMetric()
     "the point outside the disc is uncovered");
   Check(std::abs(sum.Maximum - 1.0) < 1e-12, "maximum distance");
 }
+void TestOrientation()
+{
+  // A flipped splat describes the same surface: every point of the original
+  // patch lies on the flipped one.
+  Splat s;
+  s.Frame.Origin[0] = 1.0;
+  s.Frame.Origin[1] = -2.0;
+  s.Frame.Origin[2] = 0.5;
+  const double c = std::cos(0.3), sn = std::sin(0.3);
+  const double normal[3] = { 0.0, -sn, c }, tangent[3] = { 1.0, 0.0, 0.0 };
+  const double bitangent[3] = { 0.0, c, sn }; // normal x tangent
+  std::copy(normal, normal + 3, s.Frame.Normal);
+  std::copy(tangent, tangent + 3, s.Frame.Tangent);
+  std::copy(bitangent, bitangent + 3, s.Frame.Bitangent);
+  s.Frame.Scale = 0.25;
+  s.Fit.Degree = 4;
+  for (int k = 0; k < MonomialCount(4); ++k)
+  {
+    s.Fit.Coefficients[k] = 0.1 * std::sin(1.7 * k + 0.4);
+  }
+  Splat f = s;
+  FlipSplat(f);
+  double worst = 0.0;
+  for (double u = -1.0; u <= 1.0; u += 0.25)
+  {
+    for (double v = -1.0; v <= 1.0; v += 0.25)
+    {
+      const double w = Evaluate(s.Fit.Coefficients, 4, u, v);
+      double p[3], local[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        p[k] = s.Frame.Origin[k] +
+          s.Frame.Scale *
+            (u * s.Frame.Tangent[k] + v * s.Frame.Bitangent[k] + w * s.Frame.Normal[k]);
+      }
+      ToLocal(f.Frame, p, local);
+      worst =
+        std::max(worst, std::abs(Evaluate(f.Fit.Coefficients, 4, local[0], local[1]) - local[2]));
+    }
+  }
+  Check(worst < 1e-12 && f.Frame.Normal[2] < 0.0, "a flipped splat is the same surface");
+  FlipSplat(f);
+  bool back = true;
+  for (int k = 0; k < MonomialCount(4); ++k)
+  {
+    back = back && f.Fit.Coefficients[k] == s.Fit.Coefficients[k];
+  }
+  Check(back, "flipping twice gives the splat back");
+
+  // Fitted without normals, then oriented: outward everywhere.
+  auto outward =
+    [](const std::vector<Splat*>& splats, const std::function<void(const double*, double*)>& out)
+  {
+    long long wrong = 0;
+    for (const Splat* sp : splats)
+    {
+      double o[3];
+      out(sp->Frame.Origin, o);
+      wrong += (o[0] * sp->Frame.Normal[0] + o[1] * sp->Frame.Normal[1] +
+                 o[2] * sp->Frame.Normal[2]) < 0.0;
+    }
+    return wrong;
+  };
+  BuildParameters params;
+  params.Fit.Degree = 2;
+  const int n = 6000;
+  std::vector<double> two = FibonacciSphere(n);
+  for (double v : FibonacciSphere(n))
+  {
+    two.push_back(v); // a second sphere, moved below: two parts
+  }
+  for (int i = n; i < 2 * n; ++i)
+  {
+    two[3 * i] += 5.0;
+    two[3 * i + 2] -= 1.0;
+  }
+  BuildResult spheres = BuildSplats(two.data(), 2 * n, nullptr, params);
+  std::vector<Splat*> fitted;
+  for (BuiltSplat& b : spheres.Splats)
+  {
+    fitted.push_back(&b.Fitted);
+  }
+  auto fromCentre = [](const double* p, double* out)
+  {
+    const double centre[3] = { p[0] > 2.5 ? 5.0 : 0.0, 0.0, p[0] > 2.5 ? -1.0 : 0.0 };
+    for (int k = 0; k < 3; ++k)
+    {
+      out[k] = p[k] - centre[k];
+    }
+  };
+  const long long before = outward(fitted, fromCentre);
+  long long parts = 0;
+  const long long flipped = OrientSplats(fitted, 8, &parts);
+  const long long after = outward(fitted, fromCentre);
+  std::cout << "two spheres: " << fitted.size() << " splats, " << before << " inward before, "
+            << flipped << " flipped, " << after << " inward after, " << parts << " parts\n";
+  Check(before > 0 && after == 0 && parts == 2, "two spheres' splats all point outward");
+
+  const std::vector<double> torus = Torus(8000, 7u);
+  BuildResult ring = BuildSplats(torus.data(), 8000, nullptr, params);
+  fitted.clear();
+  for (BuiltSplat& b : ring.Splats)
+  {
+    fitted.push_back(&b.Fitted);
+  }
+  auto fromTube = [](const double* p, double* out)
+  {
+    const double rho = std::sqrt(p[0] * p[0] + p[1] * p[1]);
+    out[0] = p[0] - 30.0 * p[0] / rho;
+    out[1] = p[1] - 30.0 * p[1] / rho;
+    out[2] = p[2];
+  };
+  OrientSplats(fitted, 8, &parts);
+  const long long wrong = outward(fitted, fromTube);
+  std::cout << "torus: " << fitted.size() << " splats, " << wrong << " inward after, " << parts
+            << " parts\n";
+  Check(wrong == 0 && parts == 1, "a torus's splats all point outward");
+  Check(OrientSplats({}) == 0, "no splats, nothing to orient");
+}
 } // namespace
 
 int TestSplatFit(int, char*[])
@@ -473,6 +596,7 @@ int TestSplatFit(int, char*[])
   TestLOP();
   TestOctree();
   TestErrorMetric();
+  TestOrientation();
   if (Failures)
   {
     std::cerr << Failures << " checks failed\n";

@@ -1,0 +1,149 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "psSplatOrientation.h"
+
+#include "psPointIndex.h"
+#include "psPolynomial.h"
+
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <queue>
+#include <utility>
+
+namespace pointsurfaces
+{
+void FlipSplat(Splat& splat)
+{
+  LocalFrame& f = splat.Frame;
+  for (int c = 0; c < 3; ++c)
+  {
+    f.Normal[c] = -f.Normal[c];
+    f.Bitangent[c] = -f.Bitangent[c];
+  }
+  // (u, v, w) -> (u, -v, -w): the monomial u^(d-j) v^j changes sign with j,
+  // and the whole of g with w.
+  int k = 0;
+  for (int d = 0; d <= MaximumDegree; ++d)
+  {
+    for (int j = 0; j <= d; ++j, ++k)
+    {
+      splat.Fit.Coefficients[k] *= (j % 2 == 0) ? -1.0 : 1.0;
+    }
+  }
+}
+
+long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* parts)
+{
+  const long long n = static_cast<long long>(splats.size());
+  if (parts)
+  {
+    *parts = 0;
+  }
+  if (n == 0)
+  {
+    return 0;
+  }
+  std::vector<double> xyz(3 * n);
+  for (long long i = 0; i < n; ++i)
+  {
+    std::copy(splats[i]->Frame.Origin, splats[i]->Frame.Origin + 3, &xyz[3 * i]);
+  }
+  // The k-nearest-neighbour graph, made symmetric.
+  const int kk = static_cast<int>(std::min<long long>(std::max(k, 1) + 1, n));
+  std::vector<int> neighbours(static_cast<size_t>(n) * kk, -1);
+  {
+    PointIndex index(xyz.data(), n);
+    vtkSMPTools::For(0,
+      n,
+      [&](long long begin, long long end)
+      {
+        std::vector<int> ids;
+        std::vector<double> d2;
+        for (long long i = begin; i < end; ++i)
+        {
+          index.Nearest(&xyz[3 * i], kk, ids, d2);
+          std::copy(ids.begin(), ids.end(), &neighbours[static_cast<size_t>(i) * kk]);
+        }
+      });
+  }
+  std::vector<std::vector<int>> adjacency(n);
+  for (long long i = 0; i < n; ++i)
+  {
+    for (int m = 0; m < kk; ++m)
+    {
+      const int j = neighbours[static_cast<size_t>(i) * kk + m];
+      if (j >= 0 && j != i)
+      {
+        adjacency[i].push_back(j);
+        adjacency[j].push_back(static_cast<int>(i));
+      }
+    }
+  }
+  auto cost = [&](long long i, long long j)
+  {
+    const double* a = splats[i]->Frame.Normal;
+    const double* b = splats[j]->Frame.Normal;
+    return 1.0 - std::abs(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+  };
+
+  // Seeds in order of decreasing height; Prim's algorithm over each part.
+  std::vector<long long> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&](long long a, long long b) { return xyz[3 * a + 2] > xyz[3 * b + 2]; });
+  std::vector<char> done(n, 0);
+  long long flipped = 0;
+  using Edge = std::pair<double, std::pair<long long, long long>>; // cost, (from, to)
+  std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> queue;
+  for (const long long seed : order)
+  {
+    if (done[seed])
+    {
+      continue;
+    }
+    if (parts)
+    {
+      ++*parts;
+    }
+    if (splats[seed]->Frame.Normal[2] < 0.0)
+    {
+      FlipSplat(*splats[seed]);
+      ++flipped;
+    }
+    done[seed] = 1;
+    for (const int j : adjacency[seed])
+    {
+      queue.push({ cost(seed, j), { seed, j } });
+    }
+    while (!queue.empty())
+    {
+      const auto [from, to] = queue.top().second;
+      queue.pop();
+      if (done[to])
+      {
+        continue;
+      }
+      done[to] = 1;
+      const double* a = splats[from]->Frame.Normal;
+      const double* b = splats[to]->Frame.Normal;
+      if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0)
+      {
+        FlipSplat(*splats[to]);
+        ++flipped;
+      }
+      for (const int j : adjacency[to])
+      {
+        if (!done[j])
+        {
+          queue.push({ cost(to, j), { to, j } });
+        }
+      }
+    }
+  }
+  return flipped;
+}
+} // namespace pointsurfaces

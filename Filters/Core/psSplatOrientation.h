@@ -1,0 +1,42 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file psSplatOrientation.h
+ * @brief Consistent orientation of splat normals fitted without input normals.
+ *
+ * A weighted plane's normal has no sign of its own: fitted from bare points,
+ * neighbouring splats face either way, which shading hides (it is two-sided)
+ * but back-face culling, normal colouring and every downstream filter that
+ * reads SplatNormal do not. OrientSplats propagates one sign over each
+ * connected part of the splats' k-nearest-neighbour graph along its minimum
+ * spanning tree under the cost 1 - |n_i . n_j| (Hoppe et al., "Surface
+ * reconstruction from unorganized points", 1992), so that the sign passes
+ * between nearly parallel normals first. Each part is seeded at its highest
+ * splat (largest z), whose normal is made to point up: outward on a closed
+ * surface. Flipping a splat turns its frame (n, t, b) into (-n, t, -b) and
+ * its polynomial into g'(u, v) = -g(u, -v), so it describes the same surface.
+ */
+#ifndef psSplatOrientation_h
+#define psSplatOrientation_h
+
+#include "PointSurfacesFiltersModule.h" // For export macro
+#include "psSplatFit.h"                 // For Splat
+
+#include <vector> // For the splats
+
+namespace pointsurfaces
+{
+/** Turn a splat over: the same surface, seen from its other side. */
+POINTSURFACESFILTERS_EXPORT void FlipSplat(Splat& splat);
+
+/**
+ * Orient `splats` consistently, with `k` nearest neighbours per splat (by
+ * origin) in the graph. Returns the number of splats flipped. `parts`, when
+ * given, receives the number of connected parts (each with its own seed).
+ */
+POINTSURFACESFILTERS_EXPORT long long OrientSplats(const std::vector<Splat*>& splats,
+  int k = 8,
+  long long* parts = nullptr);
+} // namespace pointsurfaces
+
+#endif
