@@ -45,7 +45,11 @@ flat out vec4 splatC3GSOutput;
 
 //VTK::Picking::Dec
 
-void main()
+// Emits one vertex of a bounding face. Every output is undefined after
+// EmitVertex, so each vertex sets them all, VTK's colour, picking and
+// primitive id included.
+void psEmitVertex(vec4 position, vec3 vertexVC, vec3 centre, mat3 toLocal, float rho, vec4 c0,
+  vec4 c1, vec4 c2, vec4 c3)
 {
   int i = 0; // the vertex index VTK's colour and picking code reads
 
@@ -55,6 +59,23 @@ void main()
 
   //VTK::Picking::Impl
 
+  vertexVCGSOutput = vec4(vertexVC, 1.0);
+  splatCenterVCGSOutput = centre;
+  splatAxisUGSOutput = splatAxisUVSOutput[0];
+  splatAxisVGSOutput = splatAxisVVSOutput[0];
+  splatAxisNGSOutput = splatAxisNVSOutput[0];
+  splatInverseGSOutput = toLocal;
+  splatRadiusGSOutput = rho;
+  splatC0GSOutput = c0;
+  splatC1GSOutput = c1;
+  splatC2GSOutput = c2;
+  splatC3GSOutput = c3;
+  gl_Position = position;
+  EmitVertex();
+}
+
+void main()
+{
   vec3 centre = gl_in[0].gl_Position.xyz / gl_in[0].gl_Position.w;
   float rho = splatRadiusVSOutput[0];
   if (!(rho > 0.0 && rho < 1e30))
@@ -166,19 +187,7 @@ void main()
       }
       for (int k = 0; k < 4; ++k)
       {
-        vertexVCGSOutput = vec4(corner[ids[k]], 1.0);
-        splatCenterVCGSOutput = centre;
-        splatAxisUGSOutput = splatAxisUVSOutput[0];
-        splatAxisVGSOutput = splatAxisVVSOutput[0];
-        splatAxisNGSOutput = splatAxisNVSOutput[0];
-        splatInverseGSOutput = toLocal;
-        splatRadiusGSOutput = rho;
-        splatC0GSOutput = c0;
-        splatC1GSOutput = c1;
-        splatC2GSOutput = c2;
-        splatC3GSOutput = c3;
-        gl_Position = clip[ids[k]];
-        EmitVertex();
+        psEmitVertex(clip[ids[k]], corner[ids[k]], centre, toLocal, rho, c0, c1, c2, c3);
       }
       EndPrimitive();
     }
@@ -194,19 +203,7 @@ void main()
   {
     vec4 ndc = vec4((k & 1) != 0 ? upper.x : lower.x, (k & 2) != 0 ? upper.y : lower.y, nearest, 1.0);
     vec4 vc = dcvc * ndc;
-    vertexVCGSOutput = vec4(vc.xyz / vc.w, 1.0);
-    splatCenterVCGSOutput = centre;
-    splatAxisUGSOutput = splatAxisUVSOutput[0];
-    splatAxisVGSOutput = splatAxisVVSOutput[0];
-    splatAxisNGSOutput = splatAxisNVSOutput[0];
-    splatInverseGSOutput = toLocal;
-    splatRadiusGSOutput = rho;
-    splatC0GSOutput = c0;
-    splatC1GSOutput = c1;
-    splatC2GSOutput = c2;
-    splatC3GSOutput = c3;
-    gl_Position = ndc;
-    EmitVertex();
+    psEmitVertex(ndc, vc.xyz / vc.w, centre, toLocal, rho, c0, c1, c2, c3);
   }
   EndPrimitive();
 }
