@@ -63,6 +63,8 @@
 #include "vtkSplatDataModel.h"
 #include "vtk_glew.h"
 
+#include "psSplatTestSupport.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -234,21 +236,6 @@ Accuracy Measure(vtkRenderWindow* renWin,
   return a;
 }
 
-vtkSmartPointer<vtkPolyData> SpherePoints(int n)
-{
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  const double golden = Pi * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < n; ++i)
-  {
-    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), t = golden * i;
-    pts->InsertNextPoint(r * std::cos(t), r * std::sin(t), z);
-  }
-  vtkNew<vtkPolyData> poly;
-  poly->SetPoints(pts);
-  return poly;
-}
-
 // One quadratic splat at the origin, normal +z, h = R = 1, g = -(u^2 + v^2) / 2.
 vtkSmartPointer<vtkPolyData> ParaboloidSplat()
 {
@@ -362,7 +349,7 @@ int TestAlgebraicSplatMapperAccuracy(int, char*[])
   };
   const Case cases[] = {
     { "sphere",
-      SpherePoints(20000),
+      psFibonacciSphere(20000),
       sphere,
       sphereMeets,
       { 0.3, 0.4, 4.0 },
@@ -371,7 +358,7 @@ int TestAlgebraicSplatMapperAccuracy(int, char*[])
       { 0, 1e-2, 2e-5, 2e-5, 3e-6 },
       { 0, 8.0, 0.06, 0.06, 5e-4 } },
     { "sphere cut by the near plane",
-      SpherePoints(20000),
+      psFibonacciSphere(20000),
       sphere,
       sphereMeets,
       { 0.3, 0.4, 4.0 },
@@ -380,7 +367,7 @@ int TestAlgebraicSplatMapperAccuracy(int, char*[])
       { 0, 1e-2, 2e-5, 2e-5, 3e-6 },
       { 0, 8.0, 0.06, 0.06, 5e-4 } },
     { "sphere, parallel camera",
-      SpherePoints(20000),
+      psFibonacciSphere(20000),
       sphere,
       sphereMeets,
       { 0.3, 0.4, 4.0 },

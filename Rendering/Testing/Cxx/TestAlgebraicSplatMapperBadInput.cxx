@@ -33,6 +33,8 @@
 #include "vtkTransformFilter.h"
 #include "vtk_glew.h"
 
+#include "psSplatTestSupport.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -87,18 +89,7 @@ void Measure(vtkRenderWindow* renWin,
 
 int TestAlgebraicSplatMapperBadInput(int, char*[])
 {
-  const double pi = 3.14159265358979323846;
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  const int n = 8000;
-  const double golden = pi * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < n; ++i)
-  {
-    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), t = golden * i;
-    pts->InsertNextPoint(r * std::cos(t), r * std::sin(t), z);
-  }
-  vtkNew<vtkPolyData> sphere;
-  sphere->SetPoints(pts);
+  vtkSmartPointer<vtkPolyData> sphere = psFibonacciSphere(8000);
   vtkNew<vtkAlgebraicSplatFitter> fitter;
   fitter->SetInputData(sphere);
   fitter->SetDegree(2);

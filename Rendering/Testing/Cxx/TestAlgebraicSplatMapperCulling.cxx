@@ -32,6 +32,8 @@
 #include "vtkRenderer.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "psSplatTestSupport.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -117,18 +119,7 @@ int Differing(const Frame& a, const Frame& b, int tolerance)
 
 int TestAlgebraicSplatMapperCulling(int, char*[])
 {
-  const double pi = 3.14159265358979323846;
-  const int n = 20000;
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  const double golden = pi * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < n; ++i)
-  {
-    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), t = golden * i;
-    pts->InsertNextPoint(r * std::cos(t), r * std::sin(t), z);
-  }
-  vtkNew<vtkPolyData> cloud;
-  cloud->SetPoints(pts);
+  vtkSmartPointer<vtkPolyData> cloud = psFibonacciSphere(20000);
 
   vtkNew<vtkAlgebraicSplatFitter> fitter;
   fitter->SetInputData(cloud);

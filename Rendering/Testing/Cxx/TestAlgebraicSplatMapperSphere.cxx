@@ -20,23 +20,15 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 
+#include "psSplatTestSupport.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
 
 int TestAlgebraicSplatMapperSphere(int, char*[])
 {
-  const int n = 20000;
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < n; ++i)
-  {
-    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), t = golden * i;
-    pts->InsertNextPoint(r * std::cos(t), r * std::sin(t), z);
-  }
-  vtkNew<vtkPolyData> sphere;
-  sphere->SetPoints(pts);
+  vtkSmartPointer<vtkPolyData> sphere = psFibonacciSphere(20000);
 
   const int size = 200;
   vtkNew<vtkRenderWindow> renWin;
