@@ -9,7 +9,8 @@ ground truth) is drawn in the same process and window by:
 - the original triangle mesh, smooth-shaded and 4 x 4 supersampled: the
   reference image; and the same mesh without supersampling;
 - algebraic splats of degree 1 to 4 at several qualities s, blended (two
-  passes) and opaque; the cubic ones at s = 1 also with adaptive
+  passes) and opaque, each with and without back-face culling (the fitter
+  orients the splats' normals); the cubic ones at s = 1 also with adaptive
   anti-aliasing 2 x 2 and 3 x 3, and with full-screen 2 x 2 supersampling
   (the window drawn at twice the size, then averaged);
 - vtkPointGaussianMapper (sphere-shaded sprites) and vtkOpenGLSphereMapper
@@ -189,9 +190,10 @@ def equal_error(rows):
                      peer_ms=best["frame_ms"], splat="", splat_rmse="", splat_ms="",
                      time_ratio="", primitive_ratio="")
             if fastest:
-                e.update(splat="degree %s, s = %s, %s" % (
+                e.update(splat="degree %s, s = %s, %s%s" % (
                     fastest["degree"], fastest["s"],
-                    "blended" if fastest["blend"] == 1 else "opaque"),
+                    "blended" if fastest["blend"] == 1 else "opaque",
+                    ", back faces culled" if fastest["cull"] == 1 else ""),
                     splat_rmse=fastest["rmse"], splat_ms=fastest["frame_ms"],
                     time_ratio="%.3f" % (float(fastest["frame_ms"]) / float(best["frame_ms"])),
                     primitive_ratio="%.2f%%" % (100.0 * fastest["primitives"] / best["primitives"]))
@@ -268,7 +270,7 @@ def main():
         label = "%dx%d" % size
 
         def record(method, actor, prims, bytes_per, degree="", s="", aa="", image=None, ms=None,
-                   blend=""):
+                   blend="", cull=""):
             scene.show(actor)
             if image is None:
                 image = scene.image(size)
@@ -278,7 +280,7 @@ def main():
                 name = "%s_%s_d%s_s%s_aa%s.png" % (label, method, degree, s, aa)
                 write_png(os.path.join(args.out, name), image)
             rows.append(
-                dict(size=label, method=method, degree=degree, s=s, aa=aa, blend=blend,
+                dict(size=label, method=method, degree=degree, s=s, aa=aa, blend=blend, cull=cull,
                      primitives=prims,
                      primitive_fraction="%.4f" % (prims / n_points), frame_ms="%.2f" % ms,
                      rmse="%.5f" % rmse(image, reference), gpu_bytes_per_primitive=bytes_per))
@@ -289,16 +291,18 @@ def main():
             aas = [1, 2, 3] if degree == 3 and s == qualities[0] else [1]
             for aa in aas:
                 for blend in ((1, 0) if aa == 1 else (1,)):
-                    mapper = vtkAlgebraicSplatMapper()
-                    mapper.SetInputData(splats)
-                    mapper.SetAntiAliasing(aa)
-                    mapper.SetBlending(blend)
-                    actor = material(vtkActor())
-                    actor.SetMapper(mapper)
-                    scene.show(actor)
-                    scene.image(size)
-                    record("algebraic", actor, splats.GetNumberOfPoints(),
-                           mapper.GetGPUBytesPerSplat(), degree, s, aa, blend=blend)
+                    for cull in ((0, 1) if aa == 1 else (0,)):
+                        mapper = vtkAlgebraicSplatMapper()
+                        mapper.SetInputData(splats)
+                        mapper.SetAntiAliasing(aa)
+                        mapper.SetBlending(blend)
+                        actor = material(vtkActor())
+                        actor.SetMapper(mapper)
+                        actor.GetProperty().SetBackfaceCulling(cull)
+                        scene.show(actor)
+                        scene.image(size)
+                        record("algebraic", actor, splats.GetNumberOfPoints(),
+                               mapper.GetGPUBytesPerSplat(), degree, s, aa, blend=blend, cull=cull)
             if degree == 3 and s == qualities[0]:
                 # Full-screen 2 x 2 supersampling of the same splats.
                 mapper = vtkAlgebraicSplatMapper()
@@ -338,7 +342,8 @@ def main():
             if r["size"] == label:
                 r["time_vs_gaussian"] = "%.3f" % (float(r["frame_ms"]) / float(best["frame_ms"]))
 
-    fields = ["size", "method", "degree", "s", "aa", "blend", "primitives", "primitive_fraction",
+    fields = ["size", "method", "degree", "s", "aa", "blend", "cull", "primitives",
+              "primitive_fraction",
               "frame_ms", "time_vs_gaussian", "rmse", "gpu_bytes_per_primitive"]
     path = os.path.join(args.out, "splat_render.csv")
     with open(path, "w", newline="") as f:
@@ -379,8 +384,9 @@ def main():
                        marker=marker, label=method)
             for r in sel:
                 if method.startswith("algebraic"):
-                    ax.annotate("d%s s%s aa%s%s" % (r["degree"], r["s"], r["aa"],
-                                                   "" if r["blend"] == 1 else " opaque"),
+                    ax.annotate("d%s s%s aa%s%s%s" % (r["degree"], r["s"], r["aa"],
+                                                     "" if r["blend"] == 1 else " opaque",
+                                                     " culled" if r["cull"] == 1 else ""),
                                 (float(r["frame_ms"]), float(r["rmse"])), fontsize=6)
         ax.set_xlabel("frame time (ms, median)")
         ax.set_ylabel("RMSE vs 4x4-supersampled mesh")
