@@ -114,10 +114,11 @@ int psSolveCubic(float c0, float c1, float c2, float c3, out vec3 r)
   int n;
   if (R * R < Q3)
   {
-    float theta = acos(clamp(R / sqrt(Q3), -1.0, 1.0));
+    float phi = acos(clamp(R / sqrt(Q3), -1.0, 1.0)) / 3.0;
     float m = -2.0 * sqrt(Q);
-    r = m * vec3(cos(theta / 3.0), cos((theta + 6.28318530718) / 3.0),
-              cos((theta - 6.28318530718) / 3.0)) - a / 3.0;
+    // cos(phi + 2 pi / 3) and cos(phi - 2 pi / 3) from one cosine and one sine.
+    float cp = cos(phi), sp = 0.86602540378 * sin(phi);
+    r = m * vec3(cp, -0.5 * cp - sp, -0.5 * cp + sp) - a / 3.0;
     n = 3;
   }
   else
