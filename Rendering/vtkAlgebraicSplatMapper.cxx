@@ -40,6 +40,7 @@
 #include "vtkRenderer.h"
 #include "vtkSMPTools.h"
 #include "vtkShaderProgram.h"
+#include "vtkShaderProperty.h"
 #include "vtkSplatDataModel.h"
 #include "vtkTextureObject.h"
 #include "vtkUnsignedCharArray.h"
@@ -192,6 +193,7 @@ vtkAlgebraicSplatMapper::~vtkAlgebraicSplatMapper() = default;
 //------------------------------------------------------------------------------
 void vtkAlgebraicSplatMapper::ReleaseGraphicsResources(vtkWindow* win)
 {
+  this->ShaderFailed = false;
   this->Targets->Release(win);
   this->Superclass::ReleaseGraphicsResources(win);
 }
@@ -736,6 +738,15 @@ vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(const ShaderVariant& varia
     }
     cull = 0;
   }
+  if (this->ShaderFailed)
+  {
+    const vtkMTimeType changed = std::max(this->GetMTime(), act->GetShaderProperty()->GetMTime());
+    if (changed <= this->ShaderFailedTime.GetMTime())
+    {
+      return nullptr;
+    }
+    this->ShaderFailed = false;
+  }
   this->Variant = variant;
   this->Variant.Cull = cull;
   vtkOpenGLHelper& cellBO = this->Primitives[PrimitiveTris];
@@ -743,7 +754,13 @@ vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(const ShaderVariant& varia
   vtkShaderProgram* program = cellBO.Program;
   if (!program)
   {
-    vtkErrorMacro(<< "The splat shader (pass " << variant.Pass << ") did not compile.");
+    // VTK's UpdateShaders would reuse the null program on the next frame
+    // (and crash): remember the failure, and rebuild once something changes.
+    vtkErrorMacro(<< "The splat shader (pass " << variant.Pass
+                  << ") did not compile: the splats are not drawn.");
+    this->ShaderFailed = true;
+    this->ShaderFailedTime.Modified();
+    this->BuiltVariant.Pass = -1;
     return nullptr;
   }
   program->SetUniformf("splatSilhouetteCos", static_cast<float>(this->SilhouetteThreshold));

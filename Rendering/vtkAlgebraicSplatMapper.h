@@ -215,6 +215,10 @@ protected:
   int ShaderDegree = -1;
   bool NormalsOriented = false; // the input's SplatNormalsOriented
   bool WarnedUnoriented = false;
+  // A splat shader failed to compile: nothing is drawn (and no compile
+  // retried) until the mapper or the actor's shader property changes.
+  bool ShaderFailed = false;
+  vtkTimeStamp ShaderFailedTime;
   ShaderVariant Variant;      // the one to build
   ShaderVariant BuiltVariant; // the one the current program was built for
   bool Culling = true;

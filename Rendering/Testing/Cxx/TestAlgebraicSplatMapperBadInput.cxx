@@ -10,6 +10,10 @@
 //   warning names them, the others are drawn, and GL reports no error;
 // - half the splats with the whole set's octree (a subset or a split between
 //   ParaView's ranks): the stale octree is ignored with one warning, no crash;
+// - a fragment shader that does not compile (a broken replacement in the
+//   actor's shader property): one error over two frames, nothing drawn and
+//   no crash (VTK's UpdateShaders would reuse the null program), and the
+//   splats back once the replacement is removed;
 // - an empty input and an input that is not a splat set: nothing is drawn
 //   and no GL error, with an error message for the latter.
 #include "vtkActor.h"
@@ -20,6 +24,7 @@
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkLogger.h"
 #include "vtkMaskPoints.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -28,7 +33,9 @@
 #include "vtkPolyData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkShaderProperty.h"
 #include "vtkSplatDataModel.h"
+#include "vtkStringOutputWindow.h"
 #include "vtkTransform.h"
 #include "vtkTransformFilter.h"
 #include "vtk_glew.h"
@@ -211,6 +218,44 @@ int TestAlgebraicSplatMapperBadInput(int, char*[])
       half->GetOutput()->GetFieldData()->GetArray("OctreeNodeRange") == nullptr)
     {
       std::cerr << "a stale octree (subset) is not ignored as it should be\n";
+      ++failures;
+    }
+    mapper->SetInputData(nullptr);
+  }
+
+  // A shader that does not compile (a broken replacement in the actor's
+  // shader property): one error over two frames, nothing drawn, no crash;
+  // then the replacement removed, the splats come back.
+  {
+    mapper->SetInputConnection(fitter->GetOutputPort());
+    look(origin);
+    actor->GetShaderProperty()->AddFragmentShaderReplacement(
+      "//VTK::Light::Impl", true, "this is not GLSL;\n", false);
+    // The compiler's own report goes to a string, not to the test's output
+    // (nor to the logger's standard error).
+    vtkSmartPointer<vtkOutputWindow> console = vtkOutputWindow::GetInstance();
+    vtkNew<vtkStringOutputWindow> quiet;
+    vtkOutputWindow::SetInstance(quiet);
+    const vtkLogger::Verbosity verbosity = vtkLogger::GetCurrentVerbosityCutoff();
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+    Errors = 0;
+    renWin->Render();
+    renWin->Render();
+    int coveredBroken = 0;
+    Measure(renWin, renderer, origin, coveredBroken, error);
+    const int brokenErrors = Errors;
+    actor->GetShaderProperty()->ClearAllFragmentShaderReplacements();
+    renWin->Render();
+    vtkOutputWindow::SetInstance(console);
+    vtkLogger::SetStderrVerbosity(verbosity);
+    glOk("a shader that does not compile");
+    int coveredFixed = 0;
+    Measure(renWin, renderer, origin, coveredFixed, error);
+    std::cout << "broken shader: " << brokenErrors << " errors, " << coveredBroken
+              << " pixels; fixed: " << coveredFixed << " pixels\n";
+    if (brokenErrors != 1 || coveredBroken != 0 || coveredFixed < coveredOrigin / 2)
+    {
+      std::cerr << "a shader compile failure is not handled\n";
       ++failures;
     }
     mapper->SetInputData(nullptr);
