@@ -91,6 +91,24 @@ float psSplatG(vec2 p, out vec2 grad)
   return g;
 }
 
+// Narrows [lo, hi] to where a + b s >= 0.
+void psClipRange(float a, float b, inout float lo, inout float hi)
+{
+  if (b > 0.0)
+  {
+    lo = max(lo, -a / b);
+  }
+  else if (b < 0.0)
+  {
+    hi = min(hi, -a / b);
+  }
+  else if (a < 0.0)
+  {
+    lo = 1e30;
+    hi = -1e30;
+  }
+}
+
 // Casts the ray rayO + s rayD (view coordinates, |rayD| = 1) at the splat.
 // Returns true on a hit, with the hit point in the splat's normalised frame.
 // With probe set, `silhouette` tells whether the pixel is a silhouette pixel
@@ -108,6 +126,17 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
   vec3 oc = o + sc * d;
   float len = sqrt(dd);
   float rho = splatRadiusVSOutput;
+  // The part of the ray between the near and far planes (-w <= z <= w in
+  // clip coordinates, both linear in s): roots outside it are clipped away,
+  // as rasterised geometry would be, and the ray goes on to the next one.
+  // Behind the eye is outside it too.
+  vec4 rowZ = vec4(VCDCMatrix[0][2], VCDCMatrix[1][2], VCDCMatrix[2][2], VCDCMatrix[3][2]);
+  vec4 rowW = vec4(VCDCMatrix[0][3], VCDCMatrix[1][3], VCDCMatrix[2][3], VCDCMatrix[3][3]);
+  float z0 = dot(rowZ, vec4(rayO, 1.0)), z1 = dot(rowZ.xyz, rayD);
+  float w0 = dot(rowW, vec4(rayO, 1.0)), w1 = dot(rowW.xyz, rayD);
+  float sLo = -1e30, sHi = 1e30;
+  psClipRange(w0 - z0, w1 - z1, sLo, sHi);
+  psClipRange(w0 + z0, w1 + z1, sLo, sHi);
   // Most of the quad's rays miss the splat's cylinder (|(u, v)| <= rho,
   // |w| <= rho) altogether: skip them before sampling F.
   {
@@ -140,7 +169,7 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
     {
       return false;
     }
-    if (s0 > s1 || (cameraParallel == 0 && s1 < 0.0))
+    if (s0 > s1 || s1 < sLo || s0 > sHi)
     {
       return false;
     }
@@ -208,14 +237,13 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
     }
   }
 #endif
-  // Roots ascend along the ray: the first one inside the disc and in front
-  // of the eye is the visible surface.
-  float sEye = -sc / step; // tau of the ray origin
-  bool perspective = cameraParallel == 0;
+  // Roots ascend along the ray: the first one inside the disc and between
+  // the clipping planes is the visible surface.
+  float tauLo = (sLo - sc) / step, tauHi = (sHi - sc) / step; // the clipped ray
   for (int k = 0; k < SPLAT_DEGREE; ++k)
   {
     float tau = roots[k];
-    if (k >= count || (perspective && tau <= sEye))
+    if (k >= count || tau < tauLo || tau > tauHi)
     {
       continue;
     }
@@ -260,7 +288,7 @@ bool psCastSplat(vec3 rayO, vec3 rayD, mat3 Minv, bool probe, vec2 footprint, ou
     for (int k = 0; k < max(SPLAT_DEGREE - 1, 1); ++k)
     {
       float tau = extrema[k];
-      if (k >= e || abs(tau) > 2.0 || (perspective && tau <= sEye))
+      if (k >= e || abs(tau) > 2.0 || tau < tauLo || tau > tauHi)
       {
         continue;
       }
