@@ -350,6 +350,17 @@ void vtkAlgebraicSplatMapper::SetCameraShaderParameters(vtkOpenGLHelper& cellBO,
   {
     program->SetUniformi("cameraParallel", cam->GetParallelProjection());
   }
+  if (program->IsUniformUsed("splatPixelStep"))
+  {
+    // NDC spans 2 over the viewport; x_ndc = P00 x / -z (perspective) or
+    // P00 x + c (parallel): a pixel is 2 / (P00 width) on the plane z = -1,
+    // or in view units.
+    int width = 1, height = 1;
+    ren->GetTiledSize(&width, &height);
+    const float step[2] = { static_cast<float>(2.0 / (vcdc->GetElement(0, 0) * std::max(width, 1))),
+      static_cast<float>(2.0 / (vcdc->GetElement(1, 1) * std::max(height, 1))) };
+    program->SetUniform2f("splatPixelStep", step);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -357,6 +368,7 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
 {
   vtkPolyData* poly = this->CurrentInput;
   this->Degree = vtkSplatDataModel::GetSplatDegree(poly);
+  this->ShaderFailed = false; // new input: worth another try
   vtkDataArray* oriented =
     poly ? poly->GetFieldData()->GetArray(vtkSplatDataModel::NormalsOrientedName()) : nullptr;
   this->NormalsOriented =
@@ -766,6 +778,8 @@ vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(const ShaderVariant& varia
   program->SetUniformf("splatSilhouetteCos", static_cast<float>(this->SilhouetteThreshold));
   program->SetUniformf("splatBlendSharpness", static_cast<float>(this->BlendSharpness));
   program->SetUniformi("splatCullFaces", cull);
+  const float noMargin[2] = { 0.0f, 0.0f };
+  program->SetUniform2f("splatOutlineMargin", noMargin);
   return program;
 }
 
@@ -813,6 +827,9 @@ void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
     }
     t.CopyFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
     t.CopyFramebuffer->AddDepthAttachment(t.VisibleDepth);
+    // Depth only: no colour buffer to draw to (without this the framebuffer
+    // is incomplete before GL 4.1).
+    ostate->vtkglDrawBuffer(GL_NONE);
     t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
     t.Framebuffer->AddColorAttachment(0, t.Accumulation);
     t.Framebuffer->AddColorAttachment(1, t.DepthCoverage);
@@ -911,13 +928,24 @@ void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
     "splatBlendSharpness", static_cast<float>(this->Blending ? this->BlendSharpness : 0.0));
   t.VisibleDepth->Activate();
   program->SetUniformi("splatVisibleDepth", t.VisibleDepth->GetTextureUnit());
+  // The hit is compared with the stored depth, which its format rounded.
+  const double steps = depthFormat == vtkTextureObject::Fixed16
+    ? 65535.0
+    : (depthFormat == vtkTextureObject::Fixed24 || depthFormat == -2 ? 16777215.0 : 4194304.0);
+  program->SetUniformf("splatDepthTolerance", static_cast<float>(1.0 / steps));
+  const GLboolean offsetWasOn = glIsEnabled(GL_POLYGON_OFFSET_FILL);
+  GLfloat offsetFactor = 0.0f, offsetUnits = 0.0f;
+  glGetFloatv(GL_POLYGON_OFFSET_FACTOR, &offsetFactor);
+  glGetFloatv(GL_POLYGON_OFFSET_UNITS, &offsetUnits);
   if (this->AntiAliasing > 1)
   {
-    // A silhouette pixel's sub-pixel rays meet the box nearer than its
-    // centre does, by up to half the face's depth slope per pixel: pull the
-    // faces' depth forward by that much, so that the early test stays
-    // conservative for them too. (The face's plane lies in front of the box
-    // everywhere, since the box is convex.)
+    // Silhouette pixels get their sub-pixel rays (the geometry shader grows
+    // each splat's quad by half a pixel), which meet the splat's box nearer
+    // than the centre's depth by up to half a pixel's depth slopes: pull the
+    // quads' depth forward by a whole one, so that the early test stays
+    // conservative for them too.
+    const float margin[2] = { 1.0f / width, 1.0f / height };
+    program->SetUniform2f("splatOutlineMargin", margin);
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(-1.0f, -1.0f);
   }
@@ -930,7 +958,11 @@ void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
   glBlendEquationi(1, GL_MIN);
   glBlendFunci(1, GL_ONE, GL_ONE);
   this->DrawSplats(ren, act, true);
-  glDisable(GL_POLYGON_OFFSET_FILL);
+  if (!offsetWasOn)
+  {
+    glDisable(GL_POLYGON_OFFSET_FILL);
+  }
+  glPolygonOffset(offsetFactor, offsetUnits);
   t.VisibleDepth->Deactivate();
   ostate->Pop(); // the scene's framebuffer, viewport, blending and program
 

@@ -15,6 +15,11 @@
  * splat (largest z), whose normal is made to point up: outward on a closed
  * surface. Flipping a splat turns its frame (n, t, b) into (-n, t, -b) and
  * its polynomial into g'(u, v) = -g(u, -v), so it describes the same surface.
+ *
+ * Known limit (Hoppe's too): where two sheets of the surface lie closer than
+ * the splats' spacing (a thin plate, two touching parts), the graph joins
+ * them and their antiparallel normals cost nothing, so one sheet may end up
+ * facing inward.
  */
 #ifndef psSplatOrientation_h
 #define psSplatOrientation_h

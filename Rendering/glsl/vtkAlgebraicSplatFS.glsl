@@ -12,11 +12,11 @@
 // volume spans |tau| <= 2. F's coefficients in tau come straight from g's
 // value, gradient and Hessian at degree 1 and 2; at degree 3 and 4, F is
 // sampled at tau = -2..2, which gives its (at most quartic) coefficients
-// exactly. F is then solved in closed form. The nearest
-// root inside the splat's cylinder (the disc, at most R above or below it,
-// as in the thesis's Figure 3.1) is the hit: its normal comes from the
-// gradient of g, its depth goes to gl_FragDepth, and VTK's lighting shades
-// it.
+// exactly. F is then solved in closed form. The nearest root inside the
+// splat's cylinder (the disc, at most R above or below it, as in the
+// thesis's Figure 3.1) and between the clipping planes is the hit: its
+// normal comes from the gradient of g, its depth goes to gl_FragDepth (the
+// blending pass tests it instead), and VTK's lighting shades it.
 //
 // Adaptive anti-aliasing (thesis 4.3): a pixel is a silhouette pixel of the
 // splat when its ray hits the patch at a grazing angle (|cos| between the
@@ -49,7 +49,11 @@ uniform mat4 VCDCMatrix;
 uniform float splatBlendOffset;
 #if SPLAT_PASS == 2
 uniform sampler2D splatVisibleDepth; // the visibility pass's depth
+uniform float splatDepthTolerance;   // one step of that depth's format
 #endif
+// A pixel's width and height on the view plane z = -1 (perspective camera)
+// or in view units (parallel camera).
+uniform vec2 splatPixelStep;
 uniform float splatBlendSharpness;
 uniform float splatSilhouetteCos;
 flat in vec3 splatCenterVCVSOutput;
@@ -323,12 +327,13 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
   float splatH = length(splatAxisNVSOutput);
   // The fragment's ray through a plane of constant view depth (z = -1 for
   // a perspective camera), where pixels are evenly spaced whatever the tilt
-  // of the bounding face it was drawn on; the pixel's steps there offset the
-  // sub-pixel rays, and its size is the footprint.
+  // of the bounding face it was drawn on; the pixel's steps there (from the
+  // projection, not from derivatives, which a face seen edge-on spoils)
+  // offset the sub-pixel rays, and its size is the footprint.
   vec3 viewPlane = cameraParallel != 0 ? vec3(vertexVCVSOutput.xy, 0.0)
                                        : vertexVCVSOutput.xyz / max(-vertexVCVSOutput.z, 1e-30);
-  vec3 pixelDX = dFdx(viewPlane);
-  vec3 pixelDY = dFdy(viewPlane);
+  vec3 pixelDX = vec3(splatPixelStep.x, 0.0, 0.0);
+  vec3 pixelDY = vec3(0.0, splatPixelStep.y, 0.0);
   float pixelSize = max(length(pixelDX), length(pixelDY));
   vec2 footprint = cameraParallel != 0
     ? vec2(pixelSize / splatH, 0.0)
@@ -405,8 +410,9 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
   // The blending pass leaves gl_FragDepth alone, so that the depth test runs
   // before the shader on the face's depth, which is never behind the hit:
   // fragments whose face is behind the visibility depth are dropped unshaded.
-  // The hit itself is tested here against a copy of that depth.
-  if (splatDepth > texelFetch(splatVisibleDepth, ivec2(gl_FragCoord.xy), 0).r)
+  // The hit itself is tested here against a copy of that depth, give or take
+  // the rounding to its format (the hardware test compared rounded values).
+  if (splatDepth > texelFetch(splatVisibleDepth, ivec2(gl_FragCoord.xy), 0).r + splatDepthTolerance)
   {
     discard;
   }

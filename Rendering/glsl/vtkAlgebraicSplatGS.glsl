@@ -7,8 +7,10 @@
 // over the disc (w, within +-R), by a box, and emits the box's faces that
 // face the eye (at most three quads), so that only the pixels the splat can
 // cover are ray cast, each once. Where the box crosses the near plane it
-// falls back to a screen-aligned quad at the near plane. The fragment
-// shader writes the true depth, which is never nearer than the face's.
+// falls back to a screen-aligned quad at the near plane; under
+// anti-aliasing, to one grown by half a pixel. The true depth of the hit
+// (written by the fragment shader, or tested there in the blending pass) is
+// never nearer than the face's or the quad's.
 
 //VTK::PrimID::Dec
 
@@ -20,6 +22,7 @@ layout(triangle_strip, max_vertices = 12) out;
 uniform mat4 VCDCMatrix;
 uniform int cameraParallel;
 uniform int splatCullFaces; // bit 0: back faces, bit 1: front faces
+uniform vec2 splatOutlineMargin; // > 0 (NDC): grown screen-aligned quads, for anti-aliasing
 
 in vec3 splatAxisUVSOutput[];
 in vec3 splatAxisVVSOutput[];
@@ -104,25 +107,26 @@ void main()
 
   vec3 U = splatAxisUVSOutput[0] * rho, V = splatAxisVVSOutput[0] * rho,
        W = splatAxisNVSOutput[0];
+  mat3 toLocal = inverse(mat3(splatAxisUVSOutput[0], splatAxisVVSOutput[0], splatAxisNVSOutput[0]));
   if (splatCullFaces != 0)
   {
     // Face culling by the splat's oriented normal: a splat goes when every
     // normal of its patch faces away from (or towards) every ray from the
-    // eye to its box. The patch's normals lie within atan(G) of the disc's,
-    // G a bound on |grad g| over the disc; the rays to the box lie within
-    // asin(r / d) of the ray to its centre (r the box's radius, d its
-    // distance).
+    // eye to its box. Worked in the splat's normalised frame, where g is
+    // defined (whether a normal faces a ray is the same in any affine frame,
+    // so a non-uniform actor scale changes nothing): the patch's normals
+    // (-grad g, 1) lie within atan(G) of (0, 0, 1), G a bound on |grad g|
+    // over the disc; the rays from the eye e to the box lie within
+    // asin(r / |e|) of the ray to the frame's origin, r the box's radius.
     float slope = length(c0.yz) + 2.0 * (abs(mean) + spread) * rho +
       3.0 * (abs(c1.z) + abs(c1.w) + abs(c2.x) + abs(c2.y)) * r2 +
       4.0 * (abs(c2.z) + abs(c2.w) + abs(c3.x) + abs(c3.y) + abs(c3.z)) * r2 * rho;
-    float reach = length(U + V) + max(abs(lo), abs(hi)) * length(W);
-    vec3 toEye = cameraParallel != 0 ? vec3(0.0, 0.0, 1.0) : -centre;
-    float distance = length(toEye);
-    vec3 n = normalize(cross(U, V));
-    n = dot(n, W) < 0.0 ? -n : n;
+    float reach = sqrt(2.0 * r2 + max(lo * lo, hi * hi));
+    vec3 e = toLocal * (cameraParallel != 0 ? vec3(0.0, 0.0, 1.0) : -centre);
+    float distance = length(e);
     float cone = atan(slope) + (cameraParallel != 0 ? 0.0 : asin(min(reach / distance, 1.0)));
     float margin = cone < 1.5707963 ? sin(cone) : 2.0;
-    float facing = dot(n, toEye) / distance;
+    float facing = e.z / distance;
     if (((splatCullFaces & 1) != 0 && facing < -margin) ||
       ((splatCullFaces & 2) != 0 && facing > margin))
     {
@@ -160,8 +164,7 @@ void main()
   {
     return; // off screen
   }
-  mat3 toLocal = inverse(mat3(splatAxisUVSOutput[0], splatAxisVVSOutput[0], splatAxisNVSOutput[0]));
-  if (!behind && nearest >= -1.0)
+  if (!behind && nearest >= -1.0 && splatOutlineMargin.x <= 0.0)
   {
     // The box's faces that face the eye: together they cover its projection
     // exactly once (a convex solid), tighter than any screen-aligned quad,
@@ -193,11 +196,17 @@ void main()
     }
     return;
   }
-  // The box crosses the near plane (or reaches behind the eye): a
-  // screen-aligned quad at the near plane, which the rasteriser cannot clip.
-  lower = max(lower, vec2(-1.0));
-  upper = min(upper, vec2(1.0));
-  nearest = -1.0;
+  // A screen-aligned quad: at the near plane where the box crosses it (or
+  // reaches behind the eye), which the rasteriser cannot clip; otherwise
+  // (anti-aliasing) at the box's nearest depth, grown by half a pixel, so
+  // that the pixels that the patch covers only in part along the box's
+  // outline get their sub-pixel rays too.
+  if (behind || nearest < -1.0)
+  {
+    nearest = -1.0;
+  }
+  lower = max(lower - splatOutlineMargin, vec2(-1.0));
+  upper = min(upper + splatOutlineMargin, vec2(1.0));
   mat4 dcvc = inverse(VCDCMatrix);
   for (int k = 0; k < 4; ++k)
   {

@@ -14,6 +14,10 @@
 // - front faces culled: no near-side pixel, and the far side covers the
 //   sphere's outline (all but 0.2 % of the unculled pixels);
 // - both culled: nothing is drawn;
+// - all of this through a perspective and a parallel camera, and with a
+//   non-uniformly scaled actor (an ellipsoid);
+// - from inside the sphere, where every hit is a back face: culling back
+//   faces leaves nothing, culling front faces changes nothing;
 // - normals left unoriented (OrientNormals off): one warning, and nothing is
 //   culled.
 // The property's GL face culling would cut the splats' bounding faces by
@@ -48,11 +52,15 @@ struct Frame
   int Covered = 0;
 };
 
-// Per pixel: 1 near side, -1 far side, 0 grazing or empty.
-std::vector<int> Sides(vtkRenderer* ren, const Frame& f, int w, int h)
+// Per pixel: 1 near side, -1 far side, 0 grazing or empty, for the unit
+// sphere scaled by `scale` (an ellipsoid, outward normal (x/a², y/b², z/c²)).
+std::vector<int> Sides(vtkRenderer* ren, const Frame& f, int w, int h, const double scale[3])
 {
-  double eye[3];
-  ren->GetActiveCamera()->GetPosition(eye);
+  vtkCamera* camera = ren->GetActiveCamera();
+  double eye[3], direction[3];
+  camera->GetPosition(eye);
+  camera->GetDirectionOfProjection(direction);
+  const bool parallel = camera->GetParallelProjection() != 0;
   std::vector<int> sides(w * h, 0);
   for (int y = 0; y < h; ++y)
   {
@@ -71,9 +79,11 @@ std::vector<int> Sides(vtkRenderer* ren, const Frame& f, int w, int h)
       for (int c = 0; c < 3; ++c)
       {
         p[c] /= p[3];
-        facing += p[c] * (p[c] - eye[c]);
-        len += p[c] * p[c];
-        ray += (p[c] - eye[c]) * (p[c] - eye[c]);
+        const double n = p[c] / (scale[c] * scale[c]);
+        const double r = parallel ? direction[c] : p[c] - eye[c];
+        facing += n * r;
+        len += n * n;
+        ray += r * r;
       }
       const double cosine = facing / std::sqrt(len * ray);
       sides[y * w + x] = cosine < -0.1 ? 1 : (cosine > 0.1 ? -1 : 0);
@@ -135,11 +145,16 @@ int TestAlgebraicSplatMapperCulling(int, char*[])
   renWin->SetMultiSamples(0);
   renWin->AddRenderer(renderer);
   vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(0.4, -0.6, 3.5);
-  camera->SetFocalPoint(0, 0, 0);
-  camera->SetViewUp(0, 1, 0);
-  camera->SetViewAngle(40);
-  camera->SetClippingRange(1.0, 8.0);
+  auto outside = [camera](bool parallel)
+  {
+    camera->SetPosition(0.4, -0.6, 3.5);
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetViewAngle(40);
+    camera->SetClippingRange(1.0, 8.0);
+    camera->SetParallelProjection(parallel);
+    camera->SetParallelScale(1.4);
+  };
 
   int warnings = 0;
   vtkNew<vtkCallbackCommand> onWarning;
@@ -158,57 +173,101 @@ int TestAlgebraicSplatMapperCulling(int, char*[])
     }
   };
   vtkProperty* property = actor->GetProperty();
-  for (double s : { 1.0, 4.0 })
+  struct View
   {
-    fitter->SetQualityFactor(s);
-    fitter->OrientNormalsOn();
-    for (bool blending : { false, true })
+    const char* Name;
+    bool Parallel;
+    double Scale[3]; // the actor's
+  };
+  const View views[] = { { "perspective", false, { 1, 1, 1 } },
+    { "parallel", true, { 1, 1, 1 } },
+    { "actor scaled (1, 1.4, 0.6)", false, { 1, 1.4, 0.6 } } };
+  for (const View& view : views)
+  {
+    outside(view.Parallel);
+    actor->SetScale(view.Scale[0], view.Scale[1], view.Scale[2]);
+    for (double s : { 1.0, 4.0 })
     {
-      const std::string name =
-        "s = " + std::to_string(s).substr(0, 3) + (blending ? ", blended" : ", opaque");
-      mapper->SetBlending(blending);
-      property->BackfaceCullingOff();
-      property->FrontfaceCullingOff();
-      const Frame all = Grab(renWin);
-      property->BackfaceCullingOn();
-      const Frame front = Grab(renWin);
-      property->BackfaceCullingOff();
-      property->FrontfaceCullingOn();
-      const Frame back = Grab(renWin);
-      property->BackfaceCullingOn();
-      const Frame none = Grab(renWin);
-      property->BackfaceCullingOff();
-      property->FrontfaceCullingOff();
-
-      const std::vector<int> sidesAll = Sides(renderer, all, 200, 200);
-      const std::vector<int> sidesFront = Sides(renderer, front, 200, 200);
-      const std::vector<int> sidesBack = Sides(renderer, back, 200, 200);
-      int farInFront = 0, nearInBack = 0, changed = 0;
-      for (size_t i = 0; i < sidesAll.size(); ++i)
+      fitter->SetQualityFactor(s);
+      fitter->OrientNormalsOn();
+      for (bool blending : { false, true })
       {
-        farInFront += sidesFront[i] == -1 ? 1 : 0;
-        nearInBack += sidesBack[i] == 1 ? 1 : 0;
-        bool differ = false;
-        for (int c = 0; c < 3 && sidesAll[i] == 1; ++c)
+        const std::string name = std::string(view.Name) +
+          ", s = " + std::to_string(s).substr(0, 3) + (blending ? ", blended" : ", opaque");
+        mapper->SetBlending(blending);
+        property->BackfaceCullingOff();
+        property->FrontfaceCullingOff();
+        const Frame all = Grab(renWin);
+        property->BackfaceCullingOn();
+        const Frame front = Grab(renWin);
+        property->BackfaceCullingOff();
+        property->FrontfaceCullingOn();
+        const Frame back = Grab(renWin);
+        property->BackfaceCullingOn();
+        const Frame none = Grab(renWin);
+        property->BackfaceCullingOff();
+        property->FrontfaceCullingOff();
+
+        const std::vector<int> sidesAll = Sides(renderer, all, 200, 200, view.Scale);
+        const std::vector<int> sidesFront = Sides(renderer, front, 200, 200, view.Scale);
+        const std::vector<int> sidesBack = Sides(renderer, back, 200, 200, view.Scale);
+        int farInFront = 0, nearInBack = 0, changed = 0;
+        for (size_t i = 0; i < sidesAll.size(); ++i)
         {
-          differ =
-            differ || std::abs(int(all.Colour[3 * i + c]) - int(front.Colour[3 * i + c])) > 2;
+          farInFront += sidesFront[i] == -1 ? 1 : 0;
+          nearInBack += sidesBack[i] == 1 ? 1 : 0;
+          bool differ = false;
+          for (int c = 0; c < 3 && sidesAll[i] == 1; ++c)
+          {
+            differ =
+              differ || std::abs(int(all.Colour[3 * i + c]) - int(front.Colour[3 * i + c])) > 2;
+          }
+          changed += differ ? 1 : 0;
         }
-        changed += differ ? 1 : 0;
+        std::cout << name << ": " << fitter->GetOutput()->GetNumberOfPoints() << " splats, "
+                  << all.Covered << " pixels; back faces culled: " << farInFront
+                  << " far-side pixels, " << changed
+                  << " near-side pixels changed; front faces culled: " << back.Covered
+                  << " pixels, " << nearInBack << " on the near side; both culled: " << none.Covered
+                  << " pixels\n";
+        check(all.Covered > 5000, name + ": the sphere is drawn");
+        check(farInFront == 0 && (blending ? changed <= 0.002 * all.Covered : changed == 0),
+          name + ": culling back faces keeps the near side only, unchanged");
+        check(nearInBack == 0 && back.Covered >= 0.998 * all.Covered,
+          name + ": culling front faces shows the far side");
+        check(none.Covered == 0, name + ": culling both sides draws nothing");
       }
-      std::cout << name << ": " << fitter->GetOutput()->GetNumberOfPoints() << " splats, "
-                << all.Covered << " pixels; back faces culled: " << farInFront
-                << " far-side pixels, " << changed
-                << " near-side pixels changed; front faces culled: " << back.Covered << " pixels, "
-                << nearInBack << " on the near side; both culled: " << none.Covered << " pixels\n";
-      check(all.Covered > 5000, name + ": the sphere is drawn");
-      check(farInFront == 0 && (blending ? changed <= 0.002 * all.Covered : changed == 0),
-        name + ": culling back faces keeps the near side only, unchanged");
-      check(nearInBack == 0 && back.Covered >= 0.998 * all.Covered,
-        name + ": culling front faces shows the far side");
-      check(none.Covered == 0, name + ": culling both sides draws nothing");
     }
   }
+  actor->SetScale(1, 1, 1);
+
+  // From inside the sphere every hit is a back face: culling back faces
+  // leaves nothing, culling front faces changes nothing.
+  fitter->SetQualityFactor(1.0);
+  camera->SetParallelProjection(false);
+  camera->SetPosition(0.1, -0.05, 0.0);
+  camera->SetFocalPoint(1.0, 0.0, 0.2);
+  camera->SetViewUp(0, 0, 1);
+  camera->SetViewAngle(60);
+  camera->SetClippingRange(0.05, 4.0);
+  for (bool blending : { false, true })
+  {
+    mapper->SetBlending(blending);
+    const Frame inside = Grab(renWin);
+    property->BackfaceCullingOn();
+    const Frame noBack = Grab(renWin);
+    property->BackfaceCullingOff();
+    property->FrontfaceCullingOn();
+    const Frame noFront = Grab(renWin);
+    property->FrontfaceCullingOff();
+    const int differ = Differing(inside, noFront, blending ? 2 : 0);
+    std::cout << "inside, " << (blending ? "blended" : "opaque") << ": " << inside.Covered
+              << " pixels; back faces culled: " << noBack.Covered
+              << " pixels; front faces culled: " << differ << " pixels differ\n";
+    check(inside.Covered > 30000 && noBack.Covered == 0 && differ <= 0.002 * inside.Covered,
+      std::string("inside the sphere, ") + (blending ? "blended" : "opaque"));
+  }
+  outside(false);
 
   // Unoriented normals: a warning, and no culling.
   fitter->SetQualityFactor(1.0);
