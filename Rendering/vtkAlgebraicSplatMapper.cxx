@@ -185,6 +185,7 @@ std::string Block(const std::string& source, const std::string& name)
 vtkAlgebraicSplatMapper::vtkAlgebraicSplatMapper()
   : Targets(new BlendTargets)
 {
+  this->VisibilityBO.PrimitiveType = PrimitiveTris;
 }
 
 //------------------------------------------------------------------------------
@@ -194,6 +195,8 @@ vtkAlgebraicSplatMapper::~vtkAlgebraicSplatMapper() = default;
 void vtkAlgebraicSplatMapper::ReleaseGraphicsResources(vtkWindow* win)
 {
   this->ShaderFailed = false;
+  this->VisibilityBO.ReleaseGraphicsResources(win);
+  this->BuiltVariants.clear();
   this->Targets->Release(win);
   this->Superclass::ReleaseGraphicsResources(win);
 }
@@ -274,8 +277,7 @@ void vtkAlgebraicSplatMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkS
     FSSource, "//VTK::Coincident::Impl", "//VTK::Coincident::Impl\n" + Block(fs, "SplatOutput"));
   shaders[vtkShader::Vertex]->SetSource(VSSource);
   shaders[vtkShader::Fragment]->SetSource(FSSource);
-  this->ShaderDegree = this->Degree;
-  this->BuiltVariant = this->Variant;
+  this->BuiltVariants[this->LastBoundBO] = this->Variant;
   this->Superclass::ReplaceShaderValues(shaders, ren, act);
 
   // vtkShadowMapBakerPass stores the fragment's depth from gl_FragCoord,
@@ -305,7 +307,8 @@ bool vtkAlgebraicSplatMapper::GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO,
   // into the shader; switching back to a variant built before finds its
   // program in the window's shader cache.
   const bool changed = this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act);
-  return changed || this->ShaderDegree != this->Degree || this->BuiltVariant != this->Variant;
+  auto built = this->BuiltVariants.find(&cellBO);
+  return changed || built == this->BuiltVariants.end() || built->second != this->Variant;
 }
 
 //------------------------------------------------------------------------------
@@ -378,6 +381,7 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
   this->Primitives[PrimitiveLines].IBO->IndexCount = 0;
   this->Primitives[PrimitiveTriStrips].IBO->IndexCount = 0;
   this->Primitives[PrimitiveTris].IBO->IndexCount = 0;
+  this->VisibilityBO.IBO->IndexCount = 0;
   if (this->Degree < 0)
   {
     if (poly && poly->GetNumberOfPoints() > 0)
@@ -483,6 +487,7 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
   this->VBOs->CacheDataArray("scalarColor", this->Colors, ren, VTK_UNSIGNED_CHAR);
   this->VBOs->BuildAllVBOs(ren);
   this->Primitives[PrimitiveTris].IBO->IndexCount = n;
+  this->VisibilityBO.IBO->IndexCount = n;
   this->ReadOctree(poly);
   this->VBOBuildTime.Modified();
   (void)act;
@@ -603,7 +608,7 @@ void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
 void vtkAlgebraicSplatMapper::DrawOctree(vtkRenderer* ren, vtkActor* act)
 {
   const Octree& tree = *this->Nodes;
-  vtkShaderProgram* program = this->Primitives[PrimitiveTris].Program;
+  vtkShaderProgram* program = this->CurrentBO->Program;
   vtkCamera* cam = ren->GetActiveCamera();
   double planes[24];
   cam->GetFrustumPlanes(ren->GetTiledAspectRatio(), planes);
@@ -695,7 +700,7 @@ void vtkAlgebraicSplatMapper::DrawSplats(vtkRenderer* ren, vtkActor* act, bool u
     return;
   }
   const int n = this->VBOs->GetNumberOfTuples("vertexMC");
-  this->Primitives[PrimitiveTris].Program->SetUniformf("lodQuality", 0.0f);
+  this->CurrentBO->Program->SetUniformf("lodQuality", 0.0f);
   glDrawArrays(GL_POINTS, 0, static_cast<GLuint>(n));
   this->NumberOfRenderedSplats = n;
 }
@@ -761,7 +766,10 @@ vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(const ShaderVariant& varia
   }
   this->Variant = variant;
   this->Variant.Cull = cull;
-  vtkOpenGLHelper& cellBO = this->Primitives[PrimitiveTris];
+  this->Variant.Degree = this->Degree;
+  vtkOpenGLHelper& cellBO =
+    variant.Pass == 1 ? this->VisibilityBO : this->Primitives[PrimitiveTris];
+  this->CurrentBO = &cellBO;
   this->UpdateShaders(cellBO, ren, act);
   vtkShaderProgram* program = cellBO.Program;
   if (!program)
@@ -772,7 +780,7 @@ vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(const ShaderVariant& varia
                   << ") did not compile: the splats are not drawn.");
     this->ShaderFailed = true;
     this->ShaderFailedTime.Modified();
-    this->BuiltVariant.Pass = -1;
+    this->BuiltVariants.erase(&cellBO);
     return nullptr;
   }
   program->SetUniformf("splatSilhouetteCos", static_cast<float>(this->SilhouetteThreshold));

@@ -60,6 +60,7 @@
 #include "PointSurfacesRenderingModule.h" // For export macro
 #include "vtkOpenGLPolyDataMapper.h"
 
+#include <map>    // For the built variants
 #include <memory> // For the octree
 
 class POINTSURFACESRENDERING_EXPORT vtkAlgebraicSplatMapper : public vtkOpenGLPolyDataMapper
@@ -198,29 +199,35 @@ protected:
     int Pass = 0;
     int Samples = 1;
     bool ShowSilhouette = false;
-    int Cull = 0; // face culling: bit 0 back faces, bit 1 front faces
+    int Cull = 0;    // face culling: bit 0 back faces, bit 1 front faces
+    int Degree = -1; // the splats'
     bool operator!=(const ShaderVariant& o) const
     {
       return this->Pass != o.Pass || this->Samples != o.Samples ||
-        this->ShowSilhouette != o.ShowSilhouette || this->Cull != o.Cull;
+        this->ShowSilhouette != o.ShowSilhouette || this->Cull != o.Cull ||
+        this->Degree != o.Degree;
     }
   };
   /**
-   * Makes the program of `variant` current (from the shader cache after its
-   * first build) and sets the uniforms every pass reads; returns it.
+   * Makes the program of `variant` current and sets the uniforms every pass
+   * reads; returns it. The visibility pass has a helper (program and VAO)
+   * of its own, so that a blended frame switches programs without
+   * rebuilding either.
    */
   vtkShaderProgram* UseVariant(const ShaderVariant& variant, vtkRenderer* ren, vtkActor* act);
 
   int Degree = -1;
-  int ShaderDegree = -1;
   bool NormalsOriented = false; // the input's SplatNormalsOriented
   bool WarnedUnoriented = false;
   // A splat shader failed to compile: nothing is drawn (and no compile
   // retried) until the mapper or the actor's shader property changes.
   bool ShaderFailed = false;
   vtkTimeStamp ShaderFailedTime;
-  ShaderVariant Variant;      // the one to build
-  ShaderVariant BuiltVariant; // the one the current program was built for
+  ShaderVariant Variant; // the one to build
+  // What each helper's program was built for.
+  std::map<const vtkOpenGLHelper*, ShaderVariant> BuiltVariants;
+  vtkOpenGLHelper VisibilityBO;         // the visibility pass's program and VAO
+  vtkOpenGLHelper* CurrentBO = nullptr; // the one drawing
   bool Culling = true;
   double LODPixelError = 0.0;
   vtkIdType NumberOfRenderedSplats = 0;
