@@ -17,7 +17,9 @@
 #include "vtkStringArray.h"
 #include "vtkType.h"
 
-#include <openvdb/io/Stream.h>
+#include <openvdb/io/Archive.h>
+#include <openvdb/io/GridDescriptor.h>
+#include <openvdb/io/io.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/points/AttributeArrayString.h>
 #include <openvdb/points/AttributeGroup.h>
@@ -275,6 +277,80 @@ private:
   }
 };
 
+// A point data tree that checks the start of its topology before OpenVDB
+// reads it: Debian's OpenVDB 10.0.1 is built with assertions, and a point
+// data leaf created with a nonzero background value (the root's, read from
+// the file) aborts the program ("Cannot modify voxel values in a
+// PointDataTree"; found by FuzzOpenVDBPointsReader). The topology starts
+// with the buffer count (TreeBase) and the root's background value.
+class CheckedPointDataTree : public ovp::PointDataTree
+{
+public:
+  void readTopology(std::istream& is, bool saveFloatAsHalf) override
+  {
+    if (openvdb::io::getFormatVersion(is) < openvdb::OPENVDB_FILE_VERSION_ROOTNODE_MAP)
+    {
+      OPENVDB_THROW(openvdb::IoError, "a point data grid in a file format older than points");
+    }
+    const std::streampos start = is.tellg();
+    int32_t buffers = 0;
+    ValueType background = openvdb::zeroVal<ValueType>();
+    is.read(reinterpret_cast<char*>(&buffers), sizeof(buffers));
+    is.read(reinterpret_cast<char*>(&background), sizeof(background));
+    if (background != openvdb::zeroVal<ValueType>())
+    {
+      OPENVDB_THROW(openvdb::IoError, "a point data grid whose background value is not zero");
+    }
+    is.seekg(start);
+    ovp::PointDataTree::readTopology(is, saveFloatAsHalf);
+  }
+};
+
+// Reads every grid of a .vdb stream as io::Stream(is, false) does (the same
+// OpenVDB calls, in the same order), but builds each point data grid on a
+// CheckedPointDataTree.
+class CheckedArchive : public openvdb::io::Archive
+{
+public:
+  openvdb::GridPtrVec Read(std::istream& is)
+  {
+    this->readHeader(is);
+    openvdb::io::StreamMetadata::Ptr streamMetadata(new openvdb::io::StreamMetadata);
+    openvdb::io::setStreamMetadataPtr(is, streamMetadata, /*transfer=*/false);
+    openvdb::io::setVersion(is, this->libraryVersion(), this->fileVersion());
+    openvdb::io::setDataCompression(is, this->compression());
+    openvdb::MetaMap fileMetadata;
+    fileMetadata.readMeta(is);
+    const int32_t count = readGridCount(is);
+    openvdb::GridPtrVec grids;
+    std::vector<openvdb::io::GridDescriptor> descriptors;
+    NamedGridMap named;
+    for (int32_t i = 0; i < count; ++i)
+    {
+      openvdb::io::GridDescriptor gd;
+      openvdb::GridBase::Ptr grid = gd.read(is);
+      if (gd.gridType() == ovp::PointDataGrid::gridType())
+      {
+        grid = ovp::PointDataGrid::create(std::make_shared<CheckedPointDataTree>());
+      }
+      if (!grid)
+      {
+        OPENVDB_THROW(openvdb::TypeError, "grid type " << gd.gridType() << " is unknown");
+      }
+      grid->setSaveFloatAsHalf(gd.saveFloatAsHalf());
+      readGrid(grid, gd, is);
+      descriptors.push_back(gd);
+      grids.push_back(grid);
+      named[gd.uniqueName()] = grid;
+    }
+    for (const openvdb::io::GridDescriptor& gd : descriptors)
+    {
+      this->connectInstance(gd, named);
+    }
+    return grids;
+  }
+};
+
 // A leaf whose offsets or arrays disagree would be read out of bounds.
 bool LeafConsistent(const ovp::PointDataTree::LeafNodeType& leaf, std::string& why)
 {
@@ -372,9 +448,8 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
     BoundedBuffer buffer(bytes);
     std::istream in(&buffer);
     in.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
-    openvdb::io::Stream stream(in, /*delayLoad=*/false);
-    openvdb::GridPtrVecPtr all = stream.getGrids();
-    for (const openvdb::GridBase::Ptr& base : *all)
+    CheckedArchive archive;
+    for (const openvdb::GridBase::Ptr& base : archive.Read(in))
     {
       ovp::PointDataGrid::Ptr grid = openvdb::gridPtrCast<ovp::PointDataGrid>(base);
       if (grid && (this->GridName.empty() || grid->getName() == this->GridName))

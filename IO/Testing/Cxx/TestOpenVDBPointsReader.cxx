@@ -229,7 +229,24 @@ int TestOpenVDBPointsReader(int, char*[])
       1.0f, { 0, 0, 0 }, 0.2f) };
     openvdb::io::File(levelSetOnly).write(grids);
   }
+  // A point grid whose root background is not zero: Debian's OpenVDB (built
+  // with assertions) aborts when it creates a leaf from it while reading.
+  const std::string background = dir + "/point-background.vdb";
+  {
+    Source few;
+    few.P = { { 0, 0, 0 }, { 1, 1, 1 } };
+    few.Id = { 0, 1 };
+    few.Scale = { 1, 1 };
+    few.Density = { 0, 0 };
+    few.Velocity = { { 0, 0, 0 }, { 0, 0, 0 } };
+    few.Name = { "a", "b" };
+    few.Odd = { 0, 0 };
+    auto grid = MakeGrid<ovp::NullCodec>(few, 0.5, "background");
+    grid->tree().root().setBackground(openvdb::PointDataIndex32(7), /*updateChildNodes=*/false);
+    openvdb::io::File(background).write(openvdb::GridPtrVec{ grid });
+  }
   std::vector<std::string> bad = { dir + "/no-such-file.vdb",
+    background,
     write("empty.vdb", ""),
     write("garbage.vdb", std::string(4096, '\x7f')),
     write("text.vdb", "not a vdb file\n"),
