@@ -101,17 +101,9 @@ std::vector<signed char> ExactCoverage(vtkRenderer* ren, int w, int h, const Seg
   // The display point's ray between the clipping planes.
   auto covers = [&](double x, double y)
   {
-    double ends[2][4];
-    for (int k = 0; k < 2; ++k)
-    {
-      ren->SetDisplayPoint(x, y, k);
-      ren->DisplayToWorld();
-      ren->GetWorldPoint(ends[k]);
-      for (int c = 0; c < 3; ++c)
-      {
-        ends[k][c] /= ends[k][3];
-      }
-    }
+    double ends[2][3];
+    psDisplayToWorld(ren, x, y, 0.0, ends[0]);
+    psDisplayToWorld(ren, x, y, 1.0, ends[1]);
     return meets(ends[0], ends[1]);
   };
   std::vector<char> corners((w + 1) * (h + 1));
@@ -186,14 +178,8 @@ Accuracy Measure(vtkRenderWindow* renWin,
       {
         continue;
       }
-      ren->SetDisplayPoint(x + 0.5, y + 0.5, z);
-      ren->DisplayToWorld();
-      double p[4];
-      ren->GetWorldPoint(p);
-      for (int c = 0; c < 3; ++c)
-      {
-        p[c] /= p[3];
-      }
+      double p[3];
+      psDisplayToWorld(ren, x + 0.5, y + 0.5, z, p);
       double exact[3];
       const double distance = surface(p, exact);
       double ray[3] = { p[0] - eye[0], p[1] - eye[1], p[2] - eye[2] };

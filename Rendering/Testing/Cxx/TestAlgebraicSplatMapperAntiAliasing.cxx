@@ -71,14 +71,12 @@ int TestAlgebraicSplatMapperAntiAliasing(int argc, char* argv[])
       {
         for (int i = 0; i < sub; ++i)
         {
-          renderer->SetDisplayPoint(x + (i + 0.5) / sub, y + (j + 0.5) / sub, 0.0);
-          renderer->DisplayToWorld();
-          double p[4];
-          renderer->GetWorldPoint(p);
+          double p[3];
+          psDisplayToWorld(renderer, x + (i + 0.5) / sub, y + (j + 0.5) / sub, 0.0, p);
           double d[3], dd = 0.0, od = 0.0, oo = 0.0;
           for (int c = 0; c < 3; ++c)
           {
-            d[c] = p[c] / p[3] - eye[c];
+            d[c] = p[c] - eye[c];
             dd += d[c] * d[c];
             od += eye[c] * d[c];
             oo += eye[c] * eye[c];

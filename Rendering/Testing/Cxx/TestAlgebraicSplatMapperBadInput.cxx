@@ -78,14 +78,12 @@ void Measure(vtkRenderWindow* renWin,
         continue;
       }
       ++covered;
-      ren->SetDisplayPoint(x + 0.5, y + 0.5, depth);
-      ren->DisplayToWorld();
-      double w[4];
-      ren->GetWorldPoint(w);
+      double w[3];
+      psDisplayToWorld(ren, x + 0.5, y + 0.5, depth, w);
       double r2 = 0.0;
       for (int c = 0; c < 3; ++c)
       {
-        const double d = w[c] / w[3] - centre[c];
+        const double d = w[c] - centre[c];
         r2 += d * d;
       }
       worst = std::max(worst, std::abs(std::sqrt(r2) - 1.0));

@@ -65,15 +65,13 @@ int TestAlgebraicSplatMapperSphere(int, char*[])
       for (int x = 0; x < size; ++x)
       {
         // Is the pixel centre's ray inside the exact silhouette?
-        renderer->SetDisplayPoint(x + 0.5, y + 0.5, 0.0);
-        renderer->DisplayToWorld();
-        double nearP[4];
-        renderer->GetWorldPoint(nearP);
+        double nearP[3];
+        psDisplayToWorld(renderer, x + 0.5, y + 0.5, 0.0, nearP);
         double dir[3], eye[3];
         camera->GetPosition(eye);
         for (int c = 0; c < 3; ++c)
         {
-          dir[c] = nearP[c] / nearP[3] - eye[c];
+          dir[c] = nearP[c] - eye[c];
         }
         const double dd = dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2];
         const double along = -(eye[0] * dir[0] + eye[1] * dir[1] + eye[2] * dir[2]) / dd;
@@ -89,11 +87,9 @@ int TestAlgebraicSplatMapperSphere(int, char*[])
         if (depth < 1.0f)
         {
           ++covered;
-          renderer->SetDisplayPoint(x + 0.5, y + 0.5, depth);
-          renderer->DisplayToWorld();
-          double w[4];
-          renderer->GetWorldPoint(w);
-          const double r = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]) / w[3];
+          double w[3];
+          psDisplayToWorld(renderer, x + 0.5, y + 0.5, depth, w);
+          const double r = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
           if (in)
           {
             worst = std::max(worst, std::abs(r - 1.0));

@@ -1,13 +1,15 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
 // What several splat mapper tests share: points spread evenly over the unit
-// sphere, the exact surface most of them check against.
+// sphere, the exact surface most of them check against, and the world point
+// behind a pixel of the rendered image.
 #ifndef psSplatTestSupport_h
 #define psSplatTestSupport_h
 
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 
 #include <cmath>
@@ -26,6 +28,20 @@ inline vtkSmartPointer<vtkPolyData> psFibonacciSphere(int n)
   vtkNew<vtkPolyData> poly;
   poly->SetPoints(pts);
   return poly;
+}
+
+// The world point at display position (x, y) and depth z (0 at the near
+// plane, 1 at the far one) of ren's current view.
+inline void psDisplayToWorld(vtkRenderer* ren, double x, double y, double z, double world[3])
+{
+  ren->SetDisplayPoint(x, y, z);
+  ren->DisplayToWorld();
+  double p[4];
+  ren->GetWorldPoint(p);
+  for (int c = 0; c < 3; ++c)
+  {
+    world[c] = p[c] / p[3];
+  }
 }
 
 #endif
