@@ -49,7 +49,7 @@ uniform mat4 VCDCMatrix;
 uniform float splatBlendOffset;
 #if SPLAT_PASS == 2
 uniform sampler2D splatVisibleDepth; // the visibility pass's depth
-uniform float splatDepthTolerance;   // one step of that depth's format
+uniform float splatDepthTolerance;   // its rounding: a step of a fixed-point format, 2^-22 for float
 #endif
 // A pixel's width and height on the view plane z = -1 (perspective camera)
 // or in view units (parallel camera).

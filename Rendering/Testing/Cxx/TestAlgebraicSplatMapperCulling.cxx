@@ -71,14 +71,11 @@ std::vector<int> Sides(vtkRenderer* ren, const Frame& f, int w, int h, const dou
       {
         continue;
       }
-      ren->SetDisplayPoint(x + 0.5, y + 0.5, z);
-      ren->DisplayToWorld();
-      double p[4];
-      ren->GetWorldPoint(p);
+      double p[3];
+      psDisplayToWorld(ren, x + 0.5, y + 0.5, z, p);
       double facing = 0.0, len = 0.0, ray = 0.0;
       for (int c = 0; c < 3; ++c)
       {
-        p[c] /= p[3];
         const double n = p[c] / (scale[c] * scale[c]);
         const double r = parallel ? direction[c] : p[c] - eye[c];
         facing += n * r;
@@ -173,6 +170,16 @@ int TestAlgebraicSplatMapperCulling(int, char*[])
     }
   };
   vtkProperty* property = actor->GetProperty();
+  // A frame with the given faces culled; the property is left culling none.
+  auto culled = [&](bool back, bool front)
+  {
+    property->SetBackfaceCulling(back);
+    property->SetFrontfaceCulling(front);
+    const Frame f = Grab(renWin);
+    property->BackfaceCullingOff();
+    property->FrontfaceCullingOff();
+    return f;
+  };
   struct View
   {
     const char* Name;
@@ -195,18 +202,10 @@ int TestAlgebraicSplatMapperCulling(int, char*[])
         const std::string name = std::string(view.Name) +
           ", s = " + std::to_string(s).substr(0, 3) + (blending ? ", blended" : ", opaque");
         mapper->SetBlending(blending);
-        property->BackfaceCullingOff();
-        property->FrontfaceCullingOff();
-        const Frame all = Grab(renWin);
-        property->BackfaceCullingOn();
-        const Frame front = Grab(renWin);
-        property->BackfaceCullingOff();
-        property->FrontfaceCullingOn();
-        const Frame back = Grab(renWin);
-        property->BackfaceCullingOn();
-        const Frame none = Grab(renWin);
-        property->BackfaceCullingOff();
-        property->FrontfaceCullingOff();
+        const Frame all = culled(false, false);
+        const Frame front = culled(true, false);
+        const Frame back = culled(false, true);
+        const Frame none = culled(true, true);
 
         const std::vector<int> sidesAll = Sides(renderer, all, 200, 200, view.Scale);
         const std::vector<int> sidesFront = Sides(renderer, front, 200, 200, view.Scale);
@@ -253,13 +252,9 @@ int TestAlgebraicSplatMapperCulling(int, char*[])
   for (bool blending : { false, true })
   {
     mapper->SetBlending(blending);
-    const Frame inside = Grab(renWin);
-    property->BackfaceCullingOn();
-    const Frame noBack = Grab(renWin);
-    property->BackfaceCullingOff();
-    property->FrontfaceCullingOn();
-    const Frame noFront = Grab(renWin);
-    property->FrontfaceCullingOff();
+    const Frame inside = culled(false, false);
+    const Frame noBack = culled(true, false);
+    const Frame noFront = culled(false, true);
     const int differ = Differing(inside, noFront, blending ? 2 : 0);
     std::cout << "inside, " << (blending ? "blended" : "opaque") << ": " << inside.Covered
               << " pixels; back faces culled: " << noBack.Covered
