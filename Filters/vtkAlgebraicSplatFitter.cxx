@@ -59,12 +59,12 @@ void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(n);
-  auto normal = MakeArray<vtkDoubleArray>("SplatNormal", 3, n);
-  auto tangent = MakeArray<vtkDoubleArray>("SplatTangent", 3, n);
-  auto size = MakeArray<vtkDoubleArray>("SplatFeatureSize", 1, n);
-  auto coeffs = MakeArray<vtkDoubleArray>("SplatCoefficients", m, n);
-  auto radius = MakeArray<vtkDoubleArray>("SplatRadius", 1, n);
-  auto lod = MakeArray<vtkIntArray>("SplatLOD", 1, n);
+  auto normal = MakeArray<vtkDoubleArray>(vtkSplatDataModel::NormalName(), 3, n);
+  auto tangent = MakeArray<vtkDoubleArray>(vtkSplatDataModel::TangentName(), 3, n);
+  auto size = MakeArray<vtkDoubleArray>(vtkSplatDataModel::FeatureSizeName(), 1, n);
+  auto coeffs = MakeArray<vtkDoubleArray>(vtkSplatDataModel::CoefficientsName(), m, n);
+  auto radius = MakeArray<vtkDoubleArray>(vtkSplatDataModel::RadiusName(), 1, n);
+  auto lod = MakeArray<vtkIntArray>(vtkSplatDataModel::LODName(), 1, n);
   for (vtkIdType i = 0; i < n; ++i)
   {
     const Splat& s = built.Splats[i].Fitted;
@@ -94,11 +94,11 @@ void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
     pd->AddArray(a);
   }
   vtkNew<vtkIntArray> deg;
-  deg->SetName("SplatDegree");
+  deg->SetName(vtkSplatDataModel::DegreeName());
   deg->InsertNextValue(degree);
   output->GetFieldData()->AddArray(deg);
   vtkNew<vtkDoubleArray> levels;
-  levels->SetName("SplatLODQuality");
+  levels->SetName(vtkSplatDataModel::LODQualityName());
   for (double s : built.LevelQuality)
   {
     levels->InsertNextValue(s);
@@ -301,32 +301,7 @@ void vtkAlgebraicSplatFitter::SortByOctree(pointsurfaces::BuildResult& built, vt
   }
   built.Splats.swap(sorted);
 
-  const vtkIdType nodes = static_cast<vtkIdType>(tree.Nodes.size());
-  auto bounds = MakeArray<vtkDoubleArray>("OctreeNodeBounds", 6, nodes);
-  auto sphere = MakeArray<vtkDoubleArray>("OctreeNodeSphere", 4, nodes);
-  auto children = MakeArray<vtkIdTypeArray>("OctreeNodeChildren", 2, nodes);
-  auto range = MakeArray<vtkIdTypeArray>("OctreeNodeRange", 2, nodes);
-  auto ends = MakeArray<vtkIdTypeArray>("OctreeNodeLevelEnds", L, nodes);
-  for (vtkIdType id = 0; id < nodes; ++id)
-  {
-    const OctreeNode& node = tree.Nodes[id];
-    bounds->SetTypedTuple(id, node.Bounds);
-    sphere->SetTypedTuple(id, node.Sphere);
-    children->SetTypedComponent(id, 0, node.FirstChild);
-    children->SetTypedComponent(id, 1, node.ChildCount);
-    range->SetTypedComponent(id, 0, node.Begin);
-    range->SetTypedComponent(id, 1, node.End);
-    for (int l = 0; l < L; ++l)
-    {
-      ends->SetTypedComponent(id, l, tree.LevelEnds[id * L + l]);
-    }
-  }
-  vtkFieldData* fd = output->GetFieldData();
-  fd->AddArray(bounds);
-  fd->AddArray(sphere);
-  fd->AddArray(children);
-  fd->AddArray(range);
-  fd->AddArray(ends);
+  vtkSplatDataModel::AddOctree(output, tree);
 }
 
 //------------------------------------------------------------------------------

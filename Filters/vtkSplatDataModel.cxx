@@ -6,14 +6,17 @@
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
+#include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
 #include <numeric>
+#include <utility>
 
 vtkStandardNewMacro(vtkSplatDataModel);
 
@@ -57,4 +60,145 @@ int vtkSplatDataModel::GetSplatDegree(vtkPolyData* pd)
     }
   }
   return degree;
+}
+
+//------------------------------------------------------------------------------
+void vtkSplatDataModel::AddOctree(vtkPolyData* pd, const pointsurfaces::Octree& tree)
+{
+  const vtkIdType nodes = static_cast<vtkIdType>(tree.Nodes.size());
+  const int levels = tree.Levels;
+  auto make = [nodes](auto array, const char* name, int components)
+  {
+    array->SetName(name);
+    array->SetNumberOfComponents(components);
+    array->SetNumberOfTuples(nodes);
+    return array;
+  };
+  vtkNew<vtkDoubleArray> bounds, sphere;
+  vtkNew<vtkIdTypeArray> children, range, ends;
+  make(bounds.GetPointer(), OctreeNodeBoundsName(), 6);
+  make(sphere.GetPointer(), OctreeNodeSphereName(), 4);
+  make(children.GetPointer(), OctreeNodeChildrenName(), 2);
+  make(range.GetPointer(), OctreeNodeRangeName(), 2);
+  make(ends.GetPointer(), OctreeNodeLevelEndsName(), levels);
+  for (vtkIdType id = 0; id < nodes; ++id)
+  {
+    const pointsurfaces::OctreeNode& node = tree.Nodes[id];
+    bounds->SetTypedTuple(id, node.Bounds);
+    sphere->SetTypedTuple(id, node.Sphere);
+    children->SetTypedComponent(id, 0, node.FirstChild);
+    children->SetTypedComponent(id, 1, node.ChildCount);
+    range->SetTypedComponent(id, 0, node.Begin);
+    range->SetTypedComponent(id, 1, node.End);
+    for (int l = 0; l < levels; ++l)
+    {
+      ends->SetTypedComponent(id, l, tree.LevelEnds[id * levels + l]);
+    }
+  }
+  vtkFieldData* fd = pd->GetFieldData();
+  fd->AddArray(bounds);
+  fd->AddArray(sphere);
+  fd->AddArray(children);
+  fd->AddArray(range);
+  fd->AddArray(ends);
+}
+
+//------------------------------------------------------------------------------
+vtkSplatDataModel::OctreeStatus vtkSplatDataModel::GetOctree(vtkPolyData* pd,
+  pointsurfaces::Octree& tree,
+  std::vector<double>& levelQuality)
+{
+  tree = pointsurfaces::Octree();
+  levelQuality.clear();
+  if (!pd)
+  {
+    return NoOctree;
+  }
+  vtkFieldData* fd = pd->GetFieldData();
+  vtkDataArray* bounds = fd->GetArray(OctreeNodeBoundsName());
+  vtkDataArray* sphere = fd->GetArray(OctreeNodeSphereName());
+  vtkDataArray* children = fd->GetArray(OctreeNodeChildrenName());
+  vtkDataArray* range = fd->GetArray(OctreeNodeRangeName());
+  vtkDataArray* ends = fd->GetArray(OctreeNodeLevelEndsName());
+  vtkDataArray* quality = fd->GetArray(LODQualityName());
+  vtkDataArray* radius = pd->GetPointData()->GetArray(RadiusName());
+  vtkDataArray* lod = pd->GetPointData()->GetArray(LODName());
+  const vtkIdType count = sphere ? sphere->GetNumberOfTuples() : 0;
+  if (!count || !children || !range || !ends || !quality || !radius || !lod ||
+    sphere->GetNumberOfComponents() != 4 || children->GetNumberOfComponents() != 2 ||
+    range->GetNumberOfComponents() != 2 || children->GetNumberOfTuples() != count ||
+    range->GetNumberOfTuples() != count || ends->GetNumberOfTuples() != count ||
+    ends->GetNumberOfComponents() != quality->GetNumberOfTuples() ||
+    (bounds && (bounds->GetNumberOfComponents() != 6 || bounds->GetNumberOfTuples() != count)))
+  {
+    return NoOctree;
+  }
+  const vtkIdType n = pd->GetNumberOfPoints();
+  // The root's sphere must still hold every splat (a transform moves the
+  // points and leaves the octree behind).
+  {
+    double root[4];
+    sphere->GetTuple(0, root);
+    const double r2 = root[3] * root[3] * (1.0 + 1e-6) + 1e-300;
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      double p[3];
+      pd->GetPoint(i, p);
+      if (vtkMath::Distance2BetweenPoints(p, root) > r2)
+      {
+        return MovedSplats;
+      }
+    }
+  }
+  // Every range must index the splats (a split, threshold or merge leaves
+  // ranges that no longer do).
+  const int levels = ends->GetNumberOfComponents();
+  bool valid = static_cast<vtkIdType>(range->GetComponent(0, 0)) == 0 &&
+    static_cast<vtkIdType>(range->GetComponent(0, 1)) == n;
+  for (vtkIdType i = 0; i < count && valid; ++i)
+  {
+    const double begin = range->GetComponent(i, 0), end = range->GetComponent(i, 1);
+    const double first = children->GetComponent(i, 0), number = children->GetComponent(i, 1);
+    valid = begin >= 0 && begin <= end && end <= n && number >= 0 &&
+      (number == 0 || (first > i && first + number <= count));
+    for (int l = 0; l < levels && valid; ++l)
+    {
+      const double e = ends->GetComponent(i, l);
+      valid = e >= begin && e <= end;
+    }
+  }
+  for (vtkIdType k = 0; k < n && valid; ++k)
+  {
+    const double level = lod->GetTuple1(k);
+    valid = level >= 0 && level < levels;
+  }
+  if (!valid)
+  {
+    return StaleIndex;
+  }
+  tree.Levels = levels;
+  tree.Nodes.resize(count);
+  tree.LevelEnds.resize(static_cast<size_t>(count) * levels);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    pointsurfaces::OctreeNode& node = tree.Nodes[i];
+    sphere->GetTuple(i, node.Sphere);
+    if (bounds)
+    {
+      bounds->GetTuple(i, node.Bounds);
+    }
+    node.FirstChild = static_cast<int>(children->GetComponent(i, 0));
+    node.ChildCount = static_cast<int>(children->GetComponent(i, 1));
+    node.Begin = static_cast<long long>(range->GetComponent(i, 0));
+    node.End = static_cast<long long>(range->GetComponent(i, 1));
+    for (int l = 0; l < levels; ++l)
+    {
+      tree.LevelEnds[i * levels + l] = static_cast<long long>(ends->GetComponent(i, l));
+    }
+  }
+  for (int l = 0; l < levels; ++l)
+  {
+    levelQuality.push_back(quality->GetTuple1(l));
+  }
+  return ValidOctree;
 }
