@@ -4,7 +4,8 @@
 
 #include "vtkAlgebraicSplatMapper.h"
 
-#include "vtkAlgebraicSplatCompositeFS.h"
+#include "psSplatLOD.h"
+#include "vtkAlgebraicSplatBlendHelper.h"
 #include "vtkAlgebraicSplatFS.h"
 #include "vtkAlgebraicSplatGS.h"
 #include "vtkAlgebraicSplatVS.h"
@@ -24,13 +25,10 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLActor.h"
 #include "vtkOpenGLCamera.h"
-#include "vtkOpenGLFramebufferObject.h"
 #include "vtkOpenGLHelper.h"
 #include "vtkOpenGLIndexBufferObject.h"
-#include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderPass.h"
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkOpenGLVertexBufferObject.h"
 #include "vtkOpenGLVertexBufferObjectGroup.h"
@@ -42,7 +40,6 @@
 #include "vtkShaderProgram.h"
 #include "vtkShaderProperty.h"
 #include "vtkSplatDataModel.h"
-#include "vtkTextureObject.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -54,52 +51,9 @@
 
 vtkStandardNewMacro(vtkAlgebraicSplatMapper);
 
-// The octree of the input's field data (see vtkAlgebraicSplatFitter).
-struct vtkAlgebraicSplatMapper::Octree
+// The octree of the input's field data, ready for view selection.
+struct vtkAlgebraicSplatMapper::Octree : pointsurfaces::LODOctree
 {
-  struct Node
-  {
-    double Sphere[4];
-    vtkIdType FirstChild, ChildCount, Begin, End;
-  };
-  std::vector<Node> Nodes;
-  std::vector<vtkIdType> LevelEnds; // Levels per node
-  std::vector<double> LevelQuality; // s of each level
-  std::vector<double> MeanRadius;   // per node: mean R / s over its splats
-  int Levels = 1;
-};
-
-// The float targets of the two-pass blend, sized to the renderer's viewport.
-struct vtkAlgebraicSplatMapper::BlendTargets
-{
-  vtkNew<vtkOpenGLFramebufferObject> Framebuffer;
-  vtkNew<vtkTextureObject> Accumulation;  // sum w C, sum w
-  vtkNew<vtkTextureObject> DepthCoverage; // min true depth, min (1 - coverage)
-  vtkNew<vtkTextureObject> Depth;         // the scene's depth, then the visibility pass
-  vtkNew<vtkOpenGLFramebufferObject> CopyFramebuffer;
-  vtkNew<vtkTextureObject> VisibleDepth; // a copy of Depth after the visibility pass
-  std::unique_ptr<vtkOpenGLQuadHelper> Composite;
-  int Width = 0;
-  int Height = 0;
-  int DepthFormat = -1; // vtkTextureObject depth format; -2: depth and stencil
-  bool Warned = false;
-
-  void Release(vtkWindow* win)
-  {
-    this->Framebuffer->ReleaseGraphicsResources(win);
-    this->Accumulation->ReleaseGraphicsResources(win);
-    this->DepthCoverage->ReleaseGraphicsResources(win);
-    this->Depth->ReleaseGraphicsResources(win);
-    this->CopyFramebuffer->ReleaseGraphicsResources(win);
-    this->VisibleDepth->ReleaseGraphicsResources(win);
-    if (this->Composite)
-    {
-      this->Composite->ReleaseGraphicsResources(win);
-      this->Composite.reset();
-    }
-    this->Width = this->Height = 0;
-    this->DepthFormat = -1;
-  }
 };
 
 namespace
@@ -125,46 +79,6 @@ bool IsShadowMapBake(vtkActor* act)
   return false;
 }
 
-// The depth format of the framebuffer bound for reading, as a vtkTextureObject
-// depth format (-2 for depth with stencil), or -1 when it has no depth.
-int ReadDepthFormat(GLuint framebuffer)
-{
-  const GLenum attachment = framebuffer ? GL_DEPTH_ATTACHMENT : GL_DEPTH;
-  GLint type = GL_NONE;
-  glGetFramebufferAttachmentParameteriv(
-    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
-  if (type == GL_NONE)
-  {
-    return -1;
-  }
-  GLint bits = 0, component = 0, stencil = 0;
-  glGetFramebufferAttachmentParameteriv(
-    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
-  glGetFramebufferAttachmentParameteriv(
-    GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &component);
-  if (framebuffer)
-  {
-    glGetFramebufferAttachmentParameteriv(
-      GL_READ_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
-    if (type != GL_NONE)
-    {
-      glGetFramebufferAttachmentParameteriv(GL_READ_FRAMEBUFFER,
-        GL_STENCIL_ATTACHMENT,
-        GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE,
-        &stencil);
-    }
-  }
-  if (stencil > 0)
-  {
-    return bits == 24 && component != GL_FLOAT ? -2 : -1;
-  }
-  if (component == GL_FLOAT)
-  {
-    return vtkTextureObject::Float32;
-  }
-  return bits <= 16 ? vtkTextureObject::Fixed16
-                    : (bits <= 24 ? vtkTextureObject::Fixed24 : vtkTextureObject::Fixed32);
-}
 
 // The text between //VTK::<name>::Begin and //VTK::<name>::End of `source`.
 std::string Block(const std::string& source, const std::string& name)
@@ -183,7 +97,6 @@ std::string Block(const std::string& source, const std::string& name)
 
 //------------------------------------------------------------------------------
 vtkAlgebraicSplatMapper::vtkAlgebraicSplatMapper()
-  : Targets(new BlendTargets)
 {
   this->VisibilityBO.PrimitiveType = PrimitiveTris;
 }
@@ -197,7 +110,7 @@ void vtkAlgebraicSplatMapper::ReleaseGraphicsResources(vtkWindow* win)
   this->ShaderFailed = false;
   this->VisibilityBO.ReleaseGraphicsResources(win);
   this->BuiltVariants.clear();
-  this->Targets->Release(win);
+  this->Blend->ReleaseGraphicsResources(win);
   this->Superclass::ReleaseGraphicsResources(win);
 }
 
@@ -397,7 +310,7 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
   vtkDataArray* size = pd->GetArray(vtkSplatDataModel::FeatureSizeName());
   vtkDataArray* radius = pd->GetArray(vtkSplatDataModel::RadiusName());
   vtkDataArray* lod = pd->GetArray(vtkSplatDataModel::LODName());
-  vtkDataArray* quality = poly->GetFieldData()->GetArray("SplatLODQuality");
+  vtkDataArray* quality = poly->GetFieldData()->GetArray(vtkSplatDataModel::LODQualityName());
   vtkDataArray* normals = pd->GetArray(vtkSplatDataModel::NormalName());
   vtkDataArray* tangents = pd->GetArray(vtkSplatDataModel::TangentName());
   vtkDataArray* points = poly->GetPoints()->GetData();
@@ -497,197 +410,68 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
 void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
 {
   this->Nodes.reset();
-  vtkFieldData* fd = poly->GetFieldData();
-  vtkDataArray* sphere = fd->GetArray("OctreeNodeSphere");
-  vtkDataArray* children = fd->GetArray("OctreeNodeChildren");
-  vtkDataArray* range = fd->GetArray("OctreeNodeRange");
-  vtkDataArray* ends = fd->GetArray("OctreeNodeLevelEnds");
-  vtkDataArray* quality = fd->GetArray("SplatLODQuality");
-  vtkDataArray* radius = poly->GetPointData()->GetArray(vtkSplatDataModel::RadiusName());
-  vtkDataArray* lod = poly->GetPointData()->GetArray(vtkSplatDataModel::LODName());
-  const vtkIdType count = sphere ? sphere->GetNumberOfTuples() : 0;
-  if (!count || !children || !range || !ends || !quality || !radius || !lod ||
-    children->GetNumberOfTuples() != count || range->GetNumberOfTuples() != count ||
-    ends->GetNumberOfTuples() != count ||
-    ends->GetNumberOfComponents() != quality->GetNumberOfTuples())
+  pointsurfaces::Octree tree;
+  std::vector<double> quality;
+  switch (vtkSplatDataModel::GetOctree(poly, tree, quality))
   {
-    return; // no (usable) octree: draw everything
-  }
-  // A filter that moved the points after fitting (a transform, say) leaves
-  // the octree behind: culling by it would hide the splats. Check that the
-  // root's sphere still holds every splat.
-  {
-    double root[4];
-    sphere->GetTuple(0, root);
-    const vtkIdType n = poly->GetNumberOfPoints();
-    const double r2 = root[3] * root[3] * (1.0 + 1e-6) + 1e-300;
-    vtkIdType outside = 0;
-    for (vtkIdType i = 0; i < n && outside == 0; ++i)
-    {
-      double p[3];
-      poly->GetPoint(i, p);
-      outside += vtkMath::Distance2BetweenPoints(p, root) > r2 ? 1 : 0;
-    }
-    if (outside > 0)
-    {
+    case vtkSplatDataModel::ValidOctree:
+      break;
+    case vtkSplatDataModel::MovedSplats:
       vtkWarningMacro(<< "The octree in the input's field data does not hold its splats (were "
                          "the points moved after fitting?): it is ignored, every splat is drawn.");
       return;
-    }
-  }
-  // A filter that split, subset or reordered the splats (ParaView's
-  // RedistributeDataSet between ranks, a threshold, a merge) leaves ranges
-  // that no longer index them: check every range before using one.
-  {
-    const vtkIdType n = poly->GetNumberOfPoints();
-    const int levels = ends->GetNumberOfComponents();
-    bool valid = static_cast<vtkIdType>(range->GetComponent(0, 0)) == 0 &&
-      static_cast<vtkIdType>(range->GetComponent(0, 1)) == n;
-    for (vtkIdType i = 0; i < count && valid; ++i)
-    {
-      const double begin = range->GetComponent(i, 0), end = range->GetComponent(i, 1);
-      const double first = children->GetComponent(i, 0), number = children->GetComponent(i, 1);
-      valid = begin >= 0 && begin <= end && end <= n && number >= 0 &&
-        (number == 0 || (first > i && first + number <= count));
-      for (int l = 0; l < levels && valid; ++l)
-      {
-        const double e = ends->GetComponent(i, l);
-        valid = e >= begin && e <= end;
-      }
-    }
-    for (vtkIdType k = 0; k < n && valid; ++k)
-    {
-      const double level = lod->GetTuple1(k);
-      valid = level >= 0 && level < levels;
-    }
-    if (!valid)
-    {
-      vtkWarningMacro(<< "The octree in the input's field data does not index its " << n
+    case vtkSplatDataModel::StaleIndex:
+      vtkWarningMacro(<< "The octree in the input's field data does not index its "
+                      << poly->GetNumberOfPoints()
                       << " splats (were splats split, removed or reordered after fitting?): it is "
                          "ignored, every splat is drawn.");
       return;
-    }
+    default:
+      return; // no octree: draw everything
   }
-  auto tree = std::make_shared<Octree>();
-  tree->Levels = ends->GetNumberOfComponents();
-  for (int l = 0; l < tree->Levels; ++l)
+  const vtkIdType n = poly->GetNumberOfPoints();
+  vtkDataArray* radius = poly->GetPointData()->GetArray(vtkSplatDataModel::RadiusName());
+  vtkDataArray* lod = poly->GetPointData()->GetArray(vtkSplatDataModel::LODName());
+  std::vector<double> radii(n);
+  std::vector<int> levels(n);
+  for (vtkIdType k = 0; k < n; ++k)
   {
-    tree->LevelQuality.push_back(quality->GetTuple1(l));
+    radii[k] = radius->GetTuple1(k);
+    levels[k] = static_cast<int>(lod->GetTuple1(k));
   }
-  tree->Nodes.resize(count);
-  tree->LevelEnds.resize(count * tree->Levels);
-  tree->MeanRadius.resize(count);
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    Octree::Node& node = tree->Nodes[i];
-    sphere->GetTuple(i, node.Sphere);
-    node.FirstChild = static_cast<vtkIdType>(children->GetComponent(i, 0));
-    node.ChildCount = static_cast<vtkIdType>(children->GetComponent(i, 1));
-    node.Begin = static_cast<vtkIdType>(range->GetComponent(i, 0));
-    node.End = static_cast<vtkIdType>(range->GetComponent(i, 1));
-    for (int l = 0; l < tree->Levels; ++l)
-    {
-      tree->LevelEnds[i * tree->Levels + l] = static_cast<vtkIdType>(ends->GetComponent(i, l));
-    }
-    // R / s is the splats' feature size scale: R at level l is about s_l times it.
-    double sum = 0.0, largest = 0.0;
-    for (vtkIdType k = node.Begin; k < node.End; ++k)
-    {
-      sum += radius->GetTuple1(k) / tree->LevelQuality[static_cast<int>(lod->GetTuple1(k))];
-      largest = std::max(largest, radius->GetTuple1(k));
-    }
-    // The sphere holds the discs; a patch may also rise up to R above its
-    // disc, so the cylinder reaches sqrt(2) R from the origin.
-    node.Sphere[3] += (std::sqrt(2.0) - 1.0) * largest;
-    tree->MeanRadius[i] = node.End > node.Begin ? sum / (node.End - node.Begin) : 0.0;
-  }
-  this->Nodes = tree;
+  this->Nodes = std::make_shared<Octree>();
+  static_cast<pointsurfaces::LODOctree&>(*this->Nodes) =
+    pointsurfaces::MakeLODOctree(std::move(tree), std::move(quality), radii.data(), levels.data());
 }
 
 //------------------------------------------------------------------------------
 void vtkAlgebraicSplatMapper::DrawOctree(vtkRenderer* ren, vtkActor* act)
 {
-  const Octree& tree = *this->Nodes;
   vtkShaderProgram* program = this->CurrentBO->Program;
   vtkCamera* cam = ren->GetActiveCamera();
-  double planes[24];
-  cam->GetFrustumPlanes(ren->GetTiledAspectRatio(), planes);
+  pointsurfaces::LODView view;
+  cam->GetFrustumPlanes(ren->GetTiledAspectRatio(), view.Planes);
+  cam->GetPosition(view.Eye);
   int size[2];
   ren->GetTiledSize(&size[0], &size[1]);
-  double eye[3];
-  cam->GetPosition(eye);
-  const double tanHalf = std::tan(0.5 * vtkMath::RadiansFromDegrees(cam->GetViewAngle()));
-  vtkMatrix4x4* mcwc = act->GetMatrix();
-  const bool identity = act->GetIsIdentity();
-  // Pixels per world unit at distance d.
-  auto pixelsPerUnit = [&](double d)
+  view.ViewportHeight = size[1];
+  view.Parallel = cam->GetParallelProjection() != 0;
+  view.ParallelScale = cam->GetParallelScale();
+  view.TanHalfAngle = std::tan(0.5 * vtkMath::RadiansFromDegrees(cam->GetViewAngle()));
+  view.ModelIsIdentity = act->GetIsIdentity();
+  if (!view.ModelIsIdentity)
   {
-    return cam->GetParallelProjection() ? size[1] / (2.0 * cam->GetParallelScale())
-                                        : size[1] / (2.0 * std::max(d, 1e-30) * tanHalf);
-  };
-  std::vector<vtkIdType> stack{ 0 };
+    std::copy(act->GetMatrix()->GetData(), act->GetMatrix()->GetData() + 16, view.ModelToWorld);
+  }
+  view.Cull = this->Culling;
+  view.PixelError = this->LODPixelError;
   this->NumberOfRenderedSplats = 0;
-  while (!stack.empty())
+  for (const pointsurfaces::DrawRange& range : pointsurfaces::SelectDrawRanges(*this->Nodes, view))
   {
-    const vtkIdType id = stack.back();
-    stack.pop_back();
-    const Octree::Node& node = tree.Nodes[id];
-    double c[4] = { node.Sphere[0], node.Sphere[1], node.Sphere[2], 1.0 };
-    double r = node.Sphere[3];
-    if (!identity)
-    {
-      mcwc->MultiplyPoint(c, c);
-      double scale = 0.0; // the largest axis scale of the actor
-      for (int a = 0; a < 3; ++a)
-      {
-        scale = std::max(scale,
-          std::sqrt(mcwc->GetElement(0, a) * mcwc->GetElement(0, a) +
-            mcwc->GetElement(1, a) * mcwc->GetElement(1, a) +
-            mcwc->GetElement(2, a) * mcwc->GetElement(2, a)));
-      }
-      r *= scale;
-    }
-    bool outside = false;
-    for (int p = 0; this->Culling && p < 6 && !outside; ++p)
-    {
-      const double* e = planes + 4 * p;
-      outside = e[0] * c[0] + e[1] * c[1] + e[2] * c[2] + e[3] < -r;
-    }
-    if (outside)
-    {
-      continue;
-    }
-    if (node.ChildCount > 0)
-    {
-      for (vtkIdType k = 0; k < node.ChildCount; ++k)
-      {
-        stack.push_back(node.FirstChild + k);
-      }
-      continue;
-    }
-    // Continuous LOD: levels down to the first whose splats are small enough.
-    int level = tree.Levels - 1;
-    if (this->LODPixelError > 0.0)
-    {
-      const double d = std::max(std::sqrt(vtkMath::Distance2BetweenPoints(c, eye)) - r, 1e-30);
-      const double ppu = pixelsPerUnit(d);
-      for (int l = 0; l < tree.Levels; ++l)
-      {
-        if (2.0 * tree.LevelQuality[l] * tree.MeanRadius[id] * ppu <= this->LODPixelError)
-        {
-          level = l;
-          break;
-        }
-      }
-    }
-    const vtkIdType end = tree.LevelEnds[id * tree.Levels + level];
-    if (end > node.Begin)
-    {
-      program->SetUniformf("lodQuality", static_cast<float>(tree.LevelQuality[level]));
-      glDrawArrays(
-        GL_POINTS, static_cast<GLint>(node.Begin), static_cast<GLsizei>(end - node.Begin));
-      this->NumberOfRenderedSplats += end - node.Begin;
-    }
+    program->SetUniformf("lodQuality", static_cast<float>(range.Quality));
+    glDrawArrays(
+      GL_POINTS, static_cast<GLint>(range.Begin), static_cast<GLsizei>(range.End - range.Begin));
+    this->NumberOfRenderedSplats += range.End - range.Begin;
   }
 }
 
@@ -734,7 +518,29 @@ void vtkAlgebraicSplatMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
     this->DrawSplats(ren, act, !picking);
     return;
   }
-  this->RenderBlended(ren, act);
+  vtkAlgebraicSplatBlendHelper::Settings settings;
+  settings.Blending = this->Blending;
+  settings.BlendDepthOffset = this->BlendDepthOffset;
+  settings.BlendSharpness = this->BlendSharpness;
+  settings.AntiAliasing = this->AntiAliasing;
+  vtkAlgebraicSplatBlendHelper::Passes passes;
+  passes.UseVisibility = [&]()
+  {
+    ShaderVariant visibility;
+    visibility.Pass = 1;
+    return this->UseVariant(visibility, ren, act);
+  };
+  passes.UseBlending = [&]()
+  {
+    ShaderVariant blending;
+    blending.Pass = 2;
+    blending.Samples = this->AntiAliasing;
+    blending.ShowSilhouette = this->ShowSilhouettePixels;
+    return this->UseVariant(blending, ren, act);
+  };
+  passes.Draw = [&]() { this->DrawSplats(ren, act, true); };
+  this->Blend->Render(
+    static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow()), settings, passes, this);
 }
 
 //------------------------------------------------------------------------------
@@ -789,222 +595,6 @@ vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(const ShaderVariant& varia
   const float noMargin[2] = { 0.0f, 0.0f };
   program->SetUniform2f("splatOutlineMargin", noMargin);
   return program;
-}
-
-//------------------------------------------------------------------------------
-void vtkAlgebraicSplatMapper::RenderBlended(vtkRenderer* ren, vtkActor* act)
-{
-  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
-  vtkOpenGLState* ostate = renWin->GetState();
-  BlendTargets& t = *this->Targets;
-
-  GLint viewport[4];
-  glGetIntegerv(GL_VIEWPORT, viewport);
-  const int width = viewport[2], height = viewport[3];
-  if (width <= 0 || height <= 0)
-  {
-    return;
-  }
-  GLint scene = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &scene);
-
-  ostate->Push();
-  ostate->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(scene));
-  const int depthFormat = ReadDepthFormat(static_cast<GLuint>(scene));
-  if (width != t.Width || height != t.Height || depthFormat != t.DepthFormat)
-  {
-    t.Framebuffer->SetContext(renWin);
-    t.Accumulation->SetContext(renWin);
-    t.DepthCoverage->SetContext(renWin);
-    t.Depth->SetContext(renWin);
-    t.CopyFramebuffer->SetContext(renWin);
-    t.VisibleDepth->SetContext(renWin);
-    t.Accumulation->Allocate2D(width, height, 4, VTK_FLOAT);
-    t.DepthCoverage->Allocate2D(width, height, 2, VTK_FLOAT);
-    for (vtkTextureObject* depth : { t.Depth.GetPointer(), t.VisibleDepth.GetPointer() })
-    {
-      if (depthFormat == -2)
-      {
-        depth->AllocateDepthStencil(width, height);
-      }
-      else
-      {
-        depth->AllocateDepth(
-          width, height, depthFormat >= 0 ? depthFormat : vtkTextureObject::Float32);
-      }
-    }
-    t.CopyFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-    t.CopyFramebuffer->AddDepthAttachment(t.VisibleDepth);
-    // Depth only: no colour buffer to draw to (without this the framebuffer
-    // is incomplete before GL 4.1).
-    ostate->vtkglDrawBuffer(GL_NONE);
-    t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-    t.Framebuffer->AddColorAttachment(0, t.Accumulation);
-    t.Framebuffer->AddColorAttachment(1, t.DepthCoverage);
-    t.Framebuffer->AddDepthAttachment(t.Depth);
-    t.Width = width;
-    t.Height = height;
-    t.DepthFormat = depthFormat;
-  }
-  t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-  t.Framebuffer->ActivateDrawBuffers(2);
-  ostate->vtkglDisable(GL_SCISSOR_TEST);
-  ostate->vtkglViewport(0, 0, width, height);
-
-  // The scene's depth, so that the actors drawn before hide the splats.
-  bool copied = false;
-  if (depthFormat != -1)
-  {
-    for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; ++k)
-    {
-    }
-    glBlitFramebuffer(viewport[0],
-      viewport[1],
-      viewport[0] + width,
-      viewport[1] + height,
-      0,
-      0,
-      width,
-      height,
-      GL_DEPTH_BUFFER_BIT,
-      GL_NEAREST);
-    copied = glGetError() == GL_NO_ERROR;
-  }
-  if (!copied)
-  {
-    if (!t.Warned)
-    {
-      vtkWarningMacro(<< "Cannot copy the scene's depth buffer; blended splats are drawn "
-                         "without occlusion by the actors drawn before them.");
-      t.Warned = true;
-    }
-    ostate->vtkglDepthMask(GL_TRUE);
-    ostate->vtkglClearDepth(1.0);
-    ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
-  }
-  const GLfloat zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
-  const GLfloat one[4] = { 1.0f, 1.0f, 1.0f, 1.0f };
-  glClearBufferfv(GL_COLOR, 0, zero);
-  glClearBufferfv(GL_COLOR, 1, one);
-
-  // Visibility: the nearest hits pushed back by delta h. The nearest hit of
-  // the pixel centre's ray is enough here: no supersampling.
-  ShaderVariant visibility;
-  visibility.Pass = 1;
-  vtkShaderProgram* program = this->UseVariant(visibility, ren, act);
-  if (!program)
-  {
-    ostate->Pop();
-    return;
-  }
-  const float offset = static_cast<float>(this->Blending ? this->BlendDepthOffset : 1e-3);
-  program->SetUniformf("splatBlendOffset", offset);
-  ostate->vtkglEnable(GL_DEPTH_TEST);
-  ostate->vtkglDepthFunc(GL_LESS);
-  ostate->vtkglDepthMask(GL_TRUE);
-  ostate->vtkglDisable(GL_BLEND);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  this->DrawSplats(ren, act, true);
-
-  // Blending: every hit in front of that depth, weighted. The shader reads
-  // a copy of it, while the depth test drops fragments behind it unshaded.
-  t.Framebuffer->Bind(GL_READ_FRAMEBUFFER);
-  t.CopyFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-  glBlitFramebuffer(0,
-    0,
-    width,
-    height,
-    0,
-    0,
-    width,
-    height,
-    depthFormat == -2 ? GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT : GL_DEPTH_BUFFER_BIT,
-    GL_NEAREST);
-  t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-  t.Framebuffer->ActivateDrawBuffers(2);
-  ShaderVariant blending;
-  blending.Pass = 2;
-  blending.Samples = this->AntiAliasing;
-  blending.ShowSilhouette = this->ShowSilhouettePixels;
-  program = this->UseVariant(blending, ren, act);
-  if (!program)
-  {
-    ostate->Pop();
-    return;
-  }
-  program->SetUniformf(
-    "splatBlendSharpness", static_cast<float>(this->Blending ? this->BlendSharpness : 0.0));
-  t.VisibleDepth->Activate();
-  program->SetUniformi("splatVisibleDepth", t.VisibleDepth->GetTextureUnit());
-  // The hit is compared with the stored depth, which its format rounded.
-  const double steps = depthFormat == vtkTextureObject::Fixed16
-    ? 65535.0
-    : (depthFormat == vtkTextureObject::Fixed24 || depthFormat == -2 ? 16777215.0 : 4194304.0);
-  program->SetUniformf("splatDepthTolerance", static_cast<float>(1.0 / steps));
-  const GLboolean offsetWasOn = glIsEnabled(GL_POLYGON_OFFSET_FILL);
-  GLfloat offsetFactor = 0.0f, offsetUnits = 0.0f;
-  glGetFloatv(GL_POLYGON_OFFSET_FACTOR, &offsetFactor);
-  glGetFloatv(GL_POLYGON_OFFSET_UNITS, &offsetUnits);
-  if (this->AntiAliasing > 1)
-  {
-    // Silhouette pixels get their sub-pixel rays (the geometry shader grows
-    // each splat's quad by half a pixel), which meet the splat's box nearer
-    // than the centre's depth by up to half a pixel's depth slopes: pull the
-    // quads' depth forward by a whole one, so that the early test stays
-    // conservative for them too.
-    const float margin[2] = { 1.0f / width, 1.0f / height };
-    program->SetUniform2f("splatOutlineMargin", margin);
-    glEnable(GL_POLYGON_OFFSET_FILL);
-    glPolygonOffset(-1.0f, -1.0f);
-  }
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  ostate->vtkglDepthFunc(GL_LEQUAL);
-  ostate->vtkglDepthMask(GL_FALSE);
-  ostate->vtkglEnable(GL_BLEND);
-  glBlendEquationi(0, GL_FUNC_ADD);
-  glBlendFunci(0, GL_ONE, GL_ONE);
-  glBlendEquationi(1, GL_MIN);
-  glBlendFunci(1, GL_ONE, GL_ONE);
-  this->DrawSplats(ren, act, true);
-  if (!offsetWasOn)
-  {
-    glDisable(GL_POLYGON_OFFSET_FILL);
-  }
-  glPolygonOffset(offsetFactor, offsetUnits);
-  t.VisibleDepth->Deactivate();
-  ostate->Pop(); // the scene's framebuffer, viewport, blending and program
-
-  // Normalise and composite with the true depth.
-  ostate->Push();
-  if (!t.Composite)
-  {
-    t.Composite.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkAlgebraicSplatCompositeFS, ""));
-  }
-  else
-  {
-    renWin->GetShaderCache()->ReadyShaderProgram(t.Composite->Program);
-  }
-  if (!t.Composite->Program)
-  {
-    ostate->Pop();
-    vtkErrorMacro(<< "The splat compositing shader did not compile.");
-    return;
-  }
-  t.Accumulation->Activate();
-  t.DepthCoverage->Activate();
-  t.Composite->Program->SetUniformi("accumulation", t.Accumulation->GetTextureUnit());
-  t.Composite->Program->SetUniformi("depthCoverage", t.DepthCoverage->GetTextureUnit());
-  ostate->vtkglEnable(GL_DEPTH_TEST);
-  ostate->vtkglDepthFunc(GL_ALWAYS);
-  ostate->vtkglDepthMask(GL_TRUE);
-  ostate->vtkglEnable(GL_BLEND);
-  ostate->vtkglBlendEquation(GL_FUNC_ADD);
-  ostate->vtkglBlendFuncSeparate(
-    GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  t.Composite->Render();
-  t.Accumulation->Deactivate();
-  t.DepthCoverage->Deactivate();
-  ostate->Pop();
 }
 
 //------------------------------------------------------------------------------

@@ -58,10 +58,13 @@
 #define vtkAlgebraicSplatMapper_h
 
 #include "PointSurfacesRenderingModule.h" // For export macro
+#include "vtkNew.h"                       // For the blend helper
 #include "vtkOpenGLPolyDataMapper.h"
 
 #include <map>    // For the built variants
 #include <memory> // For the octree
+
+class vtkAlgebraicSplatBlendHelper;
 
 class POINTSURFACESRENDERING_EXPORT vtkAlgebraicSplatMapper : public vtkOpenGLPolyDataMapper
 {
@@ -185,7 +188,6 @@ protected:
   void ReadOctree(vtkPolyData* poly);
   void DrawSplats(vtkRenderer* ren, vtkActor* act, bool useOctree);
   void DrawOctree(vtkRenderer* ren, vtkActor* act);
-  void RenderBlended(vtkRenderer* ren, vtkActor* act);
 
   /**
    * What a fragment shader is compiled for besides the degree: the pass
@@ -243,8 +245,7 @@ protected:
 private:
   struct Octree;
   std::shared_ptr<Octree> Nodes;
-  struct BlendTargets;
-  std::unique_ptr<BlendTargets> Targets;
+  vtkNew<vtkAlgebraicSplatBlendHelper> Blend; // the two-pass blend's targets and passes
 
   vtkAlgebraicSplatMapper(const vtkAlgebraicSplatMapper&) = delete;
   void operator=(const vtkAlgebraicSplatMapper&) = delete;
