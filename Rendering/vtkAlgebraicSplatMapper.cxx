@@ -4,6 +4,7 @@
 
 #include "vtkAlgebraicSplatMapper.h"
 
+#include "psShaderHooks.h"
 #include "psSplatLOD.h"
 #include "vtkAlgebraicSplatBlendHelper.h"
 #include "vtkAlgebraicSplatFS.h"
@@ -79,20 +80,6 @@ bool IsShadowMapBake(vtkActor* act)
   return false;
 }
 
-
-// The text between //VTK::<name>::Begin and //VTK::<name>::End of `source`.
-std::string Block(const std::string& source, const std::string& name)
-{
-  const std::string begin = "//VTK::" + name + "::Begin";
-  const std::string end = "//VTK::" + name + "::End";
-  const size_t b = source.find(begin);
-  const size_t e = source.find(end);
-  if (b == std::string::npos || e == std::string::npos || e < b)
-  {
-    return std::string();
-  }
-  return source.substr(b + begin.size(), e - b - begin.size());
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -156,11 +143,26 @@ void vtkAlgebraicSplatMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkS
   vtkRenderer* ren,
   vtkActor* act)
 {
+  // Every hook and marker must be found: a template whose text differs
+  // would otherwise drop the splat code silently. A missing one is
+  // reported, and UseVariant then draws nothing with this program.
+  std::vector<std::string> missing;
+  auto require = [&missing](bool found, const std::string& what)
+  {
+    if (!found)
+    {
+      missing.push_back(what);
+    }
+  };
   std::string VSSource = shaders[vtkShader::Vertex]->GetSource();
   std::string FSSource = shaders[vtkShader::Fragment]->GetSource();
   const std::string fs = vtkAlgebraicSplatFS;
-  std::string declarations = Block(fs, "SplatDecl");
-  vtkShaderProgram::Substitute(declarations, "//VTK::SplatRoots::Dec", vtkSplatRoots);
+  std::string declarations, implementation, output;
+  require(pointsurfaces::ExtractBlock(fs, "SplatDecl", declarations), "block SplatDecl");
+  require(pointsurfaces::ExtractBlock(fs, "SplatImpl", implementation), "block SplatImpl");
+  require(pointsurfaces::ExtractBlock(fs, "SplatOutput", output), "block SplatOutput");
+  require(pointsurfaces::ReplaceHook(declarations, "//VTK::SplatRoots::Dec", vtkSplatRoots, true),
+    "SplatDecl: //VTK::SplatRoots::Dec");
 
   const std::string degree =
     "#define SPLAT_DEGREE " + std::to_string(std::max(1, this->Degree)) + "\n";
@@ -168,37 +170,72 @@ void vtkAlgebraicSplatMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkS
     "\n#define SPLAT_SAMPLES " + std::to_string(this->Variant.Samples) +
     "\n#define SPLAT_SHOW_SILHOUETTE " + (this->Variant.ShowSilhouette ? "1" : "0") +
     "\n#define SPLAT_CULL_FACES " + std::to_string(this->Variant.Cull) + "\n";
-  vtkShaderProgram::Substitute(VSSource, "//VTK::SplatDegree::Dec", degree);
-  vtkShaderProgram::Substitute(VSSource, "//VTK::Camera::Dec", "uniform mat4 MCVCMatrix;");
-  vtkShaderProgram::Substitute(FSSource, "//VTK::PositionVC::Dec", "in vec4 vertexVCVSOutput;");
-  vtkShaderProgram::Substitute(
-    FSSource, "//VTK::PositionVC::Impl", "vec4 vertexVC = vertexVCVSOutput;\n");
+  require(pointsurfaces::ReplaceHook(VSSource, "//VTK::SplatDegree::Dec", degree, true),
+    "vertex: //VTK::SplatDegree::Dec");
+  require(
+    pointsurfaces::ReplaceHook(VSSource, "//VTK::Camera::Dec", "uniform mat4 MCVCMatrix;", true),
+    "vertex: //VTK::Camera::Dec");
+  require(pointsurfaces::ReplaceHook(
+            FSSource, "//VTK::PositionVC::Dec", "in vec4 vertexVCVSOutput;", true),
+    "fragment: //VTK::PositionVC::Dec");
+  require(pointsurfaces::ReplaceHook(
+            FSSource, "//VTK::PositionVC::Impl", "vec4 vertexVC = vertexVCVSOutput;\n", true),
+    "fragment: //VTK::PositionVC::Impl");
   // The bounding faces are never behind the hit: conservative depth keeps
   // early depth rejection working. The blending pass does not write depth.
   const std::string conservative =
     "#ifdef GL_ARB_conservative_depth\nlayout(depth_greater) out float gl_FragDepth;\n#endif\n";
-  vtkShaderProgram::Substitute(FSSource,
-    "//VTK::System::Dec",
-    "//VTK::System::Dec\n#extension GL_ARB_conservative_depth : enable\n");
-  vtkShaderProgram::Substitute(FSSource,
-    "//VTK::Normal::Dec",
-    degree + variant + (this->Variant.Pass == 2 ? std::string() : conservative) + declarations);
-  vtkShaderProgram::Substitute(FSSource, "//VTK::Depth::Impl", Block(fs, "SplatImpl"));
-  vtkShaderProgram::Substitute(FSSource, "//VTK::Normal::Impl", "");
+  require(pointsurfaces::ReplaceHook(FSSource,
+            "//VTK::System::Dec",
+            "//VTK::System::Dec\n#extension GL_ARB_conservative_depth : enable\n"),
+    "fragment: //VTK::System::Dec");
+  require(
+    pointsurfaces::ReplaceHook(FSSource,
+      "//VTK::Normal::Dec",
+      degree + variant + (this->Variant.Pass == 2 ? std::string() : conservative) + declarations,
+      true),
+    "fragment: //VTK::Normal::Dec");
+  require(pointsurfaces::ReplaceHook(FSSource, "//VTK::Depth::Impl", implementation, true),
+    "fragment: //VTK::Depth::Impl");
+  require(pointsurfaces::ReplaceHook(FSSource, "//VTK::Normal::Impl", "", true),
+    "fragment: //VTK::Normal::Impl");
   // The blend passes' outputs go last in main(), after VTK's lighting.
-  vtkShaderProgram::Substitute(
-    FSSource, "//VTK::Coincident::Impl", "//VTK::Coincident::Impl\n" + Block(fs, "SplatOutput"));
+  require(pointsurfaces::ReplaceHook(
+            FSSource, "//VTK::Coincident::Impl", "//VTK::Coincident::Impl\n" + output),
+    "fragment: //VTK::Coincident::Impl");
   shaders[vtkShader::Vertex]->SetSource(VSSource);
   shaders[vtkShader::Fragment]->SetSource(FSSource);
   this->BuiltVariants[this->LastBoundBO] = this->Variant;
   this->Superclass::ReplaceShaderValues(shaders, ren, act);
 
   // vtkShadowMapBakerPass stores the fragment's depth from gl_FragCoord,
-  // which is the bounding quad's: give it the ray-cast hit's.
-  FSSource = shaders[vtkShader::Fragment]->GetSource();
-  vtkShaderProgram::Substitute(FSSource, "ldepth =  gl_FragCoord.z;", "ldepth = splatDepth;");
-  vtkShaderProgram::Substitute(FSSource, "1.0/gl_FragCoord.w", "splatClipW");
-  shaders[vtkShader::Fragment]->SetSource(FSSource);
+  // which is the bounding quad's: give it the ray-cast hit's. Its text is
+  // VTK's, so a VTK that words it differently must be caught here.
+  if (IsShadowMapBake(act))
+  {
+    FSSource = shaders[vtkShader::Fragment]->GetSource();
+    require(pointsurfaces::ReplaceHook(
+              FSSource, "ldepth =  gl_FragCoord.z;", "ldepth = splatDepth;", true),
+      "vtkShadowMapBakerPass: ldepth =  gl_FragCoord.z;");
+    require(pointsurfaces::ReplaceHook(FSSource, "1.0/gl_FragCoord.w", "splatClipW", true),
+      "vtkShadowMapBakerPass: 1.0/gl_FragCoord.w");
+    shaders[vtkShader::Fragment]->SetSource(FSSource);
+  }
+  this->MissingHooks = !missing.empty();
+  if (this->MissingHooks)
+  {
+    // A shader without the splat code would not compile, or draw the
+    // bounding faces: give the program an empty fragment shader instead.
+    shaders[vtkShader::Fragment]->SetSource(
+      "//VTK::System::Dec\n//VTK::Output::Dec\nvoid main()\n{\n  discard;\n}\n");
+    std::string list;
+    for (const std::string& m : missing)
+    {
+      list += "\n  " + m;
+    }
+    vtkErrorMacro(<< "The splat shaders lack hooks or markers that the mapper fills in (pass "
+                  << this->Variant.Pass << "); the splats are not drawn. Missing:" << list);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -576,8 +613,17 @@ vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(const ShaderVariant& varia
   vtkOpenGLHelper& cellBO =
     variant.Pass == 1 ? this->VisibilityBO : this->Primitives[PrimitiveTris];
   this->CurrentBO = &cellBO;
+  this->MissingHooks = false;
   this->UpdateShaders(cellBO, ren, act);
   vtkShaderProgram* program = cellBO.Program;
+  if (program && this->MissingHooks)
+  {
+    // Reported by ReplaceShaderValues; the program lacks the splat code.
+    this->ShaderFailed = true;
+    this->ShaderFailedTime.Modified();
+    this->BuiltVariants.erase(&cellBO);
+    return nullptr;
+  }
   if (!program)
   {
     // VTK's UpdateShaders would reuse the null program on the next frame

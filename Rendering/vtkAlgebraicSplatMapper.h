@@ -224,6 +224,7 @@ protected:
   // A splat shader failed to compile: nothing is drawn (and no compile
   // retried) until the mapper or the actor's shader property changes.
   bool ShaderFailed = false;
+  bool MissingHooks = false; // the last shader build lacked a hook or marker
   vtkTimeStamp ShaderFailedTime;
   ShaderVariant Variant; // the one to build
   // What each helper's program was built for.

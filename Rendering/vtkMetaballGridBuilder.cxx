@@ -4,6 +4,8 @@
 
 #include "vtkMetaballGridBuilder.h"
 
+#include "psShaderHooks.h"
+
 #include "vtkComputeShaderProgram.h"
 #include "vtkMetaballGridCS.h"
 #include "vtkNew.h"
@@ -63,6 +65,7 @@ bool Reserve(vtkShaderStorageBuffer* buffer, size_t bytes)
 
 struct vtkMetaballGridBuilder::Internals
 {
+  vtkObject* Owner = nullptr; // reports errors
   vtkNew<vtkComputeShaderProgram> Programs[NumberOfPasses];
   vtkNew<vtkShaderStorageBuffer> Ranges, Counts, PairVoxels, PairBalls, Histogram, Cursor,
     VoxelBalls, Stats;
@@ -74,8 +77,14 @@ struct vtkMetaballGridBuilder::Internals
     if (!p->IsCompiled())
     {
       std::string source = vtkMetaballGridCS;
-      const std::string hook = "//VTK::Pass::Dec";
-      source.replace(source.find(hook), hook.size(), "#define PASS " + std::to_string(pass));
+      if (!pointsurfaces::ReplaceHook(
+            source, "//VTK::Pass::Dec", "#define PASS " + std::to_string(pass)))
+      {
+        vtkErrorWithObjectMacro(this->Owner,
+          << "vtkMetaballGridCS lacks its //VTK::Pass::Dec hook: the metaball grid cannot be "
+             "built.");
+        return nullptr;
+      }
       p->SetName(("vtkMetaballGridCS pass " + std::to_string(pass)).c_str());
       p->SetSource(source);
       if (!p->Compile(renWin))
@@ -145,6 +154,7 @@ struct vtkMetaballGridBuilder::Internals
 vtkMetaballGridBuilder::vtkMetaballGridBuilder()
   : Impl(new Internals)
 {
+  this->Impl->Owner = this;
 }
 
 //------------------------------------------------------------------------------

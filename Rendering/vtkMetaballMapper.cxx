@@ -4,6 +4,8 @@
 
 #include "vtkMetaballMapper.h"
 
+#include "psShaderHooks.h"
+
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkCommand.h"
@@ -326,8 +328,12 @@ void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   if (defines != in.RayCastDefines)
   {
     std::string source = vtkMetaballRayCastCS;
-    const std::string hook = "//VTK::Defines::Dec";
-    source.replace(source.find(hook), hook.size(), defines);
+    if (!pointsurfaces::ReplaceHook(source, "//VTK::Defines::Dec", defines))
+    {
+      vtkErrorMacro(
+        << "vtkMetaballRayCastCS lacks its //VTK::Defines::Dec hook: nothing is drawn.");
+      return;
+    }
     in.RayCast->ReleaseGraphicsResources(renWin);
     in.RayCast->SetName("vtkMetaballRayCastCS");
     in.RayCast->SetSource(source);
@@ -541,8 +547,11 @@ int vtkMetaballMapper::CastShadows(vtkRenderer* ren,
   if (defines != in.ShadowDefines)
   {
     std::string source = vtkMetaballShadowCS;
-    const std::string hook = "//VTK::Defines::Dec";
-    source.replace(source.find(hook), hook.size(), defines);
+    if (!pointsurfaces::ReplaceHook(source, "//VTK::Defines::Dec", defines))
+    {
+      vtkErrorMacro(<< "vtkMetaballShadowCS lacks its //VTK::Defines::Dec hook: nothing is drawn.");
+      return 0;
+    }
     in.Shadow->ReleaseGraphicsResources(renWin);
     in.Shadow->SetName("vtkMetaballShadowCS");
     in.Shadow->SetSource(source);

@@ -14,6 +14,8 @@
 //   actor's shader property): one error over two frames, nothing drawn and
 //   no crash (VTK's UpdateShaders would reuse the null program), and the
 //   splats back once the replacement is removed;
+// - a template without a hook that the mapper fills in: one error naming
+//   it, nothing drawn, and the splats back once the template is whole;
 // - an empty input and an input that is not a splat set: nothing is drawn
 //   and no GL error, with an error message for the latter.
 #include "vtkActor.h"
@@ -46,14 +48,17 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
+#include <string>
 
 namespace
 {
 int Warnings = 0;
 int Errors = 0;
-void Count(vtkObject*, unsigned long event, void*, void*)
+std::string Messages; // the errors' and warnings' text
+void Count(vtkObject*, unsigned long event, void*, void* text)
 {
   (event == vtkCommand::WarningEvent ? Warnings : Errors)++;
+  Messages += text ? static_cast<const char*>(text) : "";
 }
 
 // Covered pixels and the largest depth error against a unit sphere at `centre`.
@@ -254,6 +259,38 @@ int TestAlgebraicSplatMapperBadInput(int, char*[])
     if (brokenErrors != 1 || coveredBroken != 0 || coveredFixed < coveredOrigin / 2)
     {
       std::cerr << "a shader compile failure is not handled\n";
+      ++failures;
+    }
+    mapper->SetInputData(nullptr);
+  }
+
+  // A template that lacks a hook the mapper fills in (a replacement run
+  // before the mapper's takes //VTK::Depth::Impl away): the shader would
+  // compile without the splat code, so the mapper names the missing hook
+  // in one error and draws nothing; without the replacement, it draws again.
+  {
+    mapper->SetInputConnection(fitter->GetOutputPort());
+    look(origin);
+    actor->GetShaderProperty()->AddFragmentShaderReplacement(
+      "//VTK::Depth::Impl", true, "// no depth hook\n", false);
+    Errors = 0;
+    Messages.clear();
+    renWin->Render();
+    renWin->Render();
+    int coveredHookless = 0;
+    Measure(renWin, renderer, origin, coveredHookless, error);
+    const int hookErrors = Errors;
+    const bool named = Messages.find("//VTK::Depth::Impl") != std::string::npos;
+    actor->GetShaderProperty()->ClearAllFragmentShaderReplacements();
+    renWin->Render();
+    glOk("a template without a hook");
+    int coveredBack = 0;
+    Measure(renWin, renderer, origin, coveredBack, error);
+    std::cout << "missing hook: " << hookErrors << " errors (hook named: " << named << "), "
+              << coveredHookless << " pixels; restored: " << coveredBack << " pixels\n";
+    if (hookErrors != 1 || !named || coveredHookless != 0 || coveredBack < coveredOrigin / 2)
+    {
+      std::cerr << "a missing shader hook is not reported\n";
       ++failures;
     }
     mapper->SetInputData(nullptr);
