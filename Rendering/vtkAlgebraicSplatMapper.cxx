@@ -387,7 +387,8 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
         points->GetTuple(i, p);
         normals->GetTuple(i, nn);
         tangents->GetTuple(i, t);
-        const double h = size->GetTuple1(i), r = radius->GetTuple1(i);
+        // GetComponent, not GetTuple1: the latter shares one buffer between threads.
+        const double h = size->GetComponent(i, 0), r = radius->GetComponent(i, 0);
         bool ok = h > 0.0 && r > 0.0 && std::isfinite(h) && std::isfinite(r) &&
           vtkMath::Norm(nn) > 0.0 && vtkMath::Norm(t) > 0.0;
         for (int k = 0; k < 3; ++k)
@@ -401,9 +402,9 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
           ok = ok && std::isfinite(value);
           c[k / 4]->SetTypedComponent(i, k % 4, static_cast<float>(value));
         }
-        const int level = lod ? static_cast<int>(lod->GetTuple1(i)) : 0;
+        const int level = lod ? static_cast<int>(lod->GetComponent(i, 0)) : 0;
         const double s = quality && level >= 0 && level < quality->GetNumberOfTuples()
-          ? quality->GetTuple1(level)
+          ? quality->GetComponent(level, 0)
           : 1.0;
         // An invalid splat gets a zero radius: the geometry shader drops it.
         sizes->SetTypedComponent(i, 0, ok ? static_cast<float>(h) : 1.0f);
