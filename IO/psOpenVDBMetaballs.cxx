@@ -119,47 +119,6 @@ struct Particles
 } // namespace
 
 //------------------------------------------------------------------------------
-BallArrays ExtractBalls(vtkPointSet* input,
-  const std::string& radiusName,
-  double radius,
-  double scale,
-  const std::string& strengthName,
-  MetaballKernel kernel,
-  double threshold)
-{
-  BallArrays b;
-  const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
-  vtkPointData* pd = input ? input->GetPointData() : nullptr;
-  vtkDataArray* radii = pd ? pd->GetArray(radiusName.c_str()) : nullptr;
-  vtkDataArray* strengths =
-    pd && !strengthName.empty() ? pd->GetArray(strengthName.c_str()) : nullptr;
-  b.MissingStrengths = !strengthName.empty() && !strengths;
-  b.Centres.resize(3 * static_cast<size_t>(n));
-  b.Radii.resize(static_cast<size_t>(n));
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    input->GetPoint(i, &b.Centres[3 * i]);
-    // A multi-component radius array (vtkPDBReader's) holds the radius first.
-    b.Radii[i] = scale * (radii ? radii->GetComponent(i, 0) : radius);
-  }
-  if (strengths)
-  {
-    b.Strengths.resize(static_cast<size_t>(n));
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      b.Strengths[i] = strengths->GetComponent(i, 0);
-    }
-  }
-  b.Set.Centers = b.Centres.data();
-  b.Set.Radii = b.Radii.data();
-  b.Set.Strengths = strengths ? b.Strengths.data() : nullptr;
-  b.Set.Count = n;
-  b.Set.Kernel = kernel;
-  b.Set.Threshold = threshold;
-  return b;
-}
-
-//------------------------------------------------------------------------------
 std::vector<std::string> BallWarnings(const BallArrays& arrays,
   const BallSummary& balls,
   const std::string& strengthName)

@@ -19,6 +19,7 @@
 #ifndef psOpenVDBMetaballs_h
 #define psOpenVDBMetaballs_h
 
+#include "psBallExtraction.h"
 #include "psMetaball.h"
 #include "vtkSmartPointer.h"
 
@@ -32,25 +33,6 @@ class vtkPolyData;
 
 namespace pointsurfaces
 {
-/** A vtkPointSet's balls as spans for psMetaball, owning their storage. */
-struct BallArrays
-{
-  std::vector<double> Centres, Radii, Strengths;
-  MetaballSet Set;
-  bool MissingStrengths = false; ///< a strength array was named but not found
-};
-/**
- * Centres, radii (the array's first component, or `radius`, times `scale`)
- * and strengths (when `strengthName` is not empty) of `input`.
- */
-BallArrays ExtractBalls(vtkPointSet* input,
-  const std::string& radiusName,
-  double radius,
-  double scale,
-  const std::string& strengthName,
-  MetaballKernel kernel,
-  double threshold);
-
 /** The balls usable in `set` (ValidBall), their bounds and smallest radius and sum of R^3. */
 struct BallSummary
 {

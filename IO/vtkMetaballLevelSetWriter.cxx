@@ -12,13 +12,29 @@
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
 vtkStandardNewMacro(vtkMetaballLevelSetWriter);
 
 //------------------------------------------------------------------------------
-vtkMetaballLevelSetWriter::vtkMetaballLevelSetWriter() = default;
+vtkMetaballLevelSetWriter::vtkMetaballLevelSetWriter()
+  : Field(vtkSmartPointer<vtkMetaballField>::New())
+{
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballLevelSetWriter::SetField(vtkMetaballField* field)
+{
+  vtkMetaballField::Assign(this->Field, field, this);
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkMetaballLevelSetWriter::GetMTime()
+{
+  return std::max(this->Superclass::GetMTime(), this->Field->GetMTime());
+}
 
 //------------------------------------------------------------------------------
 int vtkMetaballLevelSetWriter::FillInputPortInformation(int, vtkInformation* info)
@@ -47,23 +63,19 @@ void vtkMetaballLevelSetWriter::WriteData()
     return;
   }
 
-  pointsurfaces::BallArrays arrays = pointsurfaces::ExtractBalls(input,
-    this->RadiusArrayName,
-    this->Radius,
-    this->RadiusScale,
-    this->StrengthArrayName,
-    static_cast<pointsurfaces::MetaballKernel>(this->Kernel),
-    this->Threshold);
+  vtkMetaballField* field = this->Field;
+  const double threshold = field->GetThreshold();
+  pointsurfaces::BallArrays arrays = field->ExtractBalls(input);
   pointsurfaces::BallSummary balls = pointsurfaces::SummariseBalls(arrays.Set);
   this->NumberOfInvalidBalls = static_cast<vtkIdType>(balls.Invalid);
   for (const std::string& warning :
-    pointsurfaces::BallWarnings(arrays, balls, this->StrengthArrayName))
+    pointsurfaces::BallWarnings(arrays, balls, field->GetStrengthArrayName()))
   {
     vtkWarningMacro(<< warning);
   }
-  if (!std::isfinite(this->Threshold) || this->Threshold <= 0.0)
+  if (!std::isfinite(threshold) || threshold <= 0.0)
   {
-    vtkErrorMacro(<< "The threshold must be a positive number, not " << this->Threshold << ".");
+    vtkErrorMacro(<< "The threshold must be a positive number, not " << threshold << ".");
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
@@ -99,10 +111,10 @@ void vtkMetaballLevelSetWriter::WriteData()
     levelSet->setName(this->GridName);
     levelSet->setGridClass(openvdb::GRID_LEVEL_SET);
     levelSet->insertMeta("metaball_kernel",
-      openvdb::StringMetadata(this->Kernel == Quartic ? "quartic"
-          : this->Kernel == Gaussian                  ? "gaussian"
-                                                      : "wyvill"));
-    levelSet->insertMeta("metaball_threshold", openvdb::DoubleMetadata(this->Threshold));
+      openvdb::StringMetadata(field->GetKernel() == vtkMetaballField::Quartic ? "quartic"
+          : field->GetKernel() == vtkMetaballField::Gaussian                  ? "gaussian"
+                                                                              : "wyvill"));
+    levelSet->insertMeta("metaball_threshold", openvdb::DoubleMetadata(threshold));
     levelSet->insertMeta(
       "metaball_count", openvdb::Int64Metadata(static_cast<int64_t>(balls.Valid.size())));
     this->NumberOfActiveVoxels = static_cast<vtkIdType>(levelSet->activeVoxelCount());
@@ -126,12 +138,8 @@ void vtkMetaballLevelSetWriter::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "GridName: " << this->GridName << "\n";
-  os << indent << "Kernel: " << this->Kernel << "\n";
-  os << indent << "Threshold: " << this->Threshold << "\n";
-  os << indent << "RadiusArrayName: " << this->RadiusArrayName << "\n";
-  os << indent << "Radius: " << this->Radius << "\n";
-  os << indent << "RadiusScale: " << this->RadiusScale << "\n";
-  os << indent << "StrengthArrayName: " << this->StrengthArrayName << "\n";
+  os << indent << "Field:\n";
+  this->Field->PrintSelf(os, indent.GetNextIndent());
   os << indent << "VoxelSize: " << this->VoxelSize << "\n";
   os << indent << "HalfWidth: " << this->HalfWidth << "\n";
   os << indent << "MaximumVoxels: " << this->MaximumVoxels << "\n";

@@ -34,6 +34,8 @@
 #define vtkMetaballLevelSetWriter_h
 
 #include "PointSurfacesIOModule.h" // For export macro
+#include "vtkMetaballField.h"      // For the field
+#include "vtkSmartPointer.h"       // For the field
 #include "vtkWriter.h"
 
 #include <string> // For FileName
@@ -44,13 +46,6 @@ public:
   static vtkMetaballLevelSetWriter* New();
   vtkTypeMacro(vtkMetaballLevelSetWriter, vtkWriter);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  enum Kernels
-  {
-    Wyvill = 0,
-    Quartic = 1,
-    Gaussian = 2
-  };
 
   ///@{
   /** The .vdb file to write. Default: none. */
@@ -65,36 +60,18 @@ public:
   ///@}
 
   ///@{
-  /** The field's kernel, as vtkMetaballMapper's. Default Wyvill. */
-  vtkSetClampMacro(Kernel, int, Wyvill, Gaussian);
-  vtkGetMacro(Kernel, int);
+  /**
+   * The metaball field: kernel, threshold, radius array or constant radius,
+   * radius scale and strength array (see vtkMetaballField). Set one to share
+   * it, for example with the vtkMetaballMapper that draws the same balls;
+   * null restores a field of its own. Default: a field of its own.
+   */
+  void SetField(vtkMetaballField* field);
+  vtkMetaballField* GetField() { return this->Field; }
   ///@}
 
-  ///@{
-  /** The iso-value T. Default 0.5. */
-  vtkSetMacro(Threshold, double);
-  vtkGetMacro(Threshold, double);
-  ///@}
-
-  ///@{
-  /** Point array of support radii; when absent, Radius applies. Default "Radius", 1. */
-  vtkSetStdStringFromCharMacro(RadiusArrayName);
-  vtkGetCharFromStdStringMacro(RadiusArrayName);
-  vtkSetMacro(Radius, double);
-  vtkGetMacro(Radius, double);
-  ///@}
-
-  ///@{
-  /** Multiplies every radius. Default 1. */
-  vtkSetClampMacro(RadiusScale, double, 0.0, 1e30);
-  vtkGetMacro(RadiusScale, double);
-  ///@}
-
-  ///@{
-  /** Point array of strengths q_i; empty (the default): all 1. */
-  vtkSetStdStringFromCharMacro(StrengthArrayName);
-  vtkGetCharFromStdStringMacro(StrengthArrayName);
-  ///@}
+  /** Also the field's modification time. */
+  vtkMTimeType GetMTime() override;
 
   ///@{
   /** Voxel edge in world units; 0 (the default): automatic, see the class comment. */
@@ -130,12 +107,7 @@ protected:
 
   std::string FileName;
   std::string GridName = "surface";
-  int Kernel = Wyvill;
-  double Threshold = 0.5;
-  std::string RadiusArrayName = "Radius";
-  double Radius = 1.0;
-  double RadiusScale = 1.0;
-  std::string StrengthArrayName;
+  vtkSmartPointer<vtkMetaballField> Field;
   double VoxelSize = 0.0;
   double HalfWidth = 3.0;
   double MaximumVoxels = 2e8;

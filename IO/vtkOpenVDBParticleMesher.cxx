@@ -10,13 +10,29 @@
 
 #include "psOpenVDBMetaballs.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 vtkStandardNewMacro(vtkOpenVDBParticleMesher);
 
 //------------------------------------------------------------------------------
-vtkOpenVDBParticleMesher::vtkOpenVDBParticleMesher() = default;
+vtkOpenVDBParticleMesher::vtkOpenVDBParticleMesher()
+  : Field(vtkSmartPointer<vtkMetaballField>::New())
+{
+}
+
+//------------------------------------------------------------------------------
+void vtkOpenVDBParticleMesher::SetField(vtkMetaballField* field)
+{
+  vtkMetaballField::Assign(this->Field, field, this);
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkOpenVDBParticleMesher::GetMTime()
+{
+  return std::max(this->Superclass::GetMTime(), this->Field->GetMTime());
+}
 
 //------------------------------------------------------------------------------
 int vtkOpenVDBParticleMesher::FillInputPortInformation(int, vtkInformation* info)
@@ -39,23 +55,23 @@ int vtkOpenVDBParticleMesher::RequestData(vtkInformation*,
     vtkWarningMacro(<< "No balls in the input: the mesh is empty.");
     return 1;
   }
-  const auto kernel = static_cast<pointsurfaces::MetaballKernel>(this->Kernel);
-  if (!std::isfinite(this->Threshold) || this->Threshold <= 0.0)
+  pointsurfaces::BallRule rule = this->Field->GetRule();
+  const auto kernel = rule.Kernel;
+  const double threshold = rule.Threshold;
+  if (!std::isfinite(threshold) || threshold <= 0.0)
   {
-    vtkErrorMacro(<< "The threshold must be a positive number, not " << this->Threshold << ".");
+    vtkErrorMacro(<< "The threshold must be a positive number, not " << threshold << ".");
     return 1;
   }
-  pointsurfaces::BallArrays arrays = pointsurfaces::ExtractBalls(input,
-    this->RadiusArrayName,
-    this->Radius,
-    this->RadiusScale,
-    this->Method == MetaballField ? this->StrengthArrayName : "",
-    kernel,
-    this->Threshold);
+  const std::string strengthName = rule.StrengthArrayName;
+  if (this->Method != MetaballField)
+  {
+    rule.StrengthArrayName.clear(); // spheres have no strengths
+  }
+  pointsurfaces::BallArrays arrays = pointsurfaces::ExtractBalls(input, rule);
   pointsurfaces::BallSummary balls = pointsurfaces::SummariseBalls(arrays.Set);
   this->NumberOfInvalidBalls = static_cast<vtkIdType>(balls.Invalid);
-  for (const std::string& warning :
-    pointsurfaces::BallWarnings(arrays, balls, this->StrengthArrayName))
+  for (const std::string& warning : pointsurfaces::BallWarnings(arrays, balls, strengthName))
   {
     vtkWarningMacro(<< warning);
   }
@@ -91,7 +107,7 @@ int vtkOpenVDBParticleMesher::RequestData(vtkInformation*,
     else
     {
       // Each sphere has the radius at which its lone ball reaches T.
-      const double iso = pointsurfaces::LoneBallIsoRadius(kernel, this->Threshold);
+      const double iso = pointsurfaces::LoneBallIsoRadius(kernel, threshold);
       std::vector<double> radius(arrays.Radii);
       for (double& r : radius)
       {
@@ -127,12 +143,8 @@ void vtkOpenVDBParticleMesher::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Method: " << (this->Method == Spheres ? "Spheres" : "MetaballField") << "\n";
-  os << indent << "Kernel: " << this->Kernel << "\n";
-  os << indent << "Threshold: " << this->Threshold << "\n";
-  os << indent << "RadiusArrayName: " << this->RadiusArrayName << "\n";
-  os << indent << "Radius: " << this->Radius << "\n";
-  os << indent << "RadiusScale: " << this->RadiusScale << "\n";
-  os << indent << "StrengthArrayName: " << this->StrengthArrayName << "\n";
+  os << indent << "Field:\n";
+  this->Field->PrintSelf(os, indent.GetNextIndent());
   os << indent << "VoxelSize: " << this->VoxelSize << "\n";
   os << indent << "Adaptivity: " << this->Adaptivity << "\n";
   os << indent << "MaximumVoxels: " << this->MaximumVoxels << "\n";

@@ -32,7 +32,9 @@
 #define vtkOpenVDBParticleMesher_h
 
 #include "PointSurfacesIOModule.h" // For export macro
+#include "vtkMetaballField.h"      // For the field
 #include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h" // For the field
 
 #include <string> // For array names
 
@@ -48,12 +50,6 @@ public:
     Spheres = 0,
     MetaballField = 1
   };
-  enum Kernels
-  {
-    Wyvill = 0,
-    Quartic = 1,
-    Gaussian = 2
-  };
 
   ///@{
   /** Spheres (OpenVDB's ParticlesToLevelSet) or MetaballField. Default Spheres. */
@@ -62,32 +58,18 @@ public:
   ///@}
 
   ///@{
-  /** The field's kernel and iso-value T, as vtkMetaballMapper's. Default Wyvill, 0.5. */
-  vtkSetClampMacro(Kernel, int, Wyvill, Gaussian);
-  vtkGetMacro(Kernel, int);
-  vtkSetMacro(Threshold, double);
-  vtkGetMacro(Threshold, double);
+  /**
+   * The metaball field: kernel, threshold, radius array or constant radius,
+   * radius scale and strength array, the strengths for MetaballField only (see vtkMetaballField). Set one to share
+   * it, for example with the vtkMetaballMapper that draws the same balls;
+   * null restores a field of its own. Default: a field of its own.
+   */
+  void SetField(vtkMetaballField* field);
+  vtkMetaballField* GetField() { return this->Field; }
   ///@}
 
-  ///@{
-  /** Point array of support radii; when absent, Radius applies. Default "Radius", 1. */
-  vtkSetStdStringFromCharMacro(RadiusArrayName);
-  vtkGetCharFromStdStringMacro(RadiusArrayName);
-  vtkSetMacro(Radius, double);
-  vtkGetMacro(Radius, double);
-  ///@}
-
-  ///@{
-  /** Multiplies every radius. Default 1. */
-  vtkSetClampMacro(RadiusScale, double, 0.0, 1e30);
-  vtkGetMacro(RadiusScale, double);
-  ///@}
-
-  ///@{
-  /** Point array of strengths q_i (MetaballField only); empty (the default): all 1. */
-  vtkSetStdStringFromCharMacro(StrengthArrayName);
-  vtkGetCharFromStdStringMacro(StrengthArrayName);
-  ///@}
+  /** Also the field's modification time. */
+  vtkMTimeType GetMTime() override;
 
   ///@{
   /** Voxel edge in world units; 0 (the default): a tenth of the smallest radius. */
@@ -124,12 +106,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int Method = Spheres;
-  int Kernel = Wyvill;
-  double Threshold = 0.5;
-  std::string RadiusArrayName = "Radius";
-  double Radius = 1.0;
-  double RadiusScale = 1.0;
-  std::string StrengthArrayName;
+  vtkSmartPointer<vtkMetaballField> Field;
   double VoxelSize = 0.0;
   double Adaptivity = 0.0;
   double MaximumVoxels = 2e8;

@@ -31,6 +31,8 @@
 #include "vtkPointSet.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
 #include "vtkScalarsToColors.h"
 #include "vtkShaderProgram.h"
 #include "vtkShaderStorageBuffer.h"
@@ -38,6 +40,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -86,8 +89,21 @@ struct vtkMetaballMapper::Internals
 
 //------------------------------------------------------------------------------
 vtkMetaballMapper::vtkMetaballMapper()
-  : Impl(new Internals)
+  : Field(vtkSmartPointer<vtkMetaballField>::New())
+  , Impl(new Internals)
 {
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballMapper::SetField(vtkMetaballField* field)
+{
+  vtkMetaballField::Assign(this->Field, field, this);
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkMetaballMapper::GetMTime()
+{
+  return std::max(this->Superclass::GetMTime(), this->Field->GetMTime());
 }
 
 //------------------------------------------------------------------------------
@@ -110,14 +126,7 @@ void vtkMetaballMapper::ComputeBounds()
     return;
   }
   input->GetPoints()->GetBounds(this->Bounds);
-  double pad = this->Radius * this->RadiusScale;
-  vtkDataArray* radii = input->GetPointData()->GetArray(this->RadiusArrayName.c_str());
-  if (radii)
-  {
-    double range[2];
-    radii->GetRange(range, 0);
-    pad = std::isfinite(range[1]) ? range[1] * this->RadiusScale : 0.0;
-  }
+  const double pad = this->Field->GetLargestRadius(input);
   for (int k = 0; k < 3; ++k)
   {
     this->Bounds[2 * k] -= pad;
@@ -148,15 +157,6 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
     in.Count = 0;
     return false;
   }
-  vtkPointData* pd = input->GetPointData();
-  vtkDataArray* radii = pd->GetArray(this->RadiusArrayName.c_str());
-  vtkDataArray* strengths =
-    this->StrengthArrayName.empty() ? nullptr : pd->GetArray(this->StrengthArrayName.c_str());
-  if (!this->StrengthArrayName.empty() && !strengths)
-  {
-    vtkWarningMacro(<< "No point array \"" << this->StrengthArrayName
-                    << "\" for the strengths: all balls have strength 1.");
-  }
   // Radii grow with the actor's largest axis scale.
   double scale = 1.0;
   if (!act->GetIsIdentity())
@@ -170,6 +170,14 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
           m->GetElement(1, a) * m->GetElement(1, a) + m->GetElement(2, a) * m->GetElement(2, a)));
     }
   }
+  const pointsurfaces::BallArrays extracted = this->Field->ExtractBalls(input, scale);
+  if (extracted.MissingStrengths)
+  {
+    vtkWarningMacro(<< "No point array \"" << this->Field->GetStrengthArrayName()
+                    << "\" for the strengths: all balls have strength 1.");
+  }
+  const pointsurfaces::MetaballSet& set = extracted.Set;
+  const bool strengths = set.Strengths != nullptr;
   double bounds[6];
   input->GetPoints()->GetBounds(bounds);
   for (int k = 0; k < 3; ++k)
@@ -177,36 +185,53 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
     const double c = 0.5 * (bounds[2 * k] + bounds[2 * k + 1]);
     in.Shift[k] = std::isfinite(c) ? c : 0.0;
   }
+  // Float, relative to the centre; an invalid ball gets radius 0, which the
+  // grid skips.
   std::vector<float> balls(4 * n);
   std::vector<float> q(strengths ? n : 1, 1.0f);
-  vtkIdType invalid = 0;
-  double minRadius = std::numeric_limits<double>::max();
-  for (vtkIdType i = 0; i < n; ++i)
+  std::atomic<vtkIdType> invalidCount(0);
+  struct Smallest
   {
-    double p[3];
-    input->GetPoint(i, p);
-    const double r = scale * this->RadiusScale * (radii ? radii->GetComponent(i, 0) : this->Radius);
-    bool ok = std::isfinite(r) && r > 0.0;
-    for (int k = 0; k < 3; ++k)
+    double Value = std::numeric_limits<double>::max();
+  };
+  vtkSMPThreadLocal<Smallest> smallest;
+  vtkSMPTools::For(0,
+    n,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      balls[4 * i + k] = static_cast<float>(p[k] - in.Shift[k]);
-      ok = ok && std::isfinite(p[k]);
-    }
-    balls[4 * i + 3] = static_cast<float>(r);
-    if (strengths)
-    {
-      q[i] = static_cast<float>(strengths->GetComponent(i, 0));
-      ok = ok && std::isfinite(q[i]);
-    }
-    if (!ok)
-    {
-      balls[4 * i + 3] = 0.0f; // the grid skips it
-      ++invalid;
-    }
-    else
-    {
-      minRadius = std::min(minRadius, r);
-    }
+      vtkIdType bad = 0;
+      double& least = smallest.Local().Value;
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const double r = set.Radii[i];
+        for (int k = 0; k < 3; ++k)
+        {
+          balls[4 * i + k] = static_cast<float>(set.Centers[3 * i + k] - in.Shift[k]);
+        }
+        balls[4 * i + 3] = static_cast<float>(r);
+        if (strengths)
+        {
+          q[i] = static_cast<float>(set.Strengths[i]);
+        }
+        // Usable as psMetaball's ValidBall says, with a strength that
+        // stays finite in float.
+        if (!pointsurfaces::ValidBall(set, i) || (strengths && !std::isfinite(q[i])))
+        {
+          balls[4 * i + 3] = 0.0f;
+          ++bad;
+        }
+        else
+        {
+          least = std::min(least, r);
+        }
+      }
+      invalidCount += bad;
+    });
+  const vtkIdType invalid = invalidCount;
+  double minRadius = std::numeric_limits<double>::max();
+  for (const Smallest& s : smallest)
+  {
+    minRadius = std::min(minRadius, s.Value);
   }
   in.MinRadius = invalid < n ? minRadius : 1.0;
   if (invalid > 0)
@@ -237,7 +262,7 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
   bool ok = in.Balls->Upload(balls.data(), std::max<size_t>(balls.size(), 4) * sizeof(float));
   ok = ok && in.Colors->Upload(colors.data(), colors.size() * sizeof(unsigned int));
   ok = ok && in.Strengths->Upload(q.data(), q.size() * sizeof(float));
-  in.HasStrengths = strengths != nullptr;
+  in.HasStrengths = strengths;
   in.Count = ok ? n : 0;
   this->NumberOfInvalidBalls = invalid;
   ++this->NumberOfUploads;
@@ -324,7 +349,7 @@ void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   }
   const std::string defines = "#define TILE_SIZE " + std::to_string(this->TileSize) +
     "\n#define MAX_SHARED " + std::to_string(MaxShared) + "\n#define KERNEL " +
-    std::to_string(this->Kernel) + "\n";
+    std::to_string(this->Field->GetKernel()) + "\n";
   if (defines != in.RayCastDefines)
   {
     std::string source = vtkMetaballRayCastCS;
@@ -357,7 +382,7 @@ void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   in.RayCast->SetUniformi("slabs", this->Slabs);
   in.RayCast->SetUniformf("slabNear", static_cast<float>(in.Grid->GetSlabPlane(0)));
   in.RayCast->SetUniformf("slabFar", static_cast<float>(in.Grid->GetSlabPlane(this->Slabs)));
-  in.RayCast->SetUniformf("threshold", static_cast<float>(this->Threshold));
+  in.RayCast->SetUniformf("threshold", static_cast<float>(this->Field->GetThreshold()));
   in.RayCast->SetUniformf("stepScale", static_cast<float>(this->StepScale));
   in.RayCast->SetUniformi("bisections", this->Bisections);
   in.RayCast->SetUniformi("useStrengths", in.HasStrengths ? 1 : 0);
@@ -543,7 +568,7 @@ int vtkMetaballMapper::CastShadows(vtkRenderer* ren,
   }
   const float clear[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
   glClearTexImage(in.ShadowImage->GetHandle(), 0, GL_RGBA, GL_FLOAT, clear);
-  const std::string defines = "#define KERNEL " + std::to_string(this->Kernel) + "\n";
+  const std::string defines = "#define KERNEL " + std::to_string(this->Field->GetKernel()) + "\n";
   if (defines != in.ShadowDefines)
   {
     std::string source = vtkMetaballShadowCS;
@@ -660,7 +685,7 @@ int vtkMetaballMapper::CastShadows(vtkRenderer* ren,
     in.Shadow->SetUniformi("slabs", 16);
     in.Shadow->SetUniformf("slabNear", static_cast<float>(in.LightGrid->GetSlabPlane(0)));
     in.Shadow->SetUniformf("slabFar", static_cast<float>(in.LightGrid->GetSlabPlane(16)));
-    in.Shadow->SetUniformf("threshold", static_cast<float>(this->Threshold));
+    in.Shadow->SetUniformf("threshold", static_cast<float>(this->Field->GetThreshold()));
     in.Shadow->SetUniformf("stepScale", static_cast<float>(this->StepScale));
     in.Shadow->SetUniformf("selfOffset", static_cast<float>(0.05 * in.MinRadius));
     in.Shadow->SetUniformi("lightIndex", index);
@@ -744,12 +769,8 @@ void vtkMetaballMapper::ReleaseGraphicsResources(vtkWindow* win)
 void vtkMetaballMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Kernel: " << this->Kernel << "\n";
-  os << indent << "Threshold: " << this->Threshold << "\n";
-  os << indent << "RadiusArrayName: " << this->RadiusArrayName << "\n";
-  os << indent << "Radius: " << this->Radius << "\n";
-  os << indent << "RadiusScale: " << this->RadiusScale << "\n";
-  os << indent << "StrengthArrayName: " << this->StrengthArrayName << "\n";
+  os << indent << "Field:\n";
+  this->Field->PrintSelf(os, indent.GetNextIndent());
   os << indent << "TileSize: " << this->TileSize << "\n";
   os << indent << "Slabs: " << this->Slabs << "\n";
   os << indent << "StepScale: " << this->StepScale << "\n";

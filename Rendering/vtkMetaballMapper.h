@@ -34,10 +34,11 @@
 #define vtkMetaballMapper_h
 
 #include "PointSurfacesRenderingModule.h" // For export macro
+#include "vtkMetaballField.h"             // For the field
 #include "vtkOpenGLPolyDataMapper.h"
+#include "vtkSmartPointer.h" // For the field
 
 #include <memory> // For the implementation
-#include <string> // For array names
 
 class vtkFloatArray;
 class vtkMatrix4x4;
@@ -50,48 +51,21 @@ public:
   vtkTypeMacro(vtkMetaballMapper, vtkOpenGLPolyDataMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  enum Kernels
-  {
-    Wyvill = 0,
-    Quartic = 1,
-    Gaussian = 2
-  };
-
-  ///@{
-  /** The field's kernel. Default Wyvill. */
-  vtkSetClampMacro(Kernel, int, Wyvill, Gaussian);
-  vtkGetMacro(Kernel, int);
-  ///@}
-
-  ///@{
-  /** The iso-value T. Default 0.5. */
-  vtkSetMacro(Threshold, double);
-  vtkGetMacro(Threshold, double);
-  ///@}
-
-  ///@{
-  /** Point array of support radii; when absent, Radius applies. Default "Radius". */
-  vtkSetStdStringFromCharMacro(RadiusArrayName);
-  vtkGetCharFromStdStringMacro(RadiusArrayName);
-  vtkSetMacro(Radius, double);
-  vtkGetMacro(Radius, double);
-  ///@}
-
   ///@{
   /**
-   * Multiplies every radius, from the array or constant. With Wyvill's kernel
-   * and T = 0.5 a lone ball's surface lies at half its support radius, so 2
-   * turns van der Waals radii into spheres of those radii. Default 1.
+   * The metaball field: kernel, threshold T, radius array or constant
+   * radius, radius scale and strength array (see vtkMetaballField). Set one
+   * to share it with vtkMetaballGhostBalls, vtkMetaballLevelSetWriter or
+   * vtkOpenVDBParticleMesher, so that they read the same balls; null
+   * restores a field of its own. Default: a field of its own (Wyvill's
+   * kernel, T = 0.5, radii from the "Radius" array or 1).
    */
-  vtkSetClampMacro(RadiusScale, double, 0.0, 1e30);
-  vtkGetMacro(RadiusScale, double);
+  void SetField(vtkMetaballField* field);
+  vtkMetaballField* GetField() { return this->Field; }
   ///@}
 
-  ///@{
-  /** Point array of strengths q_i; empty (the default): all 1. */
-  vtkSetStdStringFromCharMacro(StrengthArrayName);
-  vtkGetCharFromStdStringMacro(StrengthArrayName);
-  ///@}
+  /** Also the field's and the lookup table's modification times. */
+  vtkMTimeType GetMTime() override;
 
   ///@{
   /** Screen tile side of the grid, 8 or 16 pixels (one work group each). Default 16. */
@@ -184,12 +158,7 @@ protected:
     int width,
     int height);
 
-  int Kernel = Wyvill;
-  double Threshold = 0.5;
-  std::string RadiusArrayName = "Radius";
-  double Radius = 1.0;
-  double RadiusScale = 1.0;
-  std::string StrengthArrayName;
+  vtkSmartPointer<vtkMetaballField> Field;
   int TileSize = 16;
   int Slabs = 16;
   double StepScale = 0.1;

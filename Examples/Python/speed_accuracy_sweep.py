@@ -65,8 +65,8 @@ def main():
 
     mapper = pointsurfaces.vtkMetaballMapper()
     mapper.SetInputConnection(reader.GetOutputPort())
-    mapper.SetRadiusArrayName("radius")
-    mapper.SetRadiusScale(2.0)
+    mapper.GetField().SetRadiusArrayName("radius")
+    mapper.GetField().SetRadiusScale(2.0)
     mapper.SetColorModeToDirectScalars()
     mapper.SetScalarModeToUsePointFieldData()
     mapper.SelectColorArray("rgb_colors")

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMetaballGhostBalls.h"
 
+#include "psBallExtraction.h"
 #include "psMetaball.h"
 
 #include "vtkCellArray.h"
@@ -23,6 +24,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <string>
@@ -185,8 +187,21 @@ std::vector<vtkIdType> AllIds(vtkIdType n)
 
 //------------------------------------------------------------------------------
 vtkMetaballGhostBalls::vtkMetaballGhostBalls()
+  : Field(vtkSmartPointer<vtkMetaballField>::New())
 {
   this->SetController(vtkMultiProcessController::GetGlobalController());
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballGhostBalls::SetField(vtkMetaballField* field)
+{
+  vtkMetaballField::Assign(this->Field, field, this);
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkMetaballGhostBalls::GetMTime()
+{
+  return std::max(this->Superclass::GetMTime(), this->Field->GetMTime());
 }
 
 //------------------------------------------------------------------------------
@@ -259,6 +274,7 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
   // Our own balls: every point not flagged as another process's duplicate;
   // their centres and radii only when there are others to send them to.
   const int ranks = this->Controller ? this->Controller->GetNumberOfProcesses() : 1;
+  const pointsurfaces::BallRule rule = this->Field->GetRule();
   std::vector<std::vector<vtkIdType>> own(leaves.size());
   std::vector<double> centres, radii;
   bool negative = false, noRadii = false;
@@ -268,11 +284,9 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
     vtkPointData* pd = leaf->GetPointData();
     auto* ghosts =
       vtkUnsignedCharArray::SafeDownCast(pd->GetArray(vtkDataSetAttributes::GhostArrayName()));
-    vtkDataArray* r =
-      this->RadiusArrayName.empty() ? nullptr : pd->GetArray(this->RadiusArrayName.c_str());
-    vtkDataArray* q =
-      this->StrengthArrayName.empty() ? nullptr : pd->GetArray(this->StrengthArrayName.c_str());
-    noRadii = noRadii || (!this->RadiusArrayName.empty() && !r && leaf->GetNumberOfPoints() > 0);
+    vtkDataArray* r = pointsurfaces::RadiusArray(leaf, rule);
+    vtkDataArray* q = pointsurfaces::StrengthArray(leaf, rule);
+    noRadii = noRadii || (!rule.RadiusArrayName.empty() && !r && leaf->GetNumberOfPoints() > 0);
     for (vtkIdType i = 0; i < leaf->GetNumberOfPoints(); ++i)
     {
       if (Duplicate(ghosts, i))
@@ -287,14 +301,14 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
       double p[3];
       leaf->GetPoint(i, p);
       centres.insert(centres.end(), p, p + 3);
-      radii.push_back(this->RadiusScale * (r ? r->GetComponent(i, 0) : this->Radius));
+      radii.push_back(pointsurfaces::SupportRadius(r, i, rule));
       negative = negative || (q && q->GetComponent(i, 0) < 0.0);
     }
   }
   if (noRadii)
   {
-    vtkWarningMacro(<< "No point array \"" << this->RadiusArrayName
-                    << "\" for the radii: every ball has radius " << this->Radius << ".");
+    vtkWarningMacro(<< "No point array \"" << rule.RadiusArrayName
+                    << "\" for the radii: every ball has radius " << rule.Radius << ".");
   }
   if (negative)
   {
@@ -449,9 +463,7 @@ void vtkMetaballGhostBalls::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Controller: " << this->Controller << "\n";
-  os << indent << "RadiusArrayName: " << this->RadiusArrayName << "\n";
-  os << indent << "Radius: " << this->Radius << "\n";
-  os << indent << "RadiusScale: " << this->RadiusScale << "\n";
-  os << indent << "StrengthArrayName: " << this->StrengthArrayName << "\n";
+  os << indent << "Field:\n";
+  this->Field->PrintSelf(os, indent.GetNextIndent());
   os << indent << "NumberOfGhostBalls: " << this->NumberOfGhostBalls << "\n";
 }

@@ -23,8 +23,8 @@
  * bound (the filter warns, and seams may show). Shadows see only a rank's
  * own and ghost balls: occluders further away on other ranks cast none.
  *
- * Radii are found as vtkMetaballMapper finds them (RadiusArrayName, else
- * Radius, times RadiusScale); give the filter the mapper's values. The
+ * Radii are found by the rule of vtkMetaballField, the one the mapper
+ * uses; give the filter the mapper's field (SetField). The
  * exchange is collective (an all-gather of boxes, then a gather to each
  * rank in turn), so every rank must execute the filter.
  *
@@ -47,8 +47,8 @@
 
 #include "PointSurfacesFiltersParallelModule.h" // For export macro
 #include "vtkDataObjectAlgorithm.h"
-
-#include <string> // For the array names
+#include "vtkMetaballField.h" // For the field
+#include "vtkSmartPointer.h"  // For the field
 
 class vtkMultiProcessController;
 
@@ -66,28 +66,20 @@ public:
   ///@}
 
   ///@{
-  /** Point array of support radii, as vtkMetaballMapper's; empty: Radius for all. */
-  vtkSetStdStringFromCharMacro(RadiusArrayName);
-  vtkGetCharFromStdStringMacro(RadiusArrayName);
+  /**
+   * The metaball field whose balls are exchanged: their radii (radius array
+   * or constant radius, times the radius scale) decide which balls reach
+   * other processes, and negative strengths are warned about (see
+   * vtkMetaballField). Share the mapper's field (SetField) so that both
+   * read the same balls; null restores a field of its own. Default: a field
+   * of its own.
+   */
+  void SetField(vtkMetaballField* field);
+  vtkMetaballField* GetField() { return this->Field; }
   ///@}
 
-  ///@{
-  /** Support radius when there is no radius array (default 1). */
-  vtkSetMacro(Radius, double);
-  vtkGetMacro(Radius, double);
-  ///@}
-
-  ///@{
-  /** Factor on every radius (default 1). */
-  vtkSetMacro(RadiusScale, double);
-  vtkGetMacro(RadiusScale, double);
-  ///@}
-
-  ///@{
-  /** Point array of strengths, checked for negative values only. */
-  vtkSetStdStringFromCharMacro(StrengthArrayName);
-  vtkGetCharFromStdStringMacro(StrengthArrayName);
-  ///@}
+  /** Also the field's modification time. */
+  vtkMTimeType GetMTime() override;
 
   /** Ghost balls this process received in the last update. */
   vtkGetMacro(NumberOfGhostBalls, vtkIdType);
@@ -105,10 +97,7 @@ protected:
     vtkInformationVector* outputVector) override;
 
   vtkMultiProcessController* Controller = nullptr;
-  std::string RadiusArrayName;
-  double Radius = 1.0;
-  double RadiusScale = 1.0;
-  std::string StrengthArrayName;
+  vtkSmartPointer<vtkMetaballField> Field;
   vtkIdType NumberOfGhostBalls = 0;
 
 private:

@@ -49,14 +49,15 @@ int main(int argc, char* argv[])
   vtkSmartPointer<vtkPolyData> balls;
   vtkNew<vtkMetaballMapper> mapper;
   vtkNew<vtkMetaballLevelSetWriter> levelSet;
+  // One field for both: the level set holds the surface that the window shows.
+  levelSet->SetField(mapper->GetField());
   if (ext == "vdb")
   {
     vtkNew<vtkOpenVDBPointsReader> reader;
     reader->SetFileName(input.c_str());
     reader->Update();
     balls = reader->GetOutput();
-    mapper->SetRadiusArrayName("pscale");
-    levelSet->SetRadiusArrayName("pscale");
+    mapper->GetField()->SetRadiusArrayName("pscale");
   }
   else if (ext == "pdb")
   {
@@ -66,13 +67,11 @@ int main(int argc, char* argv[])
     balls = reader->GetOutput();
     // Wyvill's kernel at T = 0.5 shows a lone atom at half its support: a
     // support of twice the van der Waals radius shows the atom at its radius.
-    mapper->SetRadiusArrayName("radius");
-    mapper->SetRadiusScale(2.0);
+    mapper->GetField()->SetRadiusArrayName("radius");
+    mapper->GetField()->SetRadiusScale(2.0);
     mapper->SetColorModeToDirectScalars();
     mapper->SetScalarModeToUsePointFieldData();
     mapper->SelectColorArray("rgb_colors");
-    levelSet->SetRadiusArrayName("radius");
-    levelSet->SetRadiusScale(2.0);
   }
   else
   {
@@ -86,15 +85,14 @@ int main(int argc, char* argv[])
     std::cerr << "ParticleMetaballs: no points in " << input << "\n";
     return EXIT_FAILURE;
   }
-  if (!balls->GetPointData()->GetArray(mapper->GetRadiusArrayName()))
+  if (!balls->GetPointData()->GetArray(mapper->GetField()->GetRadiusArrayName()))
   {
     double b[6];
     balls->GetBounds(b);
     const double extent = std::max({ b[1] - b[0], b[3] - b[2], b[5] - b[4] });
     const double radius =
       1.6 * extent * std::cbrt(8.0 / static_cast<double>(balls->GetNumberOfPoints()));
-    mapper->SetRadius(radius);
-    levelSet->SetRadius(radius);
+    mapper->GetField()->SetRadius(radius);
   }
   mapper->SetInputData(balls);
 

@@ -84,8 +84,8 @@ int TestMetaballLevelSetWriter(int, char*[])
   {
     for (double offset : { 0.0, 1e7 })
     {
-      writer->SetKernel(kernel);
-      writer->SetThreshold(0.5);
+      writer->GetField()->SetKernel(kernel);
+      writer->GetField()->SetThreshold(0.5);
       writer->SetVoxelSize(0.0);
       const std::string path = write(Balls({ offset, -offset, 3.0 }, { radius }), "ball.vdb");
       Check(Errors == 0 && Warnings == 0, "one ball writes cleanly");
@@ -135,8 +135,8 @@ int TestMetaballLevelSetWriter(int, char*[])
       radii.push_back(r(rng));
       strengths.push_back(q(rng));
     }
-    writer->SetKernel(vtkMetaballLevelSetWriter::Wyvill);
-    writer->SetStrengthArrayName("Strength");
+    writer->GetField()->SetKernel(vtkMetaballField::Wyvill);
+    writer->GetField()->SetStrengthArrayName("Strength");
     writer->SetVoxelSize(0.04);
     const std::string path = write(Balls(xyz, radii, strengths), "cluster.vdb");
     Check(Errors == 0 && Warnings == 0, "cluster writes cleanly");
@@ -188,7 +188,7 @@ int TestMetaballLevelSetWriter(int, char*[])
               << " rays hit, worst zero-crossing error " << worst << " (" << worst / 0.04
               << " voxel)\n";
     Check(hits > 100 && worst < 0.25 * 0.04, "zero crossings within 0.25 voxel of the reference");
-    writer->SetStrengthArrayName(nullptr);
+    writer->GetField()->SetStrengthArrayName(nullptr);
   }
 
   // Bad input.
@@ -217,10 +217,10 @@ int TestMetaballLevelSetWriter(int, char*[])
       "radii 1e-3 to 1e2, automatic voxel: coarsened within budget, one warning");
     writer->SetMaximumVoxels(2e8);
 
-    writer->SetThreshold(0.0);
+    writer->GetField()->SetThreshold(0.0);
     write(Balls({ 0, 0, 0 }, { 1.0 }), "zero-threshold.vdb");
     Check(Errors == 1, "threshold 0: one error");
-    writer->SetThreshold(0.5);
+    writer->GetField()->SetThreshold(0.5);
   }
   return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }

@@ -127,7 +127,7 @@ int TestOpenVDBParticleMesher(int, char*[])
       strengths.push_back(q(rng));
     }
     mesher->SetMethod(vtkOpenVDBParticleMesher::MetaballField);
-    mesher->SetStrengthArrayName("Strength");
+    mesher->GetField()->SetStrengthArrayName("Strength");
     mesher->SetVoxelSize(0.04);
     vtkPolyData* mesh = run(Balls(xyz, radii, strengths));
     pointsurfaces::MetaballSet set;
@@ -153,7 +153,7 @@ int TestOpenVDBParticleMesher(int, char*[])
     Check(Errors == 0 && Warnings == 0 && p99 < 0.15 * 0.04 && worst < 1.0 * 0.04,
       "cluster vertices within 0.15 voxel of the metaball surface (p99), 1 voxel (all)");
     Check(OutwardFraction(mesh) > 0.999, "cluster polygons wound outward");
-    mesher->SetStrengthArrayName(nullptr);
+    mesher->GetField()->SetStrengthArrayName(nullptr);
   }
 
   // Spheres: two overlapping balls mesh as the union of their iso-spheres.

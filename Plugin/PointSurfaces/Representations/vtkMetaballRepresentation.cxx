@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMetaballRepresentation.h"
 
+#include "vtkMetaballField.h"
 #include "vtkMetaballGhostBalls.h"
 #include "vtkMetaballMapper.h"
 #include "vtkMultiProcessController.h"
@@ -17,12 +18,14 @@ vtkMetaballRepresentation::vtkMetaballRepresentation()
   // Replace the superclass's mappers, then let it wire them up again, with
   // the ghost exchange.
   this->Ghosts = vtkMetaballGhostBalls::New();
+  this->Ghosts->SetField(this->Field); // one field: the ghosts follow the mapper's radii
   this->Mapper->Delete();
   this->LODMapper->Delete();
   vtkMapper** slots[2] = { &this->Mapper, &this->LODMapper };
   for (int k = 0; k < 2; ++k)
   {
     this->Balls[k] = vtkMetaballMapper::New();
+    this->Balls[k]->SetField(this->Field);
     vtkPointSurfacesDelegatingMapper* mapper = vtkPointSurfacesDelegatingMapper::New();
     mapper->SetDelegate(this->Balls[k]);
     *slots[k] = mapper;
@@ -96,16 +99,22 @@ int vtkMetaballRepresentation::ProcessViewRequest(vtkInformationRequestKey* requ
     PS_FORWARD_TO_MAPPERS(setter)                                                                  \
     this->Modified();                                                                              \
   }
+// The field is shared by both mappers and the ghost exchange.
+#define PS_FORWARD_FIELD(name, setter, type)                                                       \
+  void vtkMetaballRepresentation::SetMetaball##name(type value)                                    \
+  {                                                                                                \
+    this->Field->Set##setter(value);                                                               \
+    this->Modified();                                                                              \
+  }
 // These also decide which balls reach other ranks: the data must update.
 #define PS_FORWARD_GHOSTS(name, setter, type)                                                      \
   void vtkMetaballRepresentation::SetMetaball##name(type value)                                    \
   {                                                                                                \
-    PS_FORWARD_TO_MAPPERS(setter)                                                                  \
-    this->Ghosts->Set##setter(value);                                                              \
+    this->Field->Set##setter(value);                                                               \
     this->MarkModified();                                                                          \
   }
-PS_FORWARD(Kernel, Kernel, int)
-PS_FORWARD(Threshold, Threshold, double)
+PS_FORWARD_FIELD(Kernel, Kernel, int)
+PS_FORWARD_FIELD(Threshold, Threshold, double)
 PS_FORWARD_GHOSTS(RadiusArray, RadiusArrayName, const char*)
 PS_FORWARD_GHOSTS(Radius, Radius, double)
 PS_FORWARD_GHOSTS(RadiusScale, RadiusScale, double)
@@ -118,6 +127,7 @@ PS_FORWARD(Shadows, Shadows, bool)
 #undef PS_FORWARD
 #undef PS_FORWARD_TO_MAPPERS
 #undef PS_FORWARD_GHOSTS
+#undef PS_FORWARD_FIELD
 
 //------------------------------------------------------------------------------
 void vtkMetaballRepresentation::PrintSelf(ostream& os, vtkIndent indent)

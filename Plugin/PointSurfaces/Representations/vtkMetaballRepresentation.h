@@ -29,6 +29,8 @@
 
 #include "PointSurfacesParaViewRepresentationsModule.h" // For export macro
 #include "vtkGeometryRepresentationWithFaces.h"
+#include "vtkMetaballField.h" // For the field
+#include "vtkNew.h"           // For the field
 
 class vtkMetaballGhostBalls;
 class vtkMetaballMapper;
@@ -42,7 +44,11 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /** Forwarded to both metaball mappers; see vtkMetaballMapper. */
+  /**
+   * Forwarded to the field that both metaball mappers and the ghost
+   * exchange share (see vtkMetaballField), or to both mappers (see
+   * vtkMetaballMapper).
+   */
   void SetMetaballKernel(int kernel);
   void SetMetaballThreshold(double threshold);
   void SetMetaballRadiusArray(const char* name);
@@ -78,6 +84,7 @@ protected:
   /** Opaque: no ordered compositing, whatever the colouring. */
   bool NeedsOrderedCompositing() override { return false; }
 
+  vtkNew<vtkMetaballField> Field; // shared by both mappers and the ghost exchange
   vtkMetaballMapper* Balls[2];
   vtkMetaballGhostBalls* Ghosts;
 

@@ -69,7 +69,7 @@ int TestMetaballMapperAccuracy(int, char*[])
   renWin->AddRenderer(renderer);
   vtkNew<vtkMetaballMapper> mapper;
   mapper->SetInputDataObject(poly);
-  mapper->SetStrengthArrayName("Strength");
+  mapper->GetField()->SetStrengthArrayName("Strength");
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
   renderer->AddActor(actor);
@@ -94,14 +94,14 @@ int TestMetaballMapperAccuracy(int, char*[])
   int failures = 0;
   for (int kernel = 0; kernel < 3; ++kernel)
   {
-    mapper->SetKernel(kernel);
+    mapper->GetField()->SetKernel(kernel);
     pointsurfaces::MetaballSet set;
     set.Centers = centres.data();
     set.Radii = radii.data();
     set.Strengths = strengths.data();
     set.Count = n;
     set.Kernel = static_cast<pointsurfaces::MetaballKernel>(kernel);
-    set.Threshold = mapper->GetThreshold();
+    set.Threshold = mapper->GetField()->GetThreshold();
 
     // The reference, once per kernel: a ray through every pixel centre.
     std::vector<pointsurfaces::RayHit> reference(size * size);

@@ -28,8 +28,8 @@ int TestMetaballMapperMolecule(int argc, char* argv[])
   reader->Update();
   vtkNew<vtkMetaballMapper> mapper;
   mapper->SetInputConnection(reader->GetOutputPort());
-  mapper->SetRadiusArrayName("radius");
-  mapper->SetRadiusScale(2.0);
+  mapper->GetField()->SetRadiusArrayName("radius");
+  mapper->GetField()->SetRadiusScale(2.0);
   mapper->SetColorModeToDirectScalars();
   mapper->SetScalarModeToUsePointFieldData();
   mapper->SelectColorArray("rgb_colors");

@@ -56,8 +56,8 @@ int TestMetaballMapperTwoBalls(int argc, char* argv[])
     mapper->SetScalarRange(0.0, 1.0);
     if (side == 1)
     {
-      mapper->SetKernel(vtkMetaballMapper::Quartic);
-      mapper->SetThreshold(0.3);
+      mapper->GetField()->SetKernel(vtkMetaballField::Quartic);
+      mapper->GetField()->SetThreshold(0.3);
     }
     vtkNew<vtkActor> blob;
     blob->SetMapper(mapper);

@@ -103,7 +103,7 @@ void Render(vtkPolyData* balls, vtkUnsignedCharArray* rgb, vtkFloatArray* depth)
 {
   vtkNew<vtkMetaballMapper> mapper;
   mapper->SetInputDataObject(balls);
-  mapper->SetRadiusArrayName("Radius");
+  mapper->GetField()->SetRadiusArrayName("Radius");
   mapper->SetScalarRange(-1.2, 1.2);
   vtkNew<vtkActor> actor;
   actor->SetMapper(mapper);
@@ -184,7 +184,7 @@ int TestMetaballGhostBalls(int argc, char* argv[])
   vtkSmartPointer<vtkPolyData> mine = MakeBalls(rank, ranks, false);
   vtkNew<vtkMetaballGhostBalls> ghosts;
   ghosts->SetInputDataObject(mine);
-  ghosts->SetRadiusArrayName("Radius");
+  ghosts->GetField()->SetRadiusArrayName("Radius");
   ghosts->Update();
   vtkPolyData* out = vtkPolyData::SafeDownCast(ghosts->GetOutputDataObject(0));
   const vtkIdType own = mine->GetNumberOfPoints();
@@ -283,7 +283,7 @@ int TestMetaballGhostBalls(int argc, char* argv[])
     blocks->SetBlock(2, vtkNew<vtkPolyData>());
     vtkNew<vtkMetaballGhostBalls> split;
     split->SetInputDataObject(blocks);
-    split->SetRadiusArrayName("Radius");
+    split->GetField()->SetRadiusArrayName("Radius");
     split->Update();
     auto* result = vtkMultiBlockDataSet::SafeDownCast(split->GetOutputDataObject(0));
     auto* leaf0 = result ? vtkPolyData::SafeDownCast(result->GetBlock(0)) : nullptr;
@@ -325,7 +325,7 @@ int TestMetaballGhostBalls(int argc, char* argv[])
   }
   vtkNew<vtkMetaballGhostBalls> again;
   again->SetInputDataObject(odd);
-  again->SetRadiusArrayName("Radius");
+  again->GetField()->SetRadiusArrayName("Radius");
   again->Update();
   vtkPolyData* oddOut = vtkPolyData::SafeDownCast(again->GetOutputDataObject(0));
   check(oddOut != nullptr, "output with bad balls");

@@ -1,0 +1,87 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "psBallExtraction.h"
+
+#include "vtkDataArray.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkSMPTools.h"
+
+#include <cmath>
+
+namespace pointsurfaces
+{
+//------------------------------------------------------------------------------
+vtkDataArray* RadiusArray(vtkPointSet* input, const BallRule& rule)
+{
+  vtkPointData* pd = input ? input->GetPointData() : nullptr;
+  return pd && !rule.RadiusArrayName.empty() ? pd->GetArray(rule.RadiusArrayName.c_str()) : nullptr;
+}
+
+//------------------------------------------------------------------------------
+vtkDataArray* StrengthArray(vtkPointSet* input, const BallRule& rule)
+{
+  vtkPointData* pd = input ? input->GetPointData() : nullptr;
+  return pd && !rule.StrengthArrayName.empty() ? pd->GetArray(rule.StrengthArrayName.c_str())
+                                               : nullptr;
+}
+
+//------------------------------------------------------------------------------
+double SupportRadius(vtkDataArray* radii, long long i, const BallRule& rule)
+{
+  return rule.RadiusScale * (radii ? radii->GetComponent(i, 0) : rule.Radius);
+}
+
+//------------------------------------------------------------------------------
+double LargestSupportRadius(vtkPointSet* input, const BallRule& rule)
+{
+  vtkDataArray* radii = RadiusArray(input, rule);
+  if (!radii)
+  {
+    return rule.Radius * rule.RadiusScale;
+  }
+  double range[2];
+  radii->GetRange(range, 0);
+  return std::isfinite(range[1]) ? range[1] * rule.RadiusScale : 0.0;
+}
+
+//------------------------------------------------------------------------------
+BallArrays ExtractBalls(vtkPointSet* input, const BallRule& rule, double scale)
+{
+  BallArrays b;
+  const vtkIdType n = input && input->GetPoints() ? input->GetNumberOfPoints() : 0;
+  vtkDataArray* radii = RadiusArray(input, rule);
+  vtkDataArray* strengths = StrengthArray(input, rule);
+  b.MissingRadii = !rule.RadiusArrayName.empty() && !radii && n > 0;
+  b.MissingStrengths = !rule.StrengthArrayName.empty() && !strengths;
+  b.Centres.resize(3 * static_cast<size_t>(n));
+  b.Radii.resize(static_cast<size_t>(n));
+  if (strengths)
+  {
+    b.Strengths.resize(static_cast<size_t>(n));
+  }
+  vtkDataArray* points = n ? input->GetPoints()->GetData() : nullptr;
+  vtkSMPTools::For(0,
+    n,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        points->GetTuple(i, &b.Centres[3 * i]);
+        b.Radii[i] = scale * SupportRadius(radii, i, rule);
+        if (strengths)
+        {
+          b.Strengths[i] = strengths->GetComponent(i, 0);
+        }
+      }
+    });
+  b.Set.Centers = b.Centres.data();
+  b.Set.Radii = b.Radii.data();
+  b.Set.Strengths = strengths ? b.Strengths.data() : nullptr;
+  b.Set.Count = n;
+  b.Set.Kernel = rule.Kernel;
+  b.Set.Threshold = rule.Threshold;
+  return b;
+}
+} // namespace pointsurfaces
