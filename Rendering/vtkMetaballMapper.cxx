@@ -25,6 +25,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLQuadHelper.h"
 #include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkPointData.h"
@@ -52,7 +53,6 @@ vtkStandardNewMacro(vtkMetaballMapper);
 namespace
 {
 const int MaxShared = 256; // balls per voxel batch in shared memory
-const int MaxLights = 8;
 
 void ToFloat(vtkMatrix4x4* m, float out[16])
 {
@@ -60,6 +60,35 @@ void ToFloat(vtkMatrix4x4* m, float out[16])
   {
     out[k] = static_cast<float>(m->GetElement(k / 4, k % 4));
   }
+}
+
+// The composite shader's //VTK::Light::Impl: one psLight call per light of
+// the renderer, with VTK's uniforms for it (vtkOpenGLRenderer's names: a
+// headlight has lightColor0 only). The first four lights can be shadowed.
+std::string LightCalls(int complexity, int count)
+{
+  std::string code;
+  for (int k = 0; k < count; ++k)
+  {
+    const std::string i = std::to_string(k);
+    const std::string lit = k < 4 ? "1.0 - blocked[" + i + "]" : "1.0";
+    if (complexity == 1)
+    {
+      code +=
+        "result += psLight(n, toEye, base.rgb, lightColor0, vec3(0.0, 0.0, 1.0), " + lit + ");\n";
+      break;
+    }
+    code += "toLight = -lightDirectionVC" + i + ";\nstrength = 1.0;\n";
+    if (complexity >= 3)
+    {
+      code += "if (lightPositional" + i + " != 0)\n{\n  toLight = psPositional(p.xyz, " +
+        "lightPositionVC" + i + ", lightDirectionVC" + i + ", lightAttenuation" + i +
+        ", lightConeAngle" + i + ", lightExponent" + i + ", strength);\n}\n";
+    }
+    code += "result += strength * psLight(n, toEye, base.rgb, lightColor" + i + ", toLight, " +
+      lit + ");\n";
+  }
+  return code;
 }
 } // namespace
 
@@ -79,6 +108,8 @@ struct vtkMetaballMapper::Internals
   std::string RayCastDefines;
   vtkNew<vtkTextureObject> ColorImage, NormalImage, DepthImage;
   std::unique_ptr<vtkOpenGLQuadHelper> Composite;
+  int CompositeLighting = -1; // the lighting complexity and light count it was built for
+  int CompositeLights = -1;
   vtkTimeStamp UploadTime;
   double Shift[3] = { 0.0, 0.0, 0.0 };
   vtkIdType Count = 0;
@@ -108,6 +139,40 @@ vtkMTimeType vtkMetaballMapper::GetMTime()
 
 //------------------------------------------------------------------------------
 vtkMetaballMapper::~vtkMetaballMapper() = default;
+
+//------------------------------------------------------------------------------
+void vtkMetaballMapper::SetInputData(vtkPointSet* input)
+{
+  this->SetInputDataInternal(0, input);
+}
+
+//------------------------------------------------------------------------------
+vtkPointSet* vtkMetaballMapper::GetInput()
+{
+  return vtkPointSet::SafeDownCast(this->GetInputDataObject(0, 0));
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballMapper::UpdateInput()
+{
+  if (this->Static || this->GetNumberOfInputConnections(0) == 0)
+  {
+    return;
+  }
+  int port = 0;
+  if (vtkAlgorithm* producer = this->GetInputAlgorithm(0, 0, port))
+  {
+    producer->Update(port);
+  }
+}
+
+//------------------------------------------------------------------------------
+double* vtkMetaballMapper::GetBounds()
+{
+  this->UpdateInput();
+  this->ComputeBounds();
+  return this->Bounds;
+}
 
 //------------------------------------------------------------------------------
 int vtkMetaballMapper::FillInputPortInformation(int, vtkInformation* info)
@@ -272,10 +337,11 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
 }
 
 //------------------------------------------------------------------------------
-void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
+void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
 {
   Internals& in = *this->Impl;
-  vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInputDataObject(0, 0));
+  this->UpdateInput();
+  vtkPointSet* input = this->GetInput();
   this->NumberOfPairs = this->MaximumBallsPerVoxel = this->NumberOfCulledBalls = 0;
   if (!input || input->GetNumberOfPoints() == 0)
   {
@@ -446,9 +512,31 @@ void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   // Shade and composite with the true depth, depth-tested against the scene.
   vtkOpenGLState* ostate = renWin->GetState();
   ostate->Push();
-  if (!in.Composite)
+  // VTK's lights: the renderer's declarations and uniforms, one light
+  // call per light compiled in; rebuilt when the lighting changes.
+  vtkProperty* prop = act->GetProperty();
+  auto* oren = vtkOpenGLRenderer::SafeDownCast(ren);
+  const int complexity = oren && prop->GetLighting() ? oren->GetLightingComplexity() : 0;
+  const int lights = complexity > 0 ? oren->GetLightingCount() : 0;
+  if (!in.Composite || complexity != in.CompositeLighting || lights != in.CompositeLights)
   {
-    in.Composite.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkMetaballCompositeFS, ""));
+    std::string source = vtkMetaballCompositeFS;
+    const std::string declarations = "#define LIGHTING_COMPLEXITY " + std::to_string(complexity) +
+      "\n" + (complexity > 0 ? oren->GetLightingUniforms() : "");
+    if (!pointsurfaces::ReplaceHook(source, "//VTK::Light::Dec", declarations) ||
+      !pointsurfaces::ReplaceHook(source, "//VTK::Light::Impl", LightCalls(complexity, lights)))
+    {
+      ostate->Pop();
+      vtkErrorMacro(<< "vtkMetaballCompositeFS lacks its //VTK::Light hooks: nothing is drawn.");
+      return;
+    }
+    if (in.Composite)
+    {
+      in.Composite->ReleaseGraphicsResources(renWin);
+    }
+    in.Composite.reset(new vtkOpenGLQuadHelper(renWin, nullptr, source.c_str(), ""));
+    in.CompositeLighting = complexity;
+    in.CompositeLights = lights;
   }
   else
   {
@@ -475,47 +563,10 @@ void vtkMetaballMapper::RenderPiece(vtkRenderer* ren, vtkActor* act)
   }
   program->SetUniformMatrix("clipToView", clipToView);
   program->SetUniformi("parallelProjection", parallel ? 1 : 0);
-  // The renderer's lights, in view coordinates.
-  vtkMatrix4x4* view = cam->GetViewTransformMatrix();
-  int lights = 0;
-  vtkLightCollection* collection = ren->GetLights();
-  vtkCollectionSimpleIterator it;
-  collection->InitTraversal(it);
-  while (vtkLight* light = collection->GetNextLight(it))
+  if (complexity > 0)
   {
-    if (!light->GetSwitch() || lights >= MaxLights)
-    {
-      continue;
-    }
-    double position[4], focal[4];
-    light->GetTransformedPosition(position);
-    light->GetTransformedFocalPoint(focal);
-    position[3] = focal[3] = 1.0;
-    view->MultiplyPoint(position, position);
-    view->MultiplyPoint(focal, focal);
-    float direction[3], where[3], color[3];
-    double* diffuseColor = light->GetDiffuseColor();
-    double norm = 0.0;
-    for (int k = 0; k < 3; ++k)
-    {
-      norm += (focal[k] - position[k]) * (focal[k] - position[k]);
-    }
-    norm = std::max(std::sqrt(norm), 1e-300);
-    for (int k = 0; k < 3; ++k)
-    {
-      direction[k] = static_cast<float>((focal[k] - position[k]) / norm);
-      where[k] = static_cast<float>(position[k]);
-      color[k] = static_cast<float>(diffuseColor[k] * light->GetIntensity());
-    }
-    const std::string index = "[" + std::to_string(lights) + "]";
-    program->SetUniform3f(("lightColor" + index).c_str(), color);
-    program->SetUniform3f(("lightDirection" + index).c_str(), direction);
-    program->SetUniform3f(("lightPosition" + index).c_str(), where);
-    program->SetUniformi(("lightPositional" + index).c_str(), light->GetPositional());
-    ++lights;
+    oren->UpdateLightingUniforms(program);
   }
-  program->SetUniformi("numberOfLights", lights);
-  vtkProperty* prop = act->GetProperty();
   const double* ambientColor = prop->GetAmbientColor();
   const double* specularColor = prop->GetSpecularColor();
   const float ac[3] = { static_cast<float>(ambientColor[0]),
@@ -759,6 +810,7 @@ void vtkMetaballMapper::ReleaseGraphicsResources(vtkWindow* win)
     in.Composite->ReleaseGraphicsResources(win);
     in.Composite.reset();
   }
+  in.CompositeLighting = in.CompositeLights = -1;
   in.Width = in.Height = 0;
   in.Count = 0;
   in.UploadTime = vtkTimeStamp();

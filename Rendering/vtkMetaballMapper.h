@@ -34,9 +34,9 @@
 #define vtkMetaballMapper_h
 
 #include "PointSurfacesRenderingModule.h" // For export macro
-#include "vtkMetaballField.h"             // For the field
-#include "vtkOpenGLPolyDataMapper.h"
-#include "vtkSmartPointer.h" // For the field
+#include "vtkMapper.h"
+#include "vtkMetaballField.h" // For the field
+#include "vtkSmartPointer.h"  // For the field
 
 #include <memory> // For the implementation
 
@@ -44,11 +44,11 @@ class vtkFloatArray;
 class vtkMatrix4x4;
 class vtkPointSet;
 
-class POINTSURFACESRENDERING_EXPORT vtkMetaballMapper : public vtkOpenGLPolyDataMapper
+class POINTSURFACESRENDERING_EXPORT vtkMetaballMapper : public vtkMapper
 {
 public:
   static vtkMetaballMapper* New();
-  vtkTypeMacro(vtkMetaballMapper, vtkOpenGLPolyDataMapper);
+  vtkTypeMacro(vtkMetaballMapper, vtkMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -133,14 +133,24 @@ public:
    */
   vtkGetMacro(NumberOfIncompleteRays, vtkIdType);
 
-  /**
-   * The hits of the last render, one tuple per viewport pixel (rows from the
-   * bottom): view-space unit normal and view distance, zeros on a miss. The
-   * render window's context must be current. For accuracy checks.
-   */
-  bool ReadHitBuffer(vtkFloatArray* hits);
+  ///@{
+  /** The balls: any vtkPointSet (also through SetInputConnection). */
+  void SetInputData(vtkPointSet* input);
+  vtkPointSet* GetInput();
+  ///@}
 
-  void RenderPiece(vtkRenderer* ren, vtkActor* act) override;
+  /**
+   * Draws the balls: uploads what changed, builds the grid, casts the rays
+   * and shades the hits into the renderer's framebuffer.
+   */
+  void Render(vtkRenderer* ren, vtkActor* act) override;
+
+  ///@{
+  /** The balls' centres padded by the largest support radius (the input is updated first). */
+  double* GetBounds() VTK_SIZEHINT(6) override;
+  void GetBounds(double bounds[6]) override { this->Superclass::GetBounds(bounds); }
+  ///@}
+
   void ReleaseGraphicsResources(vtkWindow* win) override;
 
 protected:
@@ -148,7 +158,18 @@ protected:
   ~vtkMetaballMapper() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
-  void ComputeBounds() override;
+  void ComputeBounds();
+  /** Brings the input up to date (unless Static). */
+  void UpdateInput();
+
+  /**
+   * The hits of the last render, one tuple per viewport pixel (rows from the
+   * bottom): view-space unit normal and view distance, zeros on a miss. The
+   * render window's context must be current. A hook for accuracy tests
+   * (a subclass makes it public).
+   */
+  bool ReadHitBuffer(vtkFloatArray* hits);
+
   bool Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* input);
   int CastShadows(vtkRenderer* ren,
     vtkActor* act,

@@ -17,6 +17,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkMetaballMapper.h"
 #include "vtkNew.h"
+#include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -32,6 +33,19 @@
 #include <iostream>
 #include <random>
 #include <vector>
+
+namespace
+{
+// The mapper with its hit buffer readable.
+class HitMapper : public vtkMetaballMapper
+{
+public:
+  static HitMapper* New();
+  vtkTypeMacro(HitMapper, vtkMetaballMapper);
+  using vtkMetaballMapper::ReadHitBuffer;
+};
+vtkStandardNewMacro(HitMapper);
+} // namespace
 
 int TestMetaballMapperAccuracy(int, char*[])
 {
@@ -67,7 +81,7 @@ int TestMetaballMapperAccuracy(int, char*[])
   renWin->SetMultiSamples(0);
   vtkNew<vtkRenderer> renderer;
   renWin->AddRenderer(renderer);
-  vtkNew<vtkMetaballMapper> mapper;
+  vtkNew<HitMapper> mapper;
   mapper->SetInputDataObject(poly);
   mapper->GetField()->SetStrengthArrayName("Strength");
   vtkNew<vtkActor> actor;
