@@ -121,14 +121,14 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   Targets& t = *this->T;
 
   GLint viewport[4];
-  glGetIntegerv(GL_VIEWPORT, viewport);
+  ostate->vtkglGetIntegerv(GL_VIEWPORT, viewport);
   const int width = viewport[2], height = viewport[3];
   if (width <= 0 || height <= 0)
   {
     return;
   }
   GLint scene = 0;
-  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &scene);
+  ostate->vtkglGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &scene);
 
   ostate->Push();
   ostate->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(scene));
@@ -173,13 +173,14 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   ostate->vtkglDisable(GL_SCISSOR_TEST);
   ostate->vtkglViewport(0, 0, width, height);
 
-  // The scene's depth, so that the actors drawn before hide the splats.
-  bool copied = false;
-  if (depthFormat != -1)
+  // The scene's depth, so that the actors drawn before hide the splats. A
+  // depth blit needs the same depth (and stencil) format on both sides; the
+  // targets were allocated in the scene's own format, so the blit works
+  // whenever that format is one a texture can hold (ReadDepthFormat: not
+  // -1), multisampled scenes included (the blit resolves them).
+  const bool copied = depthFormat != -1;
+  if (copied)
   {
-    for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; ++k)
-    {
-    }
     glBlitFramebuffer(viewport[0],
       viewport[1],
       viewport[0] + width,
@@ -190,7 +191,6 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
       height,
       GL_DEPTH_BUFFER_BIT,
       GL_NEAREST);
-    copied = glGetError() == GL_NO_ERROR;
   }
   if (!copied)
   {
@@ -224,7 +224,7 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   ostate->vtkglDepthFunc(GL_LESS);
   ostate->vtkglDepthMask(GL_TRUE);
   ostate->vtkglDisable(GL_BLEND);
-  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
   passes.Draw();
 
   // Blending: every hit in front of that depth, weighted. The shader reads
@@ -258,10 +258,14 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
     ? 65535.0
     : (depthFormat == vtkTextureObject::Fixed24 || depthFormat == -2 ? 16777215.0 : 4194304.0);
   program->SetUniformf("splatDepthTolerance", static_cast<float>(1.0 / steps));
-  const GLboolean offsetWasOn = glIsEnabled(GL_POLYGON_OFFSET_FILL);
+  // VTK 9.1's vtkOpenGLState does not cache polygon offset: it forwards the
+  // enable and the queries, and glPolygonOffset has no wrapper; both are
+  // restored below.
+  GLboolean offsetWasOn = GL_FALSE;
+  ostate->vtkglGetBooleanv(GL_POLYGON_OFFSET_FILL, &offsetWasOn);
   GLfloat offsetFactor = 0.0f, offsetUnits = 0.0f;
-  glGetFloatv(GL_POLYGON_OFFSET_FACTOR, &offsetFactor);
-  glGetFloatv(GL_POLYGON_OFFSET_UNITS, &offsetUnits);
+  ostate->vtkglGetFloatv(GL_POLYGON_OFFSET_FACTOR, &offsetFactor);
+  ostate->vtkglGetFloatv(GL_POLYGON_OFFSET_UNITS, &offsetUnits);
   if (settings.AntiAliasing > 1)
   {
     // Silhouette pixels get their sub-pixel rays (the geometry shader grows
@@ -271,13 +275,16 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
     // conservative for them too.
     const float margin[2] = { 1.0f / width, 1.0f / height };
     program->SetUniform2f("splatOutlineMargin", margin);
-    glEnable(GL_POLYGON_OFFSET_FILL);
+    ostate->vtkglEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(-1.0f, -1.0f);
   }
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ostate->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   ostate->vtkglDepthFunc(GL_LEQUAL);
   ostate->vtkglDepthMask(GL_FALSE);
   ostate->vtkglEnable(GL_BLEND);
+  // Per-target blending (sum for the colours, minimum for the depth and
+  // coverage) has no vtkOpenGLState wrapper in VTK 9.1; the Pop below
+  // re-applies the cached blend state to every target.
   glBlendEquationi(0, GL_FUNC_ADD);
   glBlendFunci(0, GL_ONE, GL_ONE);
   glBlendEquationi(1, GL_MIN);
@@ -285,7 +292,7 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   passes.Draw();
   if (!offsetWasOn)
   {
-    glDisable(GL_POLYGON_OFFSET_FILL);
+    ostate->vtkglDisable(GL_POLYGON_OFFSET_FILL);
   }
   glPolygonOffset(offsetFactor, offsetUnits);
   t.VisibleDepth->Deactivate();
