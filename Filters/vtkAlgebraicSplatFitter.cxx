@@ -51,7 +51,7 @@ void AddCount(vtkFieldData* fd, const char* name, vtkIdType value)
   fd->AddArray(a);
 }
 
-// Splats into the data model of DESIGN.md section 3.
+// Splats into the splat data model (see vtkSplatDataModel and the README's Data model section).
 void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
 {
   const vtkIdType n = static_cast<vtkIdType>(built.Splats.size());

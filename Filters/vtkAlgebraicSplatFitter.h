@@ -4,38 +4,41 @@
  * @class   vtkAlgebraicSplatFitter
  * @brief   Replaces a point cloud by algebraic splats: MLS polynomial patches bounded to discs.
  *
- * Implements chapter 3 of "Algebraic Splats and Metaballs" (after Levin's MLS
- * surfaces and Lipman et al.'s LOP). For each selected point r_i it fits a
- * weighted least-squares reference plane (eq. 3.1), measures the feature size
- * h_i as the mean distance of the FeatureSizeNeighbors nearest neighbours in
- * that plane, and fits a bivariate polynomial g of degree 1 to 4 in the
- * normalised frame (u/h_i, v/h_i, n/h_i) with Gaussian weights
- * exp(-d^2 / (WeightScale h_i)^2) (eq. 3.2). Splats are always fitted against
- * the original points.
+ * Implements chapter 3 of N. K. R. Bolla, "High Quality Rendering of Large
+ * Point-based Surfaces", M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010];
+ * after Levin's MLS surfaces and Lipman et al.'s LOP). For each selected
+ * point r_i it fits a weighted least-squares reference plane ([Bolla 2010]
+ * eq. 3.1), measures the feature size h_i as the mean distance of the
+ * FeatureSizeNeighbors nearest neighbours in that plane, and fits a
+ * bivariate polynomial g of degree 1 to 4 in the normalised frame
+ * (u/h_i, v/h_i, n/h_i) with Gaussian weights exp(-d^2 / (WeightScale h_i)^2)
+ * ([Bolla 2010] eq. 3.2). Splats are always fitted against the original
+ * points.
  *
  * Selection:
  * - `All`: one splat per input point.
- * - `Quality` (section 3.3.1): a chosen point claims the points within
- *   s·h_i of it in its parametric domain; `Random` order is the thesis's,
+ * - `Quality` ([Bolla 2010] 3.3.1): a chosen point claims the points within
+ *   s·h_i of it in its parametric domain; `Random` order is that of [Bolla 2010],
  *   `Front` grows fronts at the spacing of a hexagonal covering and yields
  *   5 to 7 % fewer splats. The work runs in parallel over slabs of the
  *   bounding box; the result is deterministic for a given RandomSeed and
  *   does not depend on the number of threads.
- * - `FixedCount` (section 3.3.2): m points seeded from the input, moved to
- *   convergence by LOP (Lipman et al. 2007) or its density-weighted WLOP
+ * - `FixedCount` ([Bolla 2010] 3.3.2): m points seeded from the input, moved
+ *   to convergence by LOP (Lipman et al. 2007) or its density-weighted WLOP
  *   (Huang et al. 2009), then fitted.
  *
- * The output is the splat data model of DESIGN.md section 3: one vertex per
- * splat at its origin o_i, point arrays SplatNormal, SplatTangent,
- * SplatFeatureSize, SplatCoefficients (3/6/10/15 components), SplatRadius
- * (R_i = RadiusScale · s · h_i) and SplatLOD, every input point array carried
- * over by MLS-weighted averaging, and SplatDegree in the field data.
+ * The output is the splat data model (see vtkSplatDataModel and the README's
+ * Data model section): one vertex per splat at its origin o_i, point arrays
+ * SplatNormal, SplatTangent, SplatFeatureSize, SplatCoefficients (3/6/10/15
+ * components), SplatRadius (R_i = RadiusScale · s · h_i) and SplatLOD, every
+ * input point array carried over by MLS-weighted averaging, and SplatDegree
+ * in the field data.
  *
  * Calibration: FeatureSizeNeighbors defaults to 120, which makes h_i about
  * four point spacings; at s = 1 in random order that reproduces the splat
- * counts of the thesis's Table 4.7 for the Bunny (1344 against 1315) and
- * Igea (within 3 %). The thesis's Horse count (6.1 %) implies a smaller h
- * for that model: FeatureSizeNeighbors = 60 reproduces it.
+ * counts of [Bolla 2010] Table 4.7 for the Bunny (1344 against 1315) and
+ * Igea (within 3 %). Its Horse count (6.1 %) implies a smaller h for that
+ * model: FeatureSizeNeighbors = 60 reproduces it.
  *
  * Bad input never crashes and never produces NaN: points with NaN or infinite
  * coordinates are dropped and counted, degenerate neighbourhoods (duplicates,
@@ -150,7 +153,7 @@ public:
 
   ///@{
   /**
-   * Visiting order of the Quality selection: Random (default, the thesis's),
+   * Visiting order of the Quality selection: Random (default, as in [Bolla 2010]),
    * Lattice (grid-centre points first) or Front (fronts grown at the spacing
    * of a hexagonal covering: 5 to 7 % fewer splats at equal error).
    */
@@ -184,11 +187,11 @@ public:
 
   ///@{
   /**
-   * Quality levels (section 3.4): K nested levels from CoarsestQualityFactor
+   * Quality levels ([Bolla 2010] 3.4): K nested levels from CoarsestQualityFactor
    * (s_0) down to QualityFactor (s_k), linearly. Each splat is tagged in
    * SplatLOD with the level where it first appears and is fitted once.
    * Default 1 (a single level); vtkMultiResolutionSplatBuilder defaults to
-   * 25 levels from s_0 = 4, as the thesis uses 25 to 50.
+   * 25 levels from s_0 = 4, as [Bolla 2010] uses 25 to 50.
    */
   vtkSetClampMacro(NumberOfLevels, int, 1, 1000);
   vtkGetMacro(NumberOfLevels, int);
@@ -198,7 +201,7 @@ public:
 
   ///@{
   /**
-   * Build the bucketed octree (section 3.5): the splats are reordered by leaf,
+   * Build the bucketed octree ([Bolla 2010] 3.5): the splats are reordered by leaf,
    * then by level, and the nodes are stored in the field data as
    * OctreeNodeBounds (6), OctreeNodeSphere (4), OctreeNodeChildren (first
    * child, child count), OctreeNodeRange (begin, end) and

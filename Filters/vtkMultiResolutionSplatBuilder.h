@@ -4,11 +4,13 @@
  * @class   vtkMultiResolutionSplatBuilder
  * @brief   Algebraic splats with continuous level of detail: nested quality levels and an octree.
  *
- * The multi-resolution representation of the thesis (sections 3.4 and 3.5)
- * as a filter of its own: vtkAlgebraicSplatFitter with the Quality selection
- * run over NumberOfLevels nested levels, from CoarsestQualityFactor (s_0,
- * default 4) down to QualityFactor (s_k, default 1), 25 levels by default as
- * in the thesis (25 to 50). Each splat is fitted once and tagged in SplatLOD
+ * The multi-resolution representation of sections 3.4 and 3.5 of
+ * N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+ * M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]) as a filter of its own:
+ * vtkAlgebraicSplatFitter with the Quality selection run over NumberOfLevels
+ * nested levels, from CoarsestQualityFactor (s_0, default 4) down to
+ * QualityFactor (s_k, default 1), 25 levels by default as in [Bolla 2010]
+ * (25 to 50). Each splat is fitted once and tagged in SplatLOD
  * with the level where it first appears; the bucketed octree sorts the
  * splats by leaf and then by level, and stores per node the end of each
  * level's prefix (OctreeNodeLevelEnds), so that a mapper draws any level of

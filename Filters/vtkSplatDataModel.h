@@ -2,11 +2,48 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkSplatDataModel
- * @brief   Names and helpers of the splat data model (DESIGN.md section 3), shared by its producers and consumers.
+ * @brief   The splat data model: array names, checks and octree, shared by producers and readers.
  *
- * Splats are a vtkPolyData with one vertex per splat and the point arrays
- * named here. The fitter writes them, the error metric and the mappers read
- * them; keeping the names and the checks in one place keeps them in step.
+ * Splats are a vtkPolyData with one vertex (a point and a vertex cell) per
+ * splat, at the splat's origin o. vtkAlgebraicSplatFitter and
+ * vtkMultiResolutionSplatBuilder write them; vtkSplatErrorMetric and
+ * vtkAlgebraicSplatMapper read them. Being plain VTK arrays, they pass
+ * through every VTK filter and writer. Point arrays:
+ *
+ * - SplatNormal (3): the unit normal n of the splat's reference plane;
+ * - SplatTangent (3): a unit tangent t in that plane; the second axis is
+ *   b = n x t;
+ * - SplatFeatureSize (1): the feature size h, the unit of the normalised
+ *   frame;
+ * - SplatCoefficients (3, 6, 10 or 15 for degree 1 to 4): the height
+ *   polynomial g(u, v);
+ * - SplatRadius (1): the disc radius R in world units;
+ * - SplatLOD (1, int): the level where the splat first appears, 0 the
+ *   coarsest.
+ *
+ * A point p has the normalised coordinates u = (p - o).t / h,
+ * v = (p - o).b / h and height (p - o).n / h; the splat is the patch
+ * height = g(u, v) over the disc u^2 + v^2 <= (R / h)^2. The coefficients
+ * follow the monomials ordered by total degree, then by descending power of
+ * u: 1, u, v, u^2, uv, v^2, u^3, u^2 v, u v^2, v^3, u^4, ... (a fit at a
+ * lower degree leaves zeros in the higher ones). The normalised frame keeps
+ * the coefficients of order 1 at any model scale or offset, which float32
+ * on the GPU depends on. Input point arrays are carried over as
+ * MLS-weighted averages.
+ *
+ * Field data: SplatDegree (the degree d), SplatNormalsOriented (1 when the
+ * normals' signs are consistent; face culling needs it) and SplatLODQuality
+ * (the quality factor s of each level, coarsest first). With an octree
+ * (AddOctree), one tuple per node, nodes numbered depth first from the root
+ * (node 0) with a node's children contiguous: OctreeNodeBounds (6),
+ * OctreeNodeSphere (4, discs included), OctreeNodeChildren (first child,
+ * child count), OctreeNodeRange (begin, end in point order) and
+ * OctreeNodeLevelEnds (the end of each level's prefix of the range). The
+ * points are then grouped by leaf and, within a leaf, sorted by level, so
+ * that levels 0 to l of a leaf are the points from begin to LevelEnds[l].
+ *
+ * GetSplatDegree checks that a data set carries the model; GetOctree reads
+ * the octree back and refuses one that no longer fits its splats.
  */
 #ifndef vtkSplatDataModel_h
 #define vtkSplatDataModel_h

@@ -7,8 +7,10 @@
  * Input 0 is the original point set, input 1 the splats of
  * vtkAlgebraicSplatFitter. The output is input 0's points with point arrays
  *
- * - `SplatError`: delta_i = sum_j e_ij theta(||o_j - p_i||) of the thesis
- *   (section 3.3.3), e_ij the orthogonal distance to splat j;
+ * - `SplatError`: delta_i = sum_j e_ij theta(||o_j - p_i||) of section 3.3.3
+ *   of N. K. R. Bolla, "High Quality Rendering of Large Point-based
+ *   Surfaces", M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]), e_ij the
+ *   orthogonal distance to splat j;
  * - `SurfaceDistance`: distance to the blended splat surface;
  * - `SplatCoverage`: number of discs covering the point (0: a hole);
  *

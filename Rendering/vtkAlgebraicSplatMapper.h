@@ -4,8 +4,10 @@
  * @class   vtkAlgebraicSplatMapper
  * @brief   Ray casts algebraic splats on the GPU: polynomial patches bounded to discs.
  *
- * Renders the output of vtkAlgebraicSplatFitter (the splat data model of
- * DESIGN.md section 3) after chapter 4 of "Algebraic Splats and Metaballs":
+ * Renders the output of vtkAlgebraicSplatFitter (the splat data model: see
+ * vtkSplatDataModel) after chapter 4 of N. K. R. Bolla, "High Quality
+ * Rendering of Large Point-based Surfaces", M.S. thesis, IIIT Hyderabad,
+ * 2010 ([Bolla 2010]):
  * each splat is drawn as the eye-facing faces of a box that bounds its
  * volume (the square around its disc of radius R times the height range of
  * g over the disc, built in a geometry shader; a quad at the near plane
@@ -17,7 +19,7 @@
  * gradient of g, and writes its true depth, so splats intersect correctly
  * with every other actor. Scalars are coloured as by any VTK mapper.
  *
- * Culling and continuous level of detail (thesis 3.4, 4.3.1): when the input
+ * Culling and continuous level of detail ([Bolla 2010] 3.4, 4.3.1): when the input
  * carries the octree of vtkAlgebraicSplatFitter, nodes whose bounding sphere
  * lies outside the view frustum are skipped, and each visible leaf draws the
  * prefix of its level-sorted splats down to the first level whose splats
@@ -25,7 +27,7 @@
  * while a vtkHardwareSelector picks (its ids need one draw), every splat is
  * drawn.
  *
- * Two-pass blending (thesis 4.2, on by default): a visibility pass writes
+ * Two-pass blending ([Bolla 2010] 4.2, on by default): a visibility pass writes
  * each pixel's nearest hit pushed back along the ray by BlendDepthOffset
  * times the splat's feature size; a blending pass accumulates the shaded
  * colours of every hit in front of that depth, weighted by a Gaussian of
@@ -34,7 +36,7 @@
  * hit's true depth. Overlapping splats thus blend smoothly, and the splats
  * still intersect correctly with other actors drawn before or after them.
  *
- * Adaptive anti-aliasing (thesis 4.3): with AntiAliasing n = 2 or 3, the
+ * Adaptive anti-aliasing ([Bolla 2010] 4.3): with AntiAliasing n = 2 or 3, the
  * pixels where a splat is seen at a grazing angle (or missed by less than
  * a pixel near such an angle) cast n x n sub-pixel rays; all other pixels
  * cast one. ShowSilhouettePixels paints those pixels magenta.
@@ -47,7 +49,7 @@
  * otherwise a warning says so and nothing is culled. It assumes a uniform
  * actor scale.
  *
- * Shadows (thesis 4.3.2) work through VTK's vtkShadowMapBakerPass and
+ * Shadows ([Bolla 2010] 4.3.2) work through VTK's vtkShadowMapBakerPass and
  * vtkShadowMapPass: the light's depth map is drawn from the ray-cast hits,
  * and the shadow lookup uses the hit point.
  *
@@ -105,7 +107,7 @@ public:
 
   ///@{
   /**
-   * Two-pass blending of overlapping splats (thesis 4.2). Default on; off
+   * Two-pass blending of overlapping splats ([Bolla 2010] 4.2). Default on; off
    * draws each pixel's nearest splat opaque, in one pass.
    */
   vtkSetMacro(Blending, bool);
@@ -151,7 +153,7 @@ public:
   ///@}
 
   ///@{
-  /** Paint the silhouette pixels magenta, as in the thesis's Figure 4.4. Default off. */
+  /** Paint the silhouette pixels magenta, as in [Bolla 2010] Figure 4.4. Default off. */
   vtkSetMacro(ShowSilhouettePixels, bool);
   vtkGetMacro(ShowSilhouettePixels, bool);
   vtkBooleanMacro(ShowSilhouettePixels, bool);

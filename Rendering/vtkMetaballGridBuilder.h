@@ -2,7 +2,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkMetaballGridBuilder
- * @brief   Builds the metaball perspective grid on the GPU every frame (thesis Algorithm 2).
+ * @brief   Builds the metaball perspective grid on the GPU every frame ([Bolla 2010] Algorithm 2).
+ *
+ * Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+ * M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
  *
  * The view frustum is cut into screen tiles (TileSize pixels square) times
  * depth slabs (Slabs planes spaced uniformly in view distance, between the

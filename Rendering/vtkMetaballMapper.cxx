@@ -381,7 +381,7 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   vtkMatrix4x4::Invert(viewToClip, clipToView);
   const bool parallel = cam->GetParallelProjection() != 0;
 
-  // Algorithm 2: the perspective grid.
+  // [Bolla 2010] Algorithm 2: the perspective grid.
   in.Grid->SetTileSize(this->TileSize);
   in.Grid->SetSlabs(this->Slabs);
   if (!in.Grid->Build(renWin,
@@ -400,7 +400,7 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   this->MaximumBallsPerVoxel = in.Grid->GetMaximumBallsPerVoxel();
   this->NumberOfCulledBalls = in.Grid->GetNumberOfCulledBalls();
 
-  // Algorithm 3: coherent ray casting, into colour, normal and depth images.
+  // [Bolla 2010] Algorithm 3: coherent ray casting, into colour, normal and depth images.
   const auto start = std::chrono::steady_clock::now();
   if (width != in.Width || height != in.Height)
   {

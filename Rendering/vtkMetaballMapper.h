@@ -2,26 +2,32 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class   vtkMetaballMapper
- * @brief   Ray casts a metaball iso-surface of many dynamic particles on the GPU (thesis chapter 5).
+ * @brief   Ray casts a metaball iso-surface of many dynamic particles on the GPU.
+ *
+ * After chapter 5 of N. K. R. Bolla, "High Quality Rendering of Large
+ * Point-based Surfaces", M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
  *
  * The input is any vtkPointSet: each point is a ball with a support radius
- * R_i (the RadiusArrayName point array, or the constant Radius) and an
- * optional strength q_i (StrengthArrayName). The surface is
- * sum_i q_i f_i(|x - p_i| / R_i) = Threshold for the Kernel: Wyvill's
- * sixth-order polynomial (thesis eq. 1.4), the quartic (1 - r^2/R^2)^2
- * (eq. 1.3), or a Gaussian truncated at R.
+ * R_i and an optional strength q_i, read by the rule of the mapper's
+ * vtkMetaballField (GetField: the radius array or constant radius, the
+ * radius scale, the strength array). The surface is
+ * sum_i q_i f_i(|x - p_i| / R_i) = T for the field's kernel: Wyvill's
+ * sixth-order polynomial ([Bolla 2010] eq. 1.4), the quartic
+ * (1 - r^2/R^2)^2 (eq. 1.3), or a Gaussian truncated at R.
  *
  * Every frame, vtkMetaballGridBuilder rebuilds the perspective grid of the
- * balls in view on the GPU (Algorithm 2); then a compute shader casts the
- * rays tile by tile (Algorithm 3, glsl/vtkMetaballRayCastCS.glsl): a work
+ * balls in view on the GPU ([Bolla 2010] Algorithm 2); then a compute shader
+ * casts the rays tile by tile (Algorithm 3, glsl/vtkMetaballRayCastCS.glsl): a work
  * group per tile walks its voxels front to back, skips empty ones, loads a
  * voxel's balls into shared memory, and marches with steps set by the field
  * value (never below StepScale times the voxel's smallest radius), then
  * bisects the crossing Bisections times. Normals are analytic; the colour is
  * the kernel-weighted mean of the balls' colours, which come from the usual
  * scalar colouring (lookup table, ScalarVisibility) or the actor's colour.
- * The hits are shaded with the renderer's lights and the actor's material
- * and written into VTK's framebuffer with their true depth.
+ * The hits are shaded with the renderer's lights (vtkOpenGLRenderer's
+ * lighting uniforms: headlight, directional, positional and spot lights) and
+ * the actor's material, and written into VTK's framebuffer with their true
+ * depth.
  *
  * Only changed input is uploaded again (its modification time, the arrays
  * and the colouring are watched). Points with NaN or infinite values, or a
@@ -82,14 +88,14 @@ public:
   ///@{
   /**
    * The smallest march step, as a fraction of the smallest radius in a voxel
-   * (the thesis uses 0.1). Smaller is slower and misses fewer thin features.
+   * ([Bolla 2010] uses 0.1). Smaller is slower and misses fewer thin features.
    */
   vtkSetClampMacro(StepScale, double, 1e-4, 10.0);
   vtkGetMacro(StepScale, double);
   ///@}
 
   ///@{
-  /** Bisections of a crossing (thesis: 10). Default 10. */
+  /** Bisections of a crossing ([Bolla 2010]: 10). Default 10. */
   vtkSetClampMacro(Bisections, int, 0, 60);
   vtkGetMacro(Bisections, int);
   ///@}

@@ -2,7 +2,7 @@
 # Install every Debian 12 package that the `vtk` preset, its tests, benchmarks and
 # examples need. Idempotent: one `apt-get update`, and a no-op when all is present.
 # Runs as root, or through sudo otherwise. Never installs python3-paraview, which
-# conflicts with python3-vtk9 (see DESIGN.md section 5).
+# conflicts with python3-vtk9 (see the README's ParaView section).
 #
 # Usage: scripts/install-deps.sh [--dry-run] [--paraview]
 #   --dry-run   only list the packages that are missing

@@ -2,7 +2,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file psLocalFit.h
- * @brief Weighted least-squares reference planes and local polynomial fits (thesis eqs. 3.1, 3.2).
+ * @brief Weighted least-squares reference planes and polynomial fits ([Bolla 2010] eqs. 3.1, 3.2).
+ *
+ * Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+ * M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
  *
  * The per-splat kernel of the MLS fitter, as plain functions with no VTK and
  * no state, so they can run in vtkSMPTools loops and be tested directly.
@@ -89,7 +92,7 @@ inline void ToLocal(const LocalFrame& f, const double p[3], double uvh[3])
   uvh[2] = (d[0] * f.Normal[0] + d[1] * f.Normal[1] + d[2] * f.Normal[2]) * inv;
 }
 
-/** The Gaussian weight exp(-d^2 / h^2) of the thesis. */
+/** The Gaussian weight exp(-d^2 / h^2) of [Bolla 2010]. */
 inline double GaussianWeight(double distanceSquared, double hSquared)
 {
   return hSquared > 0.0 ? std::exp(-distanceSquared / hSquared) : 0.0;

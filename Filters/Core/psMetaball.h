@@ -2,14 +2,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file psMetaball.h
- * @brief Metaball fields, the perspective grid and a reference ray caster (thesis chapter 5).
+ * @brief Metaball fields, the perspective grid and a reference ray caster ([Bolla 2010] ch. 5).
+ *
+ * Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based
+ * Surfaces", M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
  *
  * The double-precision CPU reference for the metaball mapper's GPU work:
  *
  * - the field f(x) = sum_i q_i f_i(|x - p_i|) - T with finite-support kernels
- *   of the thesis (Wyvill's sixth-order polynomial, eq. 1.4; the quartic
+ *   of [Bolla 2010] (Wyvill's sixth-order polynomial, eq. 1.4; the quartic
  *   (1 - r^2/R^2)^2, eq. 1.3) and a truncated Gaussian, and its gradient;
- * - the perspective grid of Algorithm 2: the view frustum cut into screen
+ * - the perspective grid of [Bolla 2010] Algorithm 2: the view frustum cut into screen
  *   tiles times depth slabs, each voxel listing the balls whose support
  *   reaches into it (count, exclusive scan, scatter, sort by voxel);
  * - a ray caster: dense sampling along the ray and bisection on the exact

@@ -2,9 +2,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file psOctree.h
- * @brief Bucketed octree over splats for culling and continuous level of detail (thesis 3.4-3.5).
+ * @brief Bucketed octree over splats for culling and continuous LOD ([Bolla 2010] 3.4-3.5).
  *
- * Cells are split at the mean of their splat origins (as in the thesis) until
+ * Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based
+ * Surfaces", M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
+ *
+ * Cells are split at the mean of their splat origins (as in [Bolla 2010]) until
  * a cell holds at most `bucket` splats. Nodes are numbered depth first and
  * the splats are reordered so that every node covers a contiguous range; in
  * a leaf they are sorted by level, coarsest first, so that drawing a prefix

@@ -7,7 +7,7 @@
  * Plain functions, no VTK: the fitter builds its least-squares systems from
  * Monomials(), the error metrics and the CPU reference ray caster evaluate
  * Evaluate() and Gradient(). Monomials are ordered by total degree, then by
- * descending power of u (DESIGN.md section 3):
+ * descending power of u (see vtkSplatDataModel and the README's Data model section):
  * 1, u, v, u², uv, v², u³, u²v, uv², v³, u⁴, u³v, u²v², uv³, v⁴.
  */
 #ifndef psPolynomial_h

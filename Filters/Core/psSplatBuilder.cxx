@@ -404,7 +404,7 @@ BuildResult BuildSplats(const double* xyz,
 
   if (params.Select == Selection::FixedCount && count > 1)
   {
-    // Thesis 3.3.2: the radius follows the spacing of the decimated set.
+    // [Bolla 2010] 3.3.2: the radius follows the spacing of the decimated set.
     std::vector<double> centres(static_cast<size_t>(3 * count));
     for (long long k = 0; k < count; ++k)
     {

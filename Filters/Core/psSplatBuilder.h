@@ -9,6 +9,9 @@
  * levels, or LOP/WLOP to a fixed count), then fit every splat against the
  * original points in parallel (vtkSMPTools). Each chosen point is fitted
  * once, at the level where it first appears: finer levels only add splats.
+ *
+ * Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+ * M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
  */
 #ifndef psSplatBuilder_h
 #define psSplatBuilder_h
@@ -31,7 +34,7 @@ enum class Selection
 
 enum class Order
 {
-  Random = 0,  ///< the thesis's order
+  Random = 0,  ///< the order of [Bolla 2010] 3.3.1
   Lattice = 1, ///< grid-centre points first
   Front = 2    ///< grow fronts at hexagonal-covering spacing: fewest splats
 };

@@ -2,7 +2,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file psSplatError.h
- * @brief Approximation error of a splat set against points (thesis section 3.3.3).
+ * @brief Approximation error of a splat set against points ([Bolla 2010] 3.3.3).
+ *
+ * Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+ * M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
  *
  * For a point p_i and each splat a_j whose disc covers it (in-plane distance
  * to o_j at most R_j), e_ij is the first-order orthogonal distance from p_i to
@@ -10,7 +13,7 @@
  * normalised frame of a_j. Then
  *
  * - delta_i = sum_j |e_ij| theta(||o_j - p_i||), theta(d) = exp(-d^2/h_j^2), and
- *   Phi = sum_i delta_i, as in the thesis;
+ *   Phi = sum_i delta_i, as in [Bolla 2010];
  * - the distance to the blended surface is |sum_j w_ij e_ij / sum_j w_ij| with
  *   the same weights: what the two-pass blending renders.
  *

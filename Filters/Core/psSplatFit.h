@@ -2,21 +2,25 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file psSplatFit.h
- * @brief One algebraic splat from a point and its neighbours (thesis section 3.2).
+ * @brief One algebraic splat from a point and its neighbours ([Bolla 2010] 3.2).
+ *
+ * Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+ * M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
  *
  * FitSplat() is the per-splat kernel of vtkAlgebraicSplatFitter, as a plain
  * stateless function over the neighbour coordinates:
  *
  * 1. an unweighted plane through the neighbours gives the parametric domain;
  * 2. the feature size h is the mean distance, in that plane, from the point to
- *    its FeatureSizeNeighbors nearest neighbours (thesis: "the average distance
- *    of k nearest neighbors in the local parametric domain");
+ *    its FeatureSizeNeighbors nearest neighbours ([Bolla 2010]: "the average
+ *    distance of k nearest neighbors in the local parametric domain");
  * 3. Gaussian weights theta(d) = exp(-d^2 / (WeightScale h)^2);
- * 4. the weighted reference plane (eq. 3.1); the origin is the point's
- *    projection onto it;
- * 5. g(u, v) fitted in the normalised frame (eq. 3.2): by weighted least
- *    squares (Linear), with a robust loss through Ceres (Robust), or by
- *    iterating the MLS projection of the origin onto the surface (Projected).
+ * 4. the weighted reference plane ([Bolla 2010] eq. 3.1); the origin is the
+ *    point's projection onto it;
+ * 5. g(u, v) fitted in the normalised frame ([Bolla 2010] eq. 3.2): by
+ *    weighted least squares (Linear), with a robust loss through Ceres
+ *    (Robust), or by iterating the MLS projection of the origin onto the
+ *    surface (Projected).
  */
 #ifndef psSplatFit_h
 #define psSplatFit_h

@@ -2,17 +2,20 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file psSplatSelection.h
- * @brief Quality-based decimation (thesis section 3.3.1) and the candidate orders it visits.
+ * @brief Quality-based decimation ([Bolla 2010] 3.3.1) and the candidate orders it visits.
+ *
+ * Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+ * M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
  *
  * A chosen point i claims every point within s·h_i of it in its parametric
  * domain (in-plane distance <= s·h_i, and height <= s·h_i so that the other
  * side of a thin part is not claimed); claimed points are never chosen. The
- * visiting order decides how many points end up chosen: RandomOrder() is the
- * thesis's, LatticeOrder() visits first the points nearest to the centres of
- * a grid slightly coarser than the splat spacing, which leaves fewer gaps
- * for later splats to fill.
+ * visiting order decides how many points end up chosen: RandomOrder() is
+ * that of [Bolla 2010], LatticeOrder() visits first the points nearest to
+ * the centres of a grid slightly coarser than the splat spacing, which
+ * leaves fewer gaps for later splats to fill.
  *
- * The state vector makes levels nest (section 3.4): points chosen at a
+ * The state vector makes levels nest ([Bolla 2010] 3.4): points chosen at a
  * coarser s stay chosen at a finer one, and only the remaining points are
  * visited.
  */

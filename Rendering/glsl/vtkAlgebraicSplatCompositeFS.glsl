@@ -2,12 +2,15 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
 //
-// Last step of vtkAlgebraicSplatMapper's two-pass blend (thesis 4.2):
+// Last step of vtkAlgebraicSplatMapper's two-pass blend ([Bolla 2010] 4.2):
 // normalises the accumulated (sum w C, sum w) per pixel and writes it into
 // VTK's framebuffer with the true depth of the nearest splat, so that the
 // splats intersect correctly with every other actor. The alpha is the
 // largest coverage of any splat at the pixel (1 unless adaptive
 // anti-aliasing found a partly covered silhouette pixel).
+//
+// Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+// M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
 
 in vec2 texCoord;
 uniform sampler2D accumulation; // sum w C, sum w

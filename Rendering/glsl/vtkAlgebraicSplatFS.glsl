@@ -6,6 +6,9 @@
 // SplatImpl at //VTK::Depth::Impl and SplatOutput after
 // //VTK::Coincident::Impl, the last hook of main().
 //
+// Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+// M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
+//
 // In the splat's normalised frame (u, v, w) = M^-1 (x - centre), with
 // M = [h t, h b, h n], the ray meets F(s) = g(u(s), v(s)) - w(s) = 0. The ray
 // is re-centred at its closest approach to the splat and scaled so that the
@@ -13,12 +16,12 @@
 // value, gradient and Hessian at degree 1 and 2; at degree 3 and 4, F is
 // sampled at tau = -2..2, which gives its (at most quartic) coefficients
 // exactly. F is then solved in closed form. The nearest root inside the
-// splat's cylinder (the disc, at most R above or below it, as in the
-// thesis's Figure 3.1) and between the clipping planes is the hit: its
+// splat's cylinder (the disc, at most R above or below it, as in
+// [Bolla 2010] Figure 3.1) and between the clipping planes is the hit: its
 // normal comes from the gradient of g, its depth goes to gl_FragDepth (the
 // blending pass tests it instead), and VTK's lighting shades it.
 //
-// Adaptive anti-aliasing (thesis 4.3): a pixel is a silhouette pixel of the
+// Adaptive anti-aliasing ([Bolla 2010] 4.3): a pixel is a silhouette pixel of the
 // splat when its ray hits the patch at a grazing angle (|cos| between the
 // normal and the ray below splatSilhouetteCos, i.e. dF/dt is small), or
 // misses it by less than the pixel's footprint at an extremum of F inside
@@ -27,7 +30,7 @@
 // nearest hit's depth, and their fraction as coverage.
 //
 // Passes (SPLAT_PASS): 0 draws the splat opaque; 1 is the visibility pass
-// of the two-pass blend (thesis 4.2), which writes only the depth pushed
+// of the two-pass blend ([Bolla 2010] 4.2), which writes only the depth pushed
 // back along the ray by splatBlendOffset h; 2 is the blending pass, which
 // writes (w C, w) to target 0 for the Gaussian weight w of the hit's
 // distance from the splat centre (times its coverage), and (true depth,

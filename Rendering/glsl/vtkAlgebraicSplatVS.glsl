@@ -6,6 +6,9 @@
 // splat's frame, scaled by its feature size h, and its polynomial to the
 // geometry shader in view coordinates. Only the coefficients that the
 // degree needs are vertex attributes (SPLAT_DEGREE is defined by the mapper).
+//
+// Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+// M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
 
 //VTK::SplatDegree::Dec
 
@@ -53,7 +56,7 @@ void main()
   splatAxisVVSOutput = mcvc * (b * h);
   splatAxisNVSOutput = mcvc * (n * h);
   // With LOD, a splat's disc follows the finest level drawn around it
-  // (thesis 3.2: R is chosen at run time from h and s).
+  // ([Bolla 2010] 3.2: R is chosen at run time from h and s).
   splatRadiusVSOutput = (lodQuality > 0.0 ? lodQuality * splatSizeMC.z : splatSizeMC.y) / h;
   splatC0VSOutput = splatC0;
   splatC1VSOutput = vec4(0.0);

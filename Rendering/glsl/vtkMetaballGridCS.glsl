@@ -2,7 +2,7 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
 //
-// The per-frame perspective grid of vtkMetaballGridBuilder (thesis
+// The per-frame perspective grid of vtkMetaballGridBuilder ([Bolla 2010]
 // Algorithm 2): screen tiles times depth slabs, each voxel listing the balls
 // whose support reaches into it. One source, compiled once per pass (PASS is
 // defined by the builder):
@@ -19,6 +19,9 @@
 //
 // The arithmetic follows pointsurfaces::BallVoxels (psMetaball.cxx), in
 // float: a ball's view-space box is projected to find its tiles.
+//
+// Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+// M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
 
 //VTK::Pass::Dec
 

@@ -2,11 +2,11 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
 //
-// Coherent ray casting of metaballs through the perspective grid (thesis
-// Algorithm 3), for vtkMetaballMapper. One work group per screen tile, one
-// invocation per pixel. The group walks its tile's voxels front to back;
-// empty voxels are skipped; a voxel's balls are loaded into shared memory
-// (in view coordinates) by the whole group. When they fit (MAX_SHARED),
+// Coherent ray casting of metaballs through the perspective grid
+// ([Bolla 2010] Algorithm 3), for vtkMetaballMapper. One work group per
+// screen tile, one invocation per pixel. The group walks its tile's voxels
+// front to back; empty voxels are skipped; a voxel's balls are loaded into
+// shared memory (in view coordinates) by the whole group. When they fit (MAX_SHARED),
 // every ray marches the voxel's stretch of itself without waiting on the
 // others; otherwise the group loads them batch by batch at every sample and
 // the rays march in lock step:
@@ -14,9 +14,9 @@
 // - the step follows the field: |f| / L, with L a bound on |grad f| over the
 //   voxel's balls, so a step never jumps over the surface where f changes
 //   fast, and large steps are taken in free space; it never goes below
-//   stepScale times the smallest radius of the voxel (the thesis's base
-//   step), which near silhouettes, where the gradient is small, is what the
-//   rays take;
+//   stepScale times the smallest radius of the voxel (the base step of
+//   [Bolla 2010]), which near silhouettes, where the gradient is small, is
+//   what the rays take;
 // - a sign change of f is refined by `bisections` bisections;
 // - the normal is -grad f, analytic, and the colour the kernel-weighted mean
 //   of the balls' colours.
@@ -24,6 +24,9 @@
 // Outputs per pixel: colour (rgba8, alpha 0 on a miss), normal and view
 // distance (rgba32f), window depth (r32f). TILE_SIZE, MAX_SHARED and KERNEL
 // are defined by the mapper.
+//
+// Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+// M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
 
 //VTK::Defines::Dec
 

@@ -2,7 +2,7 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
 //
-// Shadows of vtkMetaballMapper from secondary rays (thesis 5.3): for every
+// Shadows of vtkMetaballMapper from secondary rays ([Bolla 2010] 5.3): for every
 // pixel that the primary rays hit, a ray toward one light is tested against
 // the surface. The world-space structure is a perspective grid built from
 // the light's point of view for this frame (vtkMetaballGridBuilder with the
@@ -16,6 +16,9 @@
 // The march is the primary rays' (field-adaptive steps, never below
 // stepScale times the voxel's smallest radius); its sums are checked
 // against llvmpipe's loop limit, and a cut ray is counted and left lit.
+//
+// Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+// M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
 
 //VTK::Defines::Dec
 

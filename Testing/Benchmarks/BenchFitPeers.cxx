@@ -15,6 +15,9 @@
 // Prints CSV: bench,model,n,method,k_or_m,threads,seconds,rms_rel,max_rel,extra,time_vs_peer,rms_vs_peer
 // (seconds: best of three runs)
 // Usage: BenchFitPeers [--smoke] [--threads T] file.{ply,vtp,xyz}...
+//
+// Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+// M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
 #include "psPointIndex.h"
 #include "psSplatBuilder.h"
 #include "vtkAlgebraicSplatFitter.h"
@@ -180,7 +183,7 @@ void BenchMLS(const std::string& path, vtkPolyData* pd, int k, int threads)
     worst / diag,
     projected.size());
 
-  // Ours: a splat per point, the thesis's s = 1, and s = 0.8 at degrees 3
+  // Ours: a splat per point, the s = 1 of [Bolla 2010], and s = 0.8 at degrees 3
   // and 4 (the operating points that match PCL's error), all with k = 40.
   struct Setting
   {

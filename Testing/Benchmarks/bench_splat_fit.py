@@ -3,7 +3,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Benchmarks of the splat fitter. Each prints CSV and writes a plot.
 
-    bench_splat_fit.py counts    [--out DIR] [scans...]   splat counts at s = 1 against thesis Table 4.7
+    bench_splat_fit.py counts    [--out DIR] [scans...]   splat counts at s = 1, [Bolla 2010] Table 4.7
     bench_splat_fit.py million   [--out DIR] [--points N] 1M points (sampled on the Bunny's mesh) at s = 1
     bench_splat_fit.py tradeoff  [--out DIR]              error against time over degree, s, k, fit mode
     add --smoke for a few-second run on a subset (what ctest runs)
@@ -11,6 +11,9 @@
 Scans default to ../shared/data/scans/{bunny.ply,igea.xyz,horse.ply}. Times
 are wall-clock seconds of vtkAlgebraicSplatFitter.Update() on this machine,
 with every core vtkSMPTools uses; compare them only within one run.
+
+Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
 """
 import argparse
 import csv
@@ -32,7 +35,7 @@ from surface_sampling import sample_surface
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
 SCANS = os.path.normpath(os.path.join(ROOT, "..", "shared", "data", "scans"))
-THESIS = {"bunny": 1315, "igea": 4819, "horse": 2983}  # Table 4.7, s = 1
+THESIS = {"bunny": 1315, "igea": 4819, "horse": 2983}  # [Bolla 2010] Table 4.7, s = 1
 
 
 def load(path, every=1):

@@ -30,12 +30,16 @@ the peer's and its share of the primitives (<out>/splat_render_equal_error.csv,
 also printed as # lines).
 
 --points N draws N points sampled uniformly (by area, seeded) on the mesh's
-triangles instead of its vertices: a dense scan, the case the thesis's
-figures are for, where the peers draw every point and the splats stay few.
+triangles instead of its vertices: a dense scan, the case the figures of
+[Bolla 2010] are for, where the peers draw every point and the splats stay
+few.
 
 The timings depend on the GL implementation: on llvmpipe every fragment is
 computed on the CPU, so cost follows the shaded fragments, not the primitive
 count. Use --size to add sizes (1080p: --size 1920x1080).
+
+Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
 """
 import argparse
 import csv

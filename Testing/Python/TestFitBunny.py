@@ -1,8 +1,10 @@
 # SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 # SPDX-License-Identifier: BSD-3-Clause
 """Fit the Stanford Bunny (Testing/Data/bunny.vtp) from Python: the splat
-count at s = 1 against the thesis's Table 4.7, the error falling with the
-degree, and the data model's arrays."""
+count at s = 1 against Table 4.7 of N. K. R. Bolla, "High Quality Rendering
+of Large Point-based Surfaces", M.S. thesis, IIIT Hyderabad, 2010
+([Bolla 2010]), the error falling with the degree, and the data model's
+arrays."""
 import math
 
 import pointsurfaces
@@ -31,7 +33,7 @@ for degree in (1, 2, 3, 4):
     rms = metric.GetRMSDistance() / diagonal
     print("degree %d: %d splats (%.2f%% of %d), RMS %.2e of the diagonal, %d uncovered"
           % (degree, count, 100.0 * count / n, n, rms, metric.GetNumberOfUncoveredPoints()))
-    # Table 4.7: 1315 splats at s = 1 for the Bunny.
+    # [Bolla 2010] Table 4.7: 1315 splats at s = 1 for the Bunny.
     if abs(count - 1315) > 0.05 * 1315:
         fail("%d splats at s = 1, the thesis has 1315" % count)
     if previous is not None and rms > previous * 1.02:

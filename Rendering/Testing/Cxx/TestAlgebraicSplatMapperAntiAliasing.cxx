@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
-// Adaptive anti-aliasing (thesis 4.3) against the exact pixel coverage of a
+// Adaptive anti-aliasing ([Bolla 2010] 4.3) against the exact pixel coverage of a
 // sphere. Quadratic splats fitted to a unit sphere are drawn unlit in white
 // on black, so that a pixel's value is its coverage; the exact coverage of
 // each pixel is integrated on the CPU from 16 x 16 rays against the exact
@@ -8,6 +8,9 @@
 // with 2 x 2 and by more with 3 x 3 supersampling, and fewer than a fifth of
 // the covered pixels may be supersampled (ShowSilhouettePixels marks them).
 // The image regression shows the sphere shaded with 3 x 3 anti-aliasing.
+//
+// Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+// M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
 #include "vtkActor.h"
 #include "vtkAlgebraicSplatFitter.h"
 #include "vtkAlgebraicSplatMapper.h"

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
-// Two-pass blending (thesis 4.2) on a close-up of the Bunny's cubic splats,
+// Two-pass blending ([Bolla 2010] 4.2) on a close-up of the Bunny's cubic splats,
 // each coloured by its own random scalar so that the splats' borders show.
 // Left: Blending off, each pixel shows its nearest splat, with hard seams.
 // Right: Blending on, the colours of the splats within delta of the nearest
@@ -8,6 +8,9 @@
 // its total variation (the sum of colour differences between neighbouring
 // pixels) must be at most 0.7 times the opaque half's, while both cover the
 // same pixels. An ordinary polygonal sphere cuts through both surfaces.
+//
+// Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+// M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
 #include "vtkActor.h"
 #include "vtkAlgebraicSplatFitter.h"
 #include "vtkAlgebraicSplatMapper.h"

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
-// Shadows (thesis 4.3.2) through VTK's vtkShadowMapBakerPass and
+// Shadows ([Bolla 2010] 4.3.2) through VTK's vtkShadowMapBakerPass and
 // vtkShadowMapPass: the Bunny's cubic splats, blended, stand on a polygonal
 // floor under a light from the side. The light's depth map is drawn from
 // the ray-cast hits (the mapper gives vtkShadowMapBakerPass the hit's depth
@@ -8,6 +8,9 @@
 // most of the Bunny must keep its brightness (no self-shadowing all over):
 // both are measured against the same scene rendered without the shadow
 // passes.
+//
+// Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+// M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
 #include "vtkActor.h"
 #include "vtkAlgebraicSplatFitter.h"
 #include "vtkAlgebraicSplatMapper.h"
