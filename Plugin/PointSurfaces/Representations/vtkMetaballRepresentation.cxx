@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkMetaballRepresentation.h"
 
+#include "vtkInformation.h"
 #include "vtkMetaballField.h"
 #include "vtkMetaballGhostBalls.h"
 #include "vtkMetaballMapper.h"
