@@ -10,6 +10,7 @@
 #include "vtkMetaballGridCS.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderTimer.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkShaderStorageBuffer.h"
 #include "vtkSmartPointer.h"
@@ -17,7 +18,6 @@
 #include "psMetaball.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -66,6 +66,7 @@ bool Reserve(vtkShaderStorageBuffer* buffer, size_t bytes)
 struct vtkMetaballGridBuilder::Internals
 {
   vtkObject* Owner = nullptr; // reports errors
+  vtkOpenGLRenderTimer Timer; // the build's GPU time, read a build late
   vtkNew<vtkComputeShaderProgram> Programs[NumberOfPasses];
   vtkNew<vtkShaderStorageBuffer> Ranges, Counts, PairVoxels, PairBalls, Histogram, Cursor,
     VoxelBalls, Stats;
@@ -151,6 +152,17 @@ struct vtkMetaballGridBuilder::Internals
 };
 
 //------------------------------------------------------------------------------
+double vtkMetaballGridBuilder::GetBuildTime()
+{
+  const double seconds = this->Impl->Timer.GetReusableElapsedSeconds();
+  if (seconds > 0.0)
+  {
+    this->BuildTime = 1000.0 * seconds;
+  }
+  return this->BuildTime;
+}
+
+//------------------------------------------------------------------------------
 vtkMetaballGridBuilder::vtkMetaballGridBuilder()
   : Impl(new Internals)
 {
@@ -185,7 +197,6 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
   Internals& in = *this->Impl;
   this->NumberOfPairs = this->MaximumBallsPerVoxel = 0;
   this->NumberOfCulledBalls = this->NumberOfInvalidBalls = 0;
-  this->BuildTime = 0.0;
   if (!renWin || !balls || count < 0 || width <= 0 || height <= 0)
   {
     vtkErrorMacro(<< "Build needs a window, a ball buffer and a viewport.");
@@ -202,7 +213,7 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
                   << " voxels exceed the shader storage buffer limit of " << maxBytes << " bytes.");
     return false;
   }
-  const auto start = std::chrono::steady_clock::now();
+  in.Timer.ReusableStart();
 
   // Uniforms shared by the passes: the view, in float.
   float w2v[16], v2c[16];
@@ -352,11 +363,12 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
   }
   in.Programs[0]->Unbind();
 
+  in.Timer.ReusableStop();
   unsigned int stats[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
-  ok = ok && in.Stats->Download(stats, sizeof(stats));
-  glFinish();
-  this->BuildTime =
-    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (this->CollectStatistics)
+  {
+    ok = ok && in.Stats->Download(stats, sizeof(stats));
+  }
   if (!ok)
   {
     vtkErrorMacro(<< "The metaball grid build failed (see the messages above).");
@@ -373,6 +385,7 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
 void vtkMetaballGridBuilder::ReleaseGraphicsResources(vtkWindow* win)
 {
   Internals& in = *this->Impl;
+  in.Timer.ReleaseGraphicsResources();
   for (auto& p : in.Programs)
   {
     p->ReleaseGraphicsResources(win);
@@ -404,5 +417,6 @@ void vtkMetaballGridBuilder::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SlabRange: " << this->SlabRange[0] << ", " << this->SlabRange[1] << "\n";
   os << indent << "NumberOfPairs: " << this->NumberOfPairs << "\n";
   os << indent << "MaximumBallsPerVoxel: " << this->MaximumBallsPerVoxel << "\n";
+  os << indent << "CollectStatistics: " << this->CollectStatistics << "\n";
   os << indent << "BuildTime: " << this->BuildTime << " ms\n";
 }

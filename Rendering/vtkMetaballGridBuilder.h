@@ -94,15 +94,31 @@ public:
 
   ///@{
   /**
-   * Statistics of the last Build(). BuildTime is the wall-clock time of the
-   * build in ms, up to glFinish(), read-backs of the pair count included.
+   * Read the grid's statistics back after each Build() (culled and invalid
+   * balls, the most balls in a voxel), which waits for the GPU to finish the
+   * build. Off (the default): they stay 0, and nothing waits but the two
+   * read-backs the build needs (the slab range when it follows the balls,
+   * and the pair count that sizes the pair buffers).
    */
+  vtkSetMacro(CollectStatistics, bool);
+  vtkGetMacro(CollectStatistics, bool);
+  vtkBooleanMacro(CollectStatistics, bool);
+  ///@}
+
+  ///@{
+  /** Statistics of the last Build(): the pair count always, the others with CollectStatistics. */
   vtkGetMacro(NumberOfPairs, vtkIdType);
   vtkGetMacro(MaximumBallsPerVoxel, vtkIdType);
   vtkGetMacro(NumberOfCulledBalls, vtkIdType);
   vtkGetMacro(NumberOfInvalidBalls, vtkIdType);
-  vtkGetMacro(BuildTime, double);
   ///@}
+
+  /**
+   * The GPU time of the last build whose timer queries have completed, in
+   * ms (GL_TIMESTAMP queries, read without waiting: usually the previous
+   * build's; 0 until one has completed).
+   */
+  double GetBuildTime();
 
   void ReleaseGraphicsResources(vtkWindow* win);
 
@@ -120,6 +136,7 @@ protected:
   vtkIdType MaximumBallsPerVoxel = 0;
   vtkIdType NumberOfCulledBalls = 0;
   vtkIdType NumberOfInvalidBalls = 0;
+  bool CollectStatistics = false;
   double BuildTime = 0.0;
 
 private:

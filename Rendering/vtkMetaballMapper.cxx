@@ -24,6 +24,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLQuadHelper.h"
+#include "vtkOpenGLRenderTimer.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLRenderer.h"
 #include "vtkOpenGLShaderCache.h"
@@ -42,7 +43,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -52,6 +52,25 @@ vtkStandardNewMacro(vtkMetaballMapper);
 
 namespace
 {
+// Reads the counters of ring slot `k` when its fence has passed (or at once
+// after waiting, with `wait`); true when read.
+bool ReadCounterSlot(vtkShaderStorageBuffer* buffer, GLsync& fence, bool wait, unsigned int out[3])
+{
+  if (!fence)
+  {
+    return false;
+  }
+  const GLenum status =
+    glClientWaitSync(fence, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, wait ? 10000000000ull : 0);
+  if (status != GL_ALREADY_SIGNALED && status != GL_CONDITION_SATISFIED)
+  {
+    return false;
+  }
+  glDeleteSync(fence);
+  fence = nullptr;
+  return buffer->Download(out, 3 * sizeof(unsigned int));
+}
+
 const int MaxShared = 256; // balls per voxel batch in shared memory
 
 void ToFloat(vtkMatrix4x4* m, float out[16])
@@ -101,7 +120,16 @@ struct vtkMetaballMapper::Internals
   vtkNew<vtkTextureObject> ShadowImage;
   double MinRadius = 1.0;
   bool WarnedShadow = false;
-  vtkNew<vtkShaderStorageBuffer> Balls, Colors, Strengths, Inside;
+  vtkNew<vtkShaderStorageBuffer> Balls, Colors, Strengths;
+  // The shaders' counters (pixels starting inside, rays and shadow rays cut
+  // by the loop limit) in a ring of buffers: each frame adds into a fresh
+  // one and fences it, and a later frame reads those whose fence the GPU has
+  // passed, so that no frame waits to read them (CollectStatistics waits).
+  static constexpr int Ring = 3;
+  vtkNew<vtkShaderStorageBuffer> Counters[Ring];
+  GLsync Fences[Ring] = { nullptr, nullptr, nullptr };
+  int Next = 0;
+  vtkOpenGLRenderTimer CastTimer, ShadowTimer; // GPU times, read a frame late
   bool WarnedInside = false;
   bool WarnedBudget = false;
   vtkNew<vtkComputeShaderProgram> RayCast;
@@ -117,6 +145,38 @@ struct vtkMetaballMapper::Internals
   int Width = 0;
   int Height = 0;
 };
+
+//------------------------------------------------------------------------------
+void vtkMetaballMapper::ReportCounters(const unsigned int counters[3])
+{
+  Internals& in = *this->Impl;
+  this->NumberOfPixelsStartingInside = counters[0];
+  this->NumberOfIncompleteRays = counters[1];
+  if (counters[1] > 0 && !in.WarnedBudget)
+  {
+    vtkWarningMacro(<< counters[1]
+                    << " rays stopped before finding the surface: they ran out of the GL "
+                       "driver's loop iterations (llvmpipe allows 65535 per shader invocation). "
+                       "Raise StepScale, or use more Slabs or a smaller TileSize so that voxels "
+                       "hold fewer balls.");
+  }
+  in.WarnedBudget = counters[1] > 0;
+  if (counters[0] > 0 && !in.WarnedInside)
+  {
+    vtkWarningMacro(<< "The near clipping plane cuts into the metaball surface (the camera is "
+                       "inside it, or a ball crosses the near plane): "
+                    << counters[0] << " pixels show the surface from within.");
+  }
+  in.WarnedInside = counters[0] > 0;
+  if (counters[2] > 0 && !in.WarnedShadow)
+  {
+    vtkWarningMacro(<< counters[2]
+                    << " shadow rays stopped short of the light: they ran out of the GL "
+                       "driver's loop iterations (llvmpipe allows 65535 per shader "
+                       "invocation) and are left lit.");
+  }
+  in.WarnedShadow = counters[2] > 0;
+}
 
 //------------------------------------------------------------------------------
 vtkMetaballMapper::vtkMetaballMapper()
@@ -383,6 +443,7 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
 
   // [Bolla 2010] Algorithm 2: the perspective grid.
   in.Grid->SetTileSize(this->TileSize);
+  in.Grid->SetCollectStatistics(this->CollectStatistics);
   in.Grid->SetSlabs(this->Slabs);
   if (!in.Grid->Build(renWin,
         in.Balls,
@@ -395,13 +456,11 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   {
     return;
   }
-  this->GridBuildTime = in.Grid->GetBuildTime();
   this->NumberOfPairs = in.Grid->GetNumberOfPairs();
   this->MaximumBallsPerVoxel = in.Grid->GetMaximumBallsPerVoxel();
   this->NumberOfCulledBalls = in.Grid->GetNumberOfCulledBalls();
 
   // [Bolla 2010] Algorithm 3: coherent ray casting, into colour, normal and depth images.
-  const auto start = std::chrono::steady_clock::now();
   if (width != in.Width || height != in.Height)
   {
     in.ColorImage->SetContext(renWin);
@@ -457,56 +516,60 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   in.Strengths->BindBase(2);
   in.Grid->GetVoxelOffsets()->BindBase(3);
   in.Grid->GetVoxelBalls()->BindBase(4);
+  // This frame's counters: a ring slot whose last use the GPU has passed
+  // (read first; waited for only when the GPU is a whole ring behind).
+  unsigned int counters[3] = { 0, 0, 0 };
+  for (int k = 1; k <= Internals::Ring; ++k)
+  {
+    const int slot = (in.Next + k) % Internals::Ring; // oldest first, this frame's last
+    if (ReadCounterSlot(in.Counters[slot], in.Fences[slot], slot == in.Next, counters))
+    {
+      this->ReportCounters(counters);
+    }
+  }
+  vtkShaderStorageBuffer* frameCounters = in.Counters[in.Next];
   const unsigned int zeros[3] = { 0, 0, 0 };
-  in.Inside->Upload(zeros, sizeof(zeros));
-  in.Inside->BindBase(5);
+  frameCounters->Upload(zeros, sizeof(zeros));
+  frameCounters->BindBase(5);
 
   glBindImageTexture(0, in.ColorImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
   glBindImageTexture(1, in.NormalImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(2, in.DepthImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  in.CastTimer.ReusableStart();
   const bool cast = in.RayCast->Dispatch(in.Grid->GetTilesX(),
     in.Grid->GetTilesY(),
     1,
     GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
       GL_SHADER_STORAGE_BARRIER_BIT);
   in.RayCast->Unbind();
-  unsigned int counters[3] = { 0, 0, 0 };
-  in.Inside->Download(counters, sizeof(counters));
-  const unsigned int inside = counters[0];
-  this->NumberOfPixelsStartingInside = inside;
-  this->NumberOfIncompleteRays = counters[1];
-  if (counters[1] > 0 && !in.WarnedBudget)
-  {
-    vtkWarningMacro(<< counters[1]
-                    << " rays stopped before finding the surface: they ran out of the GL "
-                       "driver's loop iterations (llvmpipe allows 65535 per shader invocation). "
-                       "Raise StepScale, or use more Slabs or a smaller TileSize so that voxels "
-                       "hold fewer balls.");
-  }
-  in.WarnedBudget = counters[1] > 0;
-  if (inside > 0 && !in.WarnedInside)
-  {
-    vtkWarningMacro(<< "The near clipping plane cuts into the metaball surface (the camera is "
-                       "inside it, or a ball crosses the near plane): "
-                    << inside << " pixels show the surface from within.");
-  }
-  in.WarnedInside = inside > 0;
-  glFinish();
-  this->RayCastTime =
-    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (!cast)
-  {
-    return;
-  }
-
+  in.CastTimer.ReusableStop();
   // Shadows: secondary rays toward the lights.
   int shadowLights = 0;
-  this->ShadowTime = 0.0;
-  if (this->Shadows)
+  if (cast && this->Shadows)
   {
     vtkNew<vtkMatrix4x4> viewToModel;
     vtkMatrix4x4::Invert(worldToView, viewToModel);
     shadowLights = this->CastShadows(ren, act, model, viewToModel, clipToView, width, height);
+  }
+  else
+  {
+    this->ShadowTime = 0.0;
+  }
+  // The frame's counters are complete: fence them, and read them now only
+  // when asked to wait.
+  in.Fences[in.Next] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  if (this->CollectStatistics && ReadCounterSlot(frameCounters, in.Fences[in.Next], true, counters))
+  {
+    this->ReportCounters(counters);
+  }
+  in.Next = (in.Next + 1) % Internals::Ring;
+  // GPU times of the last frame whose queries completed.
+  const double castSeconds = in.CastTimer.GetReusableElapsedSeconds();
+  this->RayCastTime = castSeconds > 0.0 ? 1000.0 * castSeconds : this->RayCastTime;
+  this->GridBuildTime = in.Grid->GetBuildTime();
+  if (!cast)
+  {
+    return;
   }
 
   // Shade and composite with the true depth, depth-tested against the scene.
@@ -609,7 +672,13 @@ int vtkMetaballMapper::CastShadows(vtkRenderer* ren,
 {
   Internals& in = *this->Impl;
   auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
-  const auto start = std::chrono::steady_clock::now();
+  // The GPU time of the light grids and shadow rays, stopped on every way out.
+  in.ShadowTimer.ReusableStart();
+  struct StopAtExit
+  {
+    vtkOpenGLRenderTimer& Timer;
+    ~StopAtExit() { this->Timer.ReusableStop(); }
+  } stop{ in.ShadowTimer };
   if (in.ShadowImage->GetWidth() != static_cast<unsigned int>(width) ||
     in.ShadowImage->GetHeight() != static_cast<unsigned int>(height) ||
     !in.ShadowImage->GetHandle())
@@ -657,7 +726,6 @@ int vtkMetaballMapper::CastShadows(vtkRenderer* ren,
   in.LightGrid->SetTileSize(16);
   in.LightGrid->SetSlabs(16);
   int lights = 0;
-  unsigned int cut = 0;
   vtkLightCollection* collection = ren->GetLights();
   vtkCollectionSimpleIterator it;
   collection->InitTraversal(it);
@@ -745,7 +813,7 @@ int vtkMetaballMapper::CastShadows(vtkRenderer* ren,
     in.Strengths->BindBase(2);
     in.LightGrid->GetVoxelOffsets()->BindBase(3);
     in.LightGrid->GetVoxelBalls()->BindBase(4);
-    in.Inside->BindBase(5);
+    in.Counters[in.Next]->BindBase(5); // this frame's counters
     glBindImageTexture(2, in.DepthImage->GetHandle(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
     glBindImageTexture(3, in.ShadowImage->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     in.Shadow->Dispatch(vtkComputeShaderProgram::GroupCount(width, 16),
@@ -754,20 +822,8 @@ int vtkMetaballMapper::CastShadows(vtkRenderer* ren,
       GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     in.Shadow->Unbind();
   }
-  unsigned int counters[3] = { 0, 0, 0 };
-  in.Inside->Download(counters, sizeof(counters));
-  cut = counters[2];
-  if (cut > 0 && !in.WarnedShadow)
-  {
-    vtkWarningMacro(<< cut
-                    << " shadow rays stopped short of the light: they ran out of the GL "
-                       "driver's loop iterations (llvmpipe allows 65535 per shader "
-                       "invocation) and are left lit.");
-  }
-  in.WarnedShadow = cut > 0;
-  glFinish();
-  this->ShadowTime =
-    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = in.ShadowTimer.GetReusableElapsedSeconds();
+  this->ShadowTime = seconds > 0.0 ? 1000.0 * seconds : this->ShadowTime;
   return lights;
 }
 
@@ -795,7 +851,17 @@ void vtkMetaballMapper::ReleaseGraphicsResources(vtkWindow* win)
   in.Balls->ReleaseGraphicsResources(win);
   in.Colors->ReleaseGraphicsResources(win);
   in.Strengths->ReleaseGraphicsResources(win);
-  in.Inside->ReleaseGraphicsResources(win);
+  for (int k = 0; k < Internals::Ring; ++k)
+  {
+    in.Counters[k]->ReleaseGraphicsResources(win);
+    if (in.Fences[k])
+    {
+      glDeleteSync(in.Fences[k]);
+      in.Fences[k] = nullptr;
+    }
+  }
+  in.CastTimer.ReleaseGraphicsResources();
+  in.ShadowTimer.ReleaseGraphicsResources();
   in.LightGrid->ReleaseGraphicsResources(win);
   in.Shadow->ReleaseGraphicsResources(win);
   in.ShadowDefines.clear();

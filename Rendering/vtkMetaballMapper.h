@@ -112,10 +112,38 @@ public:
   ///@}
 
   ///@{
-  /** Statistics of the last render: grid build and ray cast times in ms (wall clock). */
+  /**
+   * Wait for each frame's statistics and read them back as it is drawn:
+   * the grid's culled balls and balls per voxel, and the ray casts'
+   * counters (NumberOfPixelsStartingInside, NumberOfIncompleteRays). Off
+   * (the default), nothing in a frame waits for the GPU to read them: the
+   * grid statistics are not collected, and the counters are read a frame
+   * or two late, once the GPU has passed them (their warnings come then).
+   * Tests and benchmarks that check one frame's counters turn it on.
+   */
+  vtkSetMacro(CollectStatistics, bool);
+  vtkGetMacro(CollectStatistics, bool);
+  vtkBooleanMacro(CollectStatistics, bool);
+  ///@}
+
+  ///@{
+  /**
+   * GPU times in ms, from timer queries read without waiting: those of the
+   * last frame whose queries have completed (usually the one before; 0
+   * until one has). The grid build, the primary rays, and the light grids
+   * with the shadow rays.
+   */
   vtkGetMacro(GridBuildTime, double);
   vtkGetMacro(RayCastTime, double);
-  vtkGetMacro(ShadowTime, double); // light grids and shadow rays
+  vtkGetMacro(ShadowTime, double);
+  ///@}
+
+  ///@{
+  /**
+   * The last render's (voxel, ball) pairs and invalid balls; with
+   * CollectStatistics, the most balls in a voxel and the culled balls too.
+   * Uploads: how often the balls went to the GPU.
+   */
   vtkGetMacro(NumberOfPairs, vtkIdType);
   vtkGetMacro(MaximumBallsPerVoxel, vtkIdType);
   vtkGetMacro(NumberOfCulledBalls, vtkIdType);
@@ -124,15 +152,17 @@ public:
   ///@}
 
   /**
-   * Pixels of the last render whose rays start inside the surface: the near
-   * clipping plane cuts into it (the camera is inside a blob, or a ball
-   * crosses the near plane). They show the surface from within; a warning
-   * says so when it first happens.
+   * Pixels whose rays start inside the surface, in the latest frame whose
+   * counters were read (see CollectStatistics): the near clipping plane cuts
+   * into it (the camera is inside a blob, or a ball crosses the near plane).
+   * They show the surface from within; a warning says so when it first
+   * happens.
    */
   vtkGetMacro(NumberOfPixelsStartingInside, vtkIdType);
 
   /**
-   * Rays of the last render that stopped before finding the surface because
+   * Rays that stopped before finding the surface, in the latest frame whose
+   * counters were read (see CollectStatistics), because
    * the GL driver's loop limit was near (llvmpipe ends the loops of a shader
    * invocation after 65535 iterations in all); a warning says so. Zero on
    * GPUs.
@@ -167,6 +197,8 @@ protected:
   void ComputeBounds();
   /** Brings the input up to date (unless Static). */
   void UpdateInput();
+  /** Takes one frame's counters: pixels starting inside, cut rays, cut shadow rays. */
+  void ReportCounters(const unsigned int counters[3]);
 
   /**
    * The hits of the last render, one tuple per viewport pixel (rows from the
@@ -200,6 +232,7 @@ protected:
   vtkIdType NumberOfPixelsStartingInside = 0;
   vtkIdType NumberOfIncompleteRays = 0;
   bool Shadows = false;
+  bool CollectStatistics = false;
   double ShadowTime = 0.0;
 
 private:

@@ -228,6 +228,7 @@ def main():
             # The finest step whose rays all run to their end.
             for reference_step in (0.02, 0.05, 0.1):
                 reference_mapper = metaballs(reference_step, 20)
+                reference_mapper.CollectStatisticsOn()  # this frame's cut rays, read at once
                 reference = scene.image()
                 if reference_mapper.GetNumberOfIncompleteRays() == 0:
                     break

@@ -62,6 +62,7 @@ int Compare(vtkOpenGLRenderWindow* win,
   }
   const long long n = static_cast<long long>(radii.size());
   vtkNew<vtkMetaballGridBuilder> builder;
+  builder->CollectStatisticsOn(); // the culled and per-voxel counts are checked
   builder->SetTileSize(tile);
   builder->SetSlabs(slabs);
   if (!builder->Build(win, buffer, n, worldToView, viewToClip, false, size, size))

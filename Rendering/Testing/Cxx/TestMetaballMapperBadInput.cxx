@@ -70,6 +70,7 @@ int TestMetaballMapperBadInput(int, char*[])
   vtkNew<vtkRenderer> renderer;
   renWin->AddRenderer(renderer);
   vtkNew<vtkMetaballMapper> mapper;
+  mapper->CollectStatisticsOn(); // each frame's counters and warnings are checked
   vtkNew<vtkCallbackCommand> counter;
   counter->SetCallback(Count);
   mapper->AddObserver(vtkCommand::WarningEvent, counter);

@@ -48,6 +48,7 @@ int TestMetaballMapperCluster(int argc, char* argv[])
   cluster->GetPointData()->SetScalars(distance);
 
   vtkNew<vtkMetaballMapper> mapper;
+  mapper->CollectStatisticsOn(); // the frame's counts are checked
   mapper->SetInputDataObject(cluster);
   mapper->SetScalarRange(0.0, 2.0);
   vtkNew<vtkActor> actor;
