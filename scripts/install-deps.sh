@@ -31,6 +31,8 @@ packages=(
   clang libclang-rt-14-dev
   # mpiexec: the ghost-ball test runs over three MPI ranks
   openmpi-bin
+  # the GPU bundle (scripts/gpu-bundle.sh): xz, objdump and strip, unshare
+  xz-utils binutils util-linux
 )
 dryrun=0
 paraview=0

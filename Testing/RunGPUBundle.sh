@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The GPU bundle must run from itself alone: make it with
+# scripts/gpu-bundle.sh, unpack it, and run its gpu-run.sh --smoke with
+# Mesa's EGL in a mount namespace where every system library of VTK, PCL,
+# OpenVDB, OpenMesh, Ceres and TBB, and the build tree's own libraries, are
+# hidden (empty files and an empty folder mounted over them). Any library
+# the bundle lacks then fails to load, and the run fails.
+#
+# Usage: Testing/RunGPUBundle.sh SOURCE_DIR BUILD_DIR WORK_DIR
+set -euo pipefail
+root=$1
+build=$2
+work=$3
+rm -rf "$work"
+mkdir -p "$work"
+
+"$root/scripts/gpu-bundle.sh" "$work/out"
+mkdir -p "$work/unpacked" "$work/emptydir"
+tar -C "$work/unpacked" -xJf "$work/out/pointsurfaces-gpu.tar.xz"
+touch "$work/empty"
+find /usr/lib/x86_64-linux-gnu -maxdepth 1 -type f \( -name 'libvtk*' -o -name 'libpcl_*' \
+  -o -name 'libopenvdb*' -o -name 'libOpenMesh*' -o -name 'libceres*' -o -name 'libtbb*' \) \
+  > "$work/hidden.txt"
+echo "RunGPUBundle: hiding $(wc -l < "$work/hidden.txt") system libraries and $build/lib"
+
+namespace=(unshare -m --propagation private)
+if [ "$(id -u)" != 0 ]; then
+  namespace=(unshare -r -m --propagation private)
+fi
+"${namespace[@]}" bash -euo pipefail -c '
+  work=$1
+  build=$2
+  while read -r f; do
+    mount --bind "$work/empty" "$f"
+  done < "$work/hidden.txt"
+  mount --bind "$work/emptydir" "$build/lib"
+  # Proof that the hiding works: the system VTK cannot be loaded any more.
+  if python3 -c "import ctypes; ctypes.CDLL(\"libvtkCommonCore-9.1.so.1\")" 2> /dev/null; then
+    echo "RunGPUBundle: the system VTK is still loadable" >&2
+    exit 1
+  fi
+  "$work/unpacked/pointsurfaces-gpu/gpu-run.sh" --smoke "$work/results"
+' hide "$work" "$build"
+
+csv="$work/results/bench/render.csv"
+for scene in splats- metaballs-; do
+  if ! grep -q "^$scene" "$csv"; then
+    echo "RunGPUBundle: no $scene rows in $csv" >&2
+    exit 1
+  fi
+done
+grep -q "ctest -L egl: 0" "$work/results/gpu-run.log"
+echo "RunGPUBundle: the bundle ran from itself alone ($(stat -c %s "$work/out/pointsurfaces-gpu.tar.xz") bytes)"
