@@ -57,35 +57,28 @@ done
 # The ldd closure of every binary and library, less glibc and GL vendor
 # libraries (the host's driver brings its own, and its glibc).
 skip='^(linux-vdso|ld-linux|libc|libm|libmvec|libpthread|libdl|librt|libutil|libresolv|libnsl|libanl|libcrypt|libBrokenLocale)\.so|^lib(EGL|GLX|GLESv1_CM|GLESv2)_|^libnvidia|^libcuda'
-closure() {
-  LD_LIBRARY_PATH="$stage/lib" ldd "$1" | awk '/=>/ && $3 ~ /^\// {print $1, $3}'
-}
-for f in "$stage"/bin/* "$stage"/lib/*; do
-  closure "$f"
-done | sort -u | while read -r name path; do
-  if [[ "$name" =~ $skip ]] || [ -e "$stage/lib/$name" ]; then
-    continue
-  fi
-  cp -L "$path" "$stage/lib/$name"
-done
-# The glvnd loaders, whether or not a binary links them directly.
-for name in libEGL.so.1 libGL.so.1 libGLX.so.0 libOpenGL.so.0 libGLdispatch.so.0; do
-  if [ ! -e "$stage/lib/$name" ]; then
-    path=$(ldconfig -p | awk -v n="$name" '$1 == n && /x86-64/ {print $NF; exit}')
-    [ -n "$path" ] && cp -L "$path" "$stage/lib/$name"
-  fi
-done
-# Libraries that the copied libraries load in turn.
-for pass in 1 2; do
-  for f in "$stage"/lib/*; do
-    closure "$f"
+# Copies into lib/ what the files given load and lib/ lacks (ldd resolves
+# the whole closure, through lib/ first).
+copy_closure() {
+  for f in "$@"; do
+    LD_LIBRARY_PATH="$stage/lib" ldd "$f" | awk '/=>/ && $3 ~ /^\// {print $1, $3}'
   done | sort -u | while read -r name path; do
     if [[ "$name" =~ $skip ]] || [ -e "$stage/lib/$name" ]; then
       continue
     fi
     cp -L "$path" "$stage/lib/$name"
   done
+}
+copy_closure "$stage"/bin/* "$stage"/lib/*
+# The glvnd loaders, whether or not a binary links them directly, and what
+# they load.
+for name in libEGL.so.1 libGL.so.1 libGLX.so.0 libOpenGL.so.0 libGLdispatch.so.0; do
+  if [ ! -e "$stage/lib/$name" ]; then
+    path=$(ldconfig -p | awk -v n="$name" '$1 == n && /x86-64/ {print $NF; exit}')
+    [ -n "$path" ] && cp -L "$path" "$stage/lib/$name"
+  fi
 done
+copy_closure "$stage"/lib/*
 strip --strip-unneeded "$stage"/bin/* "$stage"/lib/* 2> /dev/null || true
 
 # Data and baselines, at their paths relative to the repository.

@@ -18,6 +18,7 @@
 //   split into three slabs, each part's field (own and ghosts) equals the
 //   whole field wherever one of its own balls reaches, while without the
 //   ghosts it does not.
+#include "psFiltersTestSupport.h"
 #include "psMetaball.h"
 
 #include <cmath>
@@ -31,15 +32,6 @@ using namespace pointsurfaces;
 
 namespace
 {
-int Failures = 0;
-void Check(bool ok, const char* what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
 
 // A camera at `eye` looking down -z, 60 degree view angle, square viewport.
 GridView MakeView(const double eye[3], int size, int tile, int slabs)

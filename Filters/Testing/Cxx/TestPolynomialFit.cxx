@@ -3,6 +3,7 @@
 // Unit tests of the plain numerics in Filters/Core: monomial order, exact
 // recovery of polynomials of degree 1-4, invariance under offsets of 1e7 and
 // scales of 1e-6 and 1e6, and the degenerate neighbourhoods.
+#include "psFiltersTestSupport.h"
 #include "psLocalFit.h"
 #include "psPolynomial.h"
 
@@ -16,16 +17,6 @@ using namespace pointsurfaces;
 
 namespace
 {
-int Failures = 0;
-
-void Check(bool ok, const char* what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
 
 // Sample z = g(u, v) (in units of h) in a tilted frame placed at `offset` with scale `h`.
 std::vector<double> Sample(const LocalFrame& f, const double* c, int degree, int n, unsigned seed)

@@ -14,6 +14,7 @@
 #include "psSplatFit.h"
 #include "psSplatOrientation.h"
 
+#include "psFiltersTestSupport.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -28,15 +29,6 @@ using namespace pointsurfaces;
 
 namespace
 {
-int Failures = 0;
-void Check(bool ok, const char* what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
 
 std::vector<double> FibonacciSphere(int n)
 {

@@ -8,6 +8,7 @@
 // small enough on screen, nearer leaves get finer levels, and parallel
 // projection and a model matrix are honoured; an octree that the data
 // model's checks reject is never used.
+#include "psFiltersTestSupport.h"
 #include "psOctree.h"
 #include "psSplatLOD.h"
 #include "vtkDoubleArray.h"
@@ -29,15 +30,6 @@ using namespace pointsurfaces;
 
 namespace
 {
-int Failures = 0;
-void Check(bool ok, const char* what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
 
 // Splats in the unit cube [-1, 1]^3, radius s_l * 0.02 at level l.
 struct Set
