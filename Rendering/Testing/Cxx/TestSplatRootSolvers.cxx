@@ -17,6 +17,7 @@
 // the root allows; 1e-2 on a near-double pair, whose error grows like
 // sqrt(epsilon). The largest error of each case is printed.
 #include "psRoots.h"
+#include "psShaderHooks.h"
 #include "vtkComputeShaderProgram.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -207,8 +208,11 @@ int TestSplatRootSolvers(int, char*[])
   renWin->Render();
   auto* gl = vtkOpenGLRenderWindow::SafeDownCast(renWin);
   std::string source = vtkSplatRootsCS;
-  const std::string hook = "//VTK::SplatRoots::Dec";
-  source.replace(source.find(hook), hook.size(), vtkSplatRoots);
+  if (!pointsurfaces::ReplaceHook(source, "//VTK::SplatRoots::Dec", vtkSplatRoots))
+  {
+    std::cerr << "vtkSplatRootsCS lacks its //VTK::SplatRoots::Dec hook\n";
+    return EXIT_FAILURE;
+  }
   vtkNew<vtkComputeShaderProgram> program;
   program->SetName("vtkSplatRootsCS");
   program->SetSource(source);
