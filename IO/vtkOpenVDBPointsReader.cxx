@@ -230,8 +230,8 @@ bool CopyTyped(const std::string& type,
 // reaching past the end. OpenVDB 10.0.1 sizes some reads from counts in the
 // file and checks them only after reading (see Testing/Fuzz/README.md); a
 // damaged count beyond the end of the file then throws here instead of
-// writing past OpenVDB's buffer. Counts that still fit the file are beyond
-// the reader's reach.
+// writing past OpenVDB's buffer; a negative count is refused too. Counts
+// that still fit the file are beyond the reader's reach.
 class BoundedBuffer : public std::streambuf
 {
 public:
@@ -243,7 +243,9 @@ public:
 protected:
   std::streamsize xsgetn(char* s, std::streamsize n) override
   {
-    if (n > this->egptr() - this->gptr())
+    // A negative count (a damaged size that std::istream::read passes on
+    // as it is) would turn into a huge copy.
+    if (n < 0 || n > this->egptr() - this->gptr())
     {
       throw std::ios_base::failure(
         "a read of " + std::to_string(n) + " bytes reaches past the end of the file");
