@@ -51,6 +51,9 @@ from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLFluidMapper
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SHARED = os.path.join(HERE, "..", "..", "..", "shared", "data")
+# The smoke run (what ctest runs) reads the 2 000-particle subsets committed
+# in Testing/Data, so that it passes in a clean clone with nothing beside it.
+TEST_DATA = os.path.join(HERE, "..", "Data")
 
 
 FIELDS = ["input", "balls", "size", "method", "setting", "frame_ms", "build_ms", "render_ms",
@@ -74,7 +77,8 @@ def load(name, smoke):
         n = {"10K": 10000, "100K": 100000, "1M": 1000000}[name.split("-")[1]]
         return scattered(n if not smoke else 2000)
     if name == "halo":
-        xyz = np.loadtxt(os.path.join(SHARED, "particles", "halo_32k.xyz"))
+        xyz = np.loadtxt(os.path.join(TEST_DATA, "halo_2k.xyz") if smoke
+                         else os.path.join(SHARED, "particles", "halo_32k.xyz"))
         if smoke:
             xyz = xyz[:2000]
         spacing = np.ptp(xyz, axis=0).max() / len(xyz) ** (1.0 / 3.0)
@@ -93,7 +97,8 @@ def load(name, smoke):
         return xyz, np.full(len(xyz), 6.0)
     if name == "adk-solvated":
         reader = vtkPDBReader()
-        reader.SetFileName(os.path.join(SHARED, "molecules", "adk_solvated.pdb"))
+        reader.SetFileName(os.path.join(TEST_DATA, "adk_solvated_2k.pdb") if smoke
+                           else os.path.join(SHARED, "molecules", "adk_solvated.pdb"))
         reader.Update()
         out = reader.GetOutput()
         xyz = vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64)
