@@ -70,17 +70,14 @@ int ReadDepthFormat(GLuint framebuffer)
     GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &bits);
   glGetFramebufferAttachmentParameteriv(
     GL_READ_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE, &component);
-  if (framebuffer)
+  // The default framebuffer names its stencil GL_STENCIL, an object GL_STENCIL_ATTACHMENT.
+  const GLenum stencilAttachment = framebuffer ? GL_STENCIL_ATTACHMENT : GL_STENCIL;
+  glGetFramebufferAttachmentParameteriv(
+    GL_READ_FRAMEBUFFER, stencilAttachment, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+  if (type != GL_NONE)
   {
     glGetFramebufferAttachmentParameteriv(
-      GL_READ_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
-    if (type != GL_NONE)
-    {
-      glGetFramebufferAttachmentParameteriv(GL_READ_FRAMEBUFFER,
-        GL_STENCIL_ATTACHMENT,
-        GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE,
-        &stencil);
-    }
+      GL_READ_FRAMEBUFFER, stencilAttachment, GL_FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE, &stencil);
   }
   if (stencil > 0)
   {
@@ -127,8 +124,9 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   {
     return;
   }
-  GLint scene = 0;
+  GLint scene = 0, sampleBuffers = 0;
   ostate->vtkglGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &scene);
+  ostate->vtkglGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers); // of the scene's framebuffer
 
   ostate->Push();
   ostate->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(scene));
@@ -177,8 +175,10 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   // depth blit needs the same depth (and stencil) format on both sides; the
   // targets were allocated in the scene's own format, so the blit works
   // whenever that format is one a texture can hold (ReadDepthFormat: not
-  // -1), multisampled scenes included (the blit resolves them).
-  const bool copied = depthFormat != -1;
+  // -1); a multisampled scene is resolved by the blit when the viewport
+  // starts at the origin, the only place its rectangle may be.
+  const bool copied =
+    depthFormat != -1 && (sampleBuffers == 0 || (viewport[0] == 0 && viewport[1] == 0));
   if (copied)
   {
     glBlitFramebuffer(viewport[0],

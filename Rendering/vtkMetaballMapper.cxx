@@ -519,10 +519,10 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   // This frame's counters: a ring slot whose last use the GPU has passed
   // (read first; waited for only when the GPU is a whole ring behind).
   unsigned int counters[3] = { 0, 0, 0 };
-  for (int k = 1; k <= Internals::Ring; ++k)
+  for (int k = 0; k < Internals::Ring; ++k)
   {
-    const int slot = (in.Next + k) % Internals::Ring; // oldest first, this frame's last
-    if (ReadCounterSlot(in.Counters[slot], in.Fences[slot], slot == in.Next, counters))
+    const int slot = (in.Next + k) % Internals::Ring; // oldest first: the one to reuse
+    if (ReadCounterSlot(in.Counters[slot], in.Fences[slot], k == 0, counters))
     {
       this->ReportCounters(counters);
     }
@@ -557,6 +557,12 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   }
   // The frame's counters are complete: fence them, and read them now only
   // when asked to wait.
+  // glGetBufferSubData reads what the shaders wrote once this barrier passed.
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  if (in.Fences[in.Next])
+  {
+    glDeleteSync(in.Fences[in.Next]); // its wait timed out: that frame's counters are lost
+  }
   in.Fences[in.Next] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
   if (this->CollectStatistics && ReadCounterSlot(frameCounters, in.Fences[in.Next], true, counters))
   {
@@ -566,6 +572,12 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   // GPU times of the last frame whose queries completed.
   const double castSeconds = in.CastTimer.GetReusableElapsedSeconds();
   this->RayCastTime = castSeconds > 0.0 ? 1000.0 * castSeconds : this->RayCastTime;
+  if (shadowLights > 0)
+  {
+    // Read after CastShadows stopped its flight (reading resets it).
+    const double shadowSeconds = in.ShadowTimer.GetReusableElapsedSeconds();
+    this->ShadowTime = shadowSeconds > 0.0 ? 1000.0 * shadowSeconds : this->ShadowTime;
+  }
   this->GridBuildTime = in.Grid->GetBuildTime();
   if (!cast)
   {
@@ -822,8 +834,6 @@ int vtkMetaballMapper::CastShadows(vtkRenderer* ren,
       GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     in.Shadow->Unbind();
   }
-  const double seconds = in.ShadowTimer.GetReusableElapsedSeconds();
-  this->ShadowTime = seconds > 0.0 ? 1000.0 * seconds : this->ShadowTime;
   return lights;
 }
 

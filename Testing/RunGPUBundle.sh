@@ -49,5 +49,5 @@ for scene in splats- metaballs-; do
     exit 1
   fi
 done
-grep -q "ctest -L egl: 0" "$work/results/gpu-run.log"
+grep -q "ctest -L egl: 0," "$work/results/gpu-run.log"
 echo "RunGPUBundle: the bundle ran from itself alone ($(stat -c %s "$work/out/pointsurfaces-gpu.tar.xz") bytes)"

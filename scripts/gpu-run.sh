@@ -22,6 +22,7 @@ fi
 mkdir -p "$1"
 out=$(cd "$1" && pwd)
 exec > >(tee "$out/gpu-run.log") 2>&1
+tee_pid=$!
 
 export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 export POINTSURFACES_RENDER_WINDOW=egl
@@ -64,4 +65,7 @@ for rc in "$tests" "$render" "$tiles"; do
 done
 echo "== results in $out"
 echo "gpu-run: $passed passed, $failed failed (ctest -L egl: $tests, BenchRender: $render, BenchComputeTiles: $tiles)"
+# The log is complete once tee has drained it.
+exec 1>&- 2>&-
+wait "$tee_pid" 2> /dev/null
 [ "$failed" = 0 ]

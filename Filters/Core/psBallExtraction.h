@@ -65,6 +65,13 @@ POINTSURFACESFILTERS_EXPORT double LargestSupportRadius(vtkPointSet* input, cons
 /** A point set's balls as spans for psMetaball, owning their storage. */
 struct BallArrays
 {
+  BallArrays() = default;
+  // Set points into the vectors: a move keeps their storage, a copy would not.
+  BallArrays(BallArrays&&) = default;
+  BallArrays& operator=(BallArrays&&) = default;
+  BallArrays(const BallArrays&) = delete;
+  BallArrays& operator=(const BallArrays&) = delete;
+
   std::vector<double> Centres, Radii, Strengths;
   MetaballSet Set;
   bool MissingStrengths = false; ///< a strength array was named but not found
