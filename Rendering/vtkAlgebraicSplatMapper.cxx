@@ -52,11 +52,6 @@
 
 vtkStandardNewMacro(vtkAlgebraicSplatMapper);
 
-// The octree of the input's field data, ready for view selection.
-struct vtkAlgebraicSplatMapper::Octree : pointsurfaces::LODOctree
-{
-};
-
 namespace
 {
 // Is this the light's view of a vtkShadowMapBakerPass? It needs the hits'
@@ -477,9 +472,8 @@ void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
     radii[k] = radius->GetTuple1(k);
     levels[k] = static_cast<int>(lod->GetTuple1(k));
   }
-  this->Nodes = std::make_shared<Octree>();
-  static_cast<pointsurfaces::LODOctree&>(*this->Nodes) =
-    pointsurfaces::MakeLODOctree(std::move(tree), std::move(quality), radii.data(), levels.data());
+  this->Nodes = std::make_unique<pointsurfaces::LODOctree>(
+    pointsurfaces::MakeLODOctree(std::move(tree), std::move(quality), radii.data(), levels.data()));
 }
 
 //------------------------------------------------------------------------------

@@ -67,6 +67,10 @@
 #include <memory> // For the octree
 
 class vtkAlgebraicSplatBlendHelper;
+namespace pointsurfaces
+{
+struct LODOctree;
+}
 
 class POINTSURFACESRENDERING_EXPORT vtkAlgebraicSplatMapper : public vtkOpenGLPolyDataMapper
 {
@@ -246,9 +250,8 @@ protected:
   bool ShowSilhouettePixels = false;
 
 private:
-  struct Octree;
-  std::shared_ptr<Octree> Nodes;
-  vtkNew<vtkAlgebraicSplatBlendHelper> Blend; // the two-pass blend's targets and passes
+  std::unique_ptr<pointsurfaces::LODOctree> Nodes; // the input's octree, when usable
+  vtkNew<vtkAlgebraicSplatBlendHelper> Blend;      // the two-pass blend's targets and passes
 
   vtkAlgebraicSplatMapper(const vtkAlgebraicSplatMapper&) = delete;
   void operator=(const vtkAlgebraicSplatMapper&) = delete;
