@@ -124,16 +124,13 @@ std::vector<std::string> BallWarnings(const BallArrays& arrays,
   const std::string& strengthName)
 {
   std::vector<std::string> warnings;
-  if (arrays.MissingStrengths)
+  for (std::string warning : { MissingStrengthsWarning(arrays, strengthName),
+         InvalidBallsWarning(balls.Invalid, arrays.Set.Count) })
   {
-    warnings.push_back(
-      "No point array \"" + strengthName + "\" for the strengths: all balls have strength 1.");
-  }
-  if (balls.Invalid > 0)
-  {
-    warnings.push_back(std::to_string(balls.Invalid) + " of " + std::to_string(arrays.Set.Count) +
-      " balls have a NaN or infinite centre, radius or strength, or a radius <= 0: they are "
-      "skipped.");
+    if (!warning.empty())
+    {
+      warnings.push_back(std::move(warning));
+    }
   }
   return warnings;
 }

@@ -296,10 +296,11 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
     }
   }
   const pointsurfaces::BallArrays extracted = this->Field->ExtractBalls(input, scale);
-  if (extracted.MissingStrengths)
+  const std::string strengthWarning =
+    pointsurfaces::MissingStrengthsWarning(extracted, this->Field->GetStrengthArrayName());
+  if (!strengthWarning.empty())
   {
-    vtkWarningMacro(<< "No point array \"" << this->Field->GetStrengthArrayName()
-                    << "\" for the strengths: all balls have strength 1.");
+    vtkWarningMacro(<< strengthWarning);
   }
   const pointsurfaces::MetaballSet& set = extracted.Set;
   const bool strengths = set.Strengths != nullptr;
@@ -361,9 +362,7 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
   in.MinRadius = invalid < n ? minRadius : 1.0;
   if (invalid > 0)
   {
-    vtkWarningMacro(<< invalid << " of " << n
-                    << " balls have a NaN or infinite centre, radius or strength, or a radius "
-                       "<= 0: they are skipped.");
+    vtkWarningMacro(<< pointsurfaces::InvalidBallsWarning(invalid, n));
   }
   // Colours: the usual scalar colouring, or the actor's colour.
   std::vector<unsigned int> colors(std::max<vtkIdType>(n, 1));

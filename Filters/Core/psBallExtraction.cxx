@@ -84,4 +84,20 @@ BallArrays ExtractBalls(vtkPointSet* input, const BallRule& rule, double scale)
   b.Set.Threshold = rule.Threshold;
   return b;
 }
+//------------------------------------------------------------------------------
+std::string MissingStrengthsWarning(const BallArrays& balls, const std::string& strengthName)
+{
+  return balls.MissingStrengths
+    ? "No point array \"" + strengthName + "\" for the strengths: all balls have strength 1."
+    : std::string();
+}
+
+//------------------------------------------------------------------------------
+std::string InvalidBallsWarning(long long invalid, long long count)
+{
+  return invalid > 0 ? std::to_string(invalid) + " of " + std::to_string(count) +
+      " balls have a NaN or infinite centre, radius or strength, or a radius <= 0: they are "
+      "skipped."
+                     : std::string();
+}
 } // namespace pointsurfaces

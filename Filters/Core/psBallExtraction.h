@@ -85,6 +85,17 @@ struct BallArrays
 POINTSURFACESFILTERS_EXPORT BallArrays ExtractBalls(vtkPointSet* input,
   const BallRule& rule,
   double scale = 1.0);
+
+///@{
+/**
+ * The warnings every reader of balls gives, worded once: a strength array
+ * named `strengthName` but missing in `balls`, and `invalid` of `count`
+ * balls skipped. Empty when there is nothing to warn about.
+ */
+POINTSURFACESFILTERS_EXPORT std::string MissingStrengthsWarning(const BallArrays& balls,
+  const std::string& strengthName);
+POINTSURFACESFILTERS_EXPORT std::string InvalidBallsWarning(long long invalid, long long count);
+///@}
 } // namespace pointsurfaces
 
 #endif
