@@ -3,6 +3,7 @@
 #include "vtkAlgebraicSplatFitter.h"
 
 #include "psOctree.h"
+#include "psPointIndex.h"
 #include "psSplatBuilder.h"
 #include "psSplatOrientation.h"
 
@@ -64,6 +65,8 @@ void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
   auto size = MakeArray<vtkDoubleArray>(vtkSplatDataModel::FeatureSizeName(), 1, n);
   auto coeffs = MakeArray<vtkDoubleArray>(vtkSplatDataModel::CoefficientsName(), m, n);
   auto radius = MakeArray<vtkDoubleArray>(vtkSplatDataModel::RadiusName(), 1, n);
+  auto deviation = MakeArray<vtkDoubleArray>(vtkSplatDataModel::MaxDeviationName(), 1, n);
+  auto nominal = MakeArray<vtkDoubleArray>(vtkSplatDataModel::NominalRadiusName(), 1, n);
   auto lod = MakeArray<vtkIntArray>(vtkSplatDataModel::LODName(), 1, n);
   for (vtkIdType i = 0; i < n; ++i)
   {
@@ -79,6 +82,8 @@ void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
         i, c, c < MonomialCount(s.Fit.Degree) ? s.Fit.Coefficients[c] : 0.0);
     }
     radius->SetValue(i, built.Splats[i].Radius);
+    deviation->SetValue(i, built.Splats[i].MaxDeviation);
+    nominal->SetValue(i, built.Splats[i].NominalRadius);
     lod->SetValue(i, built.Splats[i].Level);
   }
   output->SetPoints(points);
@@ -89,6 +94,8 @@ void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
          static_cast<vtkDataArray*>(size),
          static_cast<vtkDataArray*>(coeffs),
          static_cast<vtkDataArray*>(radius),
+         static_cast<vtkDataArray*>(deviation),
+         static_cast<vtkDataArray*>(nominal),
          static_cast<vtkDataArray*>(lod) })
   {
     pd->AddArray(a);
@@ -124,7 +131,7 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
 {
   vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  this->NumberOfInvalidPoints = this->NumberOfDegenerateSplats = 0;
+  this->NumberOfInvalidPoints = this->NumberOfDegenerateSplats = this->NumberOfMergedPoints = 0;
   this->NumberOfReducedDegreeSplats = 0;
   const vtkIdType nIn = input ? input->GetNumberOfPoints() : 0;
 
@@ -157,10 +164,13 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
     vtkWarningMacro(<< "Dropped " << this->NumberOfInvalidPoints << " of " << nIn
                     << " input points with NaN or infinite coordinates.");
   }
+  this->MergeCoincident(xyz, normals, kept);
   const vtkIdType n = static_cast<vtkIdType>(kept.size());
   if (n < 3)
   {
     vtkWarningMacro(<< "Need at least 3 finite points to fit splats, got " << n
+                    << (this->NumberOfMergedPoints > 0 ? " distinct ones (the others coincide)"
+                                                       : "")
                     << ": the output is empty.");
     Assemble(BuildResult(), this->Degree, output);
     return 1;
@@ -180,6 +190,7 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   params.Fit.Mode = static_cast<pointsurfaces::FitMode>(this->FitMode);
   params.Fit.Loss = static_cast<pointsurfaces::RobustLoss>(this->RobustLoss);
   params.Fit.LossScale = this->RobustLossScale;
+  params.Fit.MaximumDeviation = this->MaximumDeviation;
   params.Select = static_cast<pointsurfaces::Selection>(this->SelectionMode);
   params.Quality = this->QualityFactor;
   params.VisitOrder = static_cast<pointsurfaces::Order>(this->SelectionOrder);
@@ -271,10 +282,54 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   }
   vtkFieldData* fd = output->GetFieldData();
   AddCount(fd, "SplatInvalidInputPoints", this->NumberOfInvalidPoints);
+  AddCount(fd, "SplatMergedInputPoints", this->NumberOfMergedPoints);
   AddCount(fd, "SplatDegeneratePositions", this->NumberOfDegenerateSplats);
   AddCount(fd, "SplatReducedDegree", this->NumberOfReducedDegreeSplats);
   AddCount(fd, vtkSplatDataModel::NormalsOrientedName(), oriented ? 1 : 0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatFitter::MergeCoincident(std::vector<double>& xyz,
+  std::vector<double>& normals,
+  std::vector<vtkIdType>& kept)
+{
+  const long long n = static_cast<long long>(kept.size());
+  if (n < 2)
+  {
+    return;
+  }
+  double lo[3] = { xyz[0], xyz[1], xyz[2] }, hi[3] = { xyz[0], xyz[1], xyz[2] };
+  for (long long i = 1; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lo[c] = std::min(lo[c], xyz[3 * i + c]);
+      hi[c] = std::max(hi[c], xyz[3 * i + c]);
+    }
+  }
+  const double diagonal = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) +
+    (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const std::vector<long long> unique =
+    pointsurfaces::UniquePoints(xyz.data(), n, this->MergeTolerance * diagonal);
+  this->NumberOfMergedPoints = static_cast<vtkIdType>(n - static_cast<long long>(unique.size()));
+  if (this->NumberOfMergedPoints == 0)
+  {
+    return;
+  }
+  for (size_t k = 0; k < unique.size(); ++k)
+  {
+    const long long i = unique[k];
+    std::copy(&xyz[3 * i], &xyz[3 * i] + 3, &xyz[3 * k]);
+    if (!normals.empty())
+    {
+      std::copy(&normals[3 * i], &normals[3 * i] + 3, &normals[3 * k]);
+    }
+    kept[k] = kept[i];
+  }
+  xyz.resize(3 * unique.size());
+  normals.resize(normals.empty() ? 0 : 3 * unique.size());
+  kept.resize(unique.size());
 }
 
 //------------------------------------------------------------------------------
@@ -325,4 +380,6 @@ void vtkAlgebraicSplatFitter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BuildOctree: " << this->BuildOctree << "\n";
   os << indent << "OctreeBucketSize: " << this->OctreeBucketSize << "\n";
   os << indent << "OrientNormals: " << this->OrientNormals << "\n";
+  os << indent << "MaximumDeviation: " << this->MaximumDeviation << "\n";
+  os << indent << "MergeTolerance: " << this->MergeTolerance << "\n";
 }

@@ -34,6 +34,20 @@
  * input point array carried over by MLS-weighted averaging, and SplatDegree
  * in the field data.
  *
+ * Error-bounded splats (MaximumDeviation > 0, the default): a splat covers
+ * only the points within MaximumDeviation local point spacings of its
+ * patch, its disc stops where the surface bends away from the patch and at
+ * the borders of the data, and its fit keeps to the sheet of the surface
+ * its centre lies on, so that the other side of a thin part or the other
+ * face of a sharp edge does not pull it (see psSplatBound.h and
+ * psSplatFit.h). The selection counts a point as covered only by a splat
+ * within the tolerance there, so the splat budget goes where the surface
+ * needs it. SplatMaxDeviation holds each splat's measured largest deviation
+ * (world units) over the points it covers.
+ *
+ * Coincident and near-coincident input points (closer than MergeTolerance
+ * times the bounding-box diagonal) are fitted once.
+ *
  * Calibration: FeatureSizeNeighbors defaults to 120, which makes h_i about
  * four point spacings; at s = 1 in random order that reproduces the splat
  * counts of [Bolla 2010] Table 4.7 for the Bunny (1344 against 1315) and
@@ -51,6 +65,8 @@
 
 #include "PointSurfacesFiltersModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
+
+#include <vector> // For MergeCoincident
 
 namespace pointsurfaces
 {
@@ -232,14 +248,41 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Error bound of each splat, in units of the local point spacing (the
+   * mean distance of a point's 6 nearest distinct neighbours): a splat
+   * covers, and its disc reaches, only as far as its patch stays within
+   * this distance of the points there. 0 turns the bound off and fits
+   * as [Bolla 2010] does (discs of radius RadiusScale · s · h_i, whatever
+   * the data there). With several quality levels, level l's bound is this
+   * times s_l / s (coarser levels are drawn where their splats are smaller
+   * on screen). Default 0.5.
+   */
+  vtkSetClampMacro(MaximumDeviation, double, 0.0, 1e3);
+  vtkGetMacro(MaximumDeviation, double);
+  ///@}
+  ///@{
+  /**
+   * Input points within this fraction of the bounding-box diagonal of each
+   * other are merged before fitting (see pointsurfaces::UniquePoints);
+   * exact duplicates always are. Default 1e-6.
+   */
+  vtkSetClampMacro(MergeTolerance, double, 0.0, 1.0);
+  vtkGetMacro(MergeTolerance, double);
+  ///@}
+  ///@{
   /** Seed of every random choice. Default 1. */
   vtkSetMacro(RandomSeed, unsigned int);
   vtkGetMacro(RandomSeed, unsigned int);
   ///@}
 
   ///@{
-  /** Counts of the last run: dropped input points, neighbourhoods without a splat, fits at a lower degree. */
+  /**
+   * Counts of the last run: dropped input points, merged (coincident) input
+   * points, neighbourhoods without a splat, fits at a lower degree.
+   */
   vtkGetMacro(NumberOfInvalidPoints, vtkIdType);
+  vtkGetMacro(NumberOfMergedPoints, vtkIdType);
   vtkGetMacro(NumberOfDegenerateSplats, vtkIdType);
   vtkGetMacro(NumberOfReducedDegreeSplats, vtkIdType);
   ///@}
@@ -251,6 +294,10 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   void SortByOctree(pointsurfaces::BuildResult& built, vtkPolyData* output);
+  /** Merge coincident points (MergeTolerance) in place; `kept` maps them to input ids. */
+  void MergeCoincident(std::vector<double>& xyz,
+    std::vector<double>& normals,
+    std::vector<vtkIdType>& kept);
 
   int Degree = 2;
   int NumberOfNeighbors = 40;
@@ -272,6 +319,9 @@ protected:
   bool BuildOctree = true;
   int OctreeBucketSize = 64;
   bool OrientNormals = true;
+  double MaximumDeviation = 0.5;
+  double MergeTolerance = 1e-6;
+  vtkIdType NumberOfMergedPoints = 0;
 
   vtkIdType NumberOfInvalidPoints = 0;
   vtkIdType NumberOfDegenerateSplats = 0;

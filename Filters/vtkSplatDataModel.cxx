@@ -15,6 +15,8 @@
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 
+#include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <utility>
 
@@ -30,6 +32,63 @@ void vtkSplatDataModel::AddVertexCells(vtkPolyData* pd)
   vtkNew<vtkCellArray> verts;
   verts->SetData(1, connectivity);
   pd->SetVerts(verts);
+}
+
+//------------------------------------------------------------------------------
+bool vtkSplatDataModel::ComputeSplatBounds(vtkPolyData* pd, double bounds[6])
+{
+  vtkMath::UninitializeBounds(bounds);
+  const int degree = GetSplatDegree(pd);
+  if (degree < 0)
+  {
+    return false;
+  }
+  vtkPointData* pdata = pd->GetPointData();
+  vtkDataArray* normal = pdata->GetArray(NormalName());
+  vtkDataArray* size = pdata->GetArray(FeatureSizeName());
+  vtkDataArray* coeffs = pdata->GetArray(CoefficientsName());
+  vtkDataArray* radius = pdata->GetArray(RadiusName());
+  const int m = pointsurfaces::MonomialCount(degree);
+  double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+  double hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+  bool any = false;
+  double c[15];
+  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
+  {
+    double o[3], n[3];
+    pd->GetPoint(i, o);
+    normal->GetTuple(i, n);
+    const double h = size->GetTuple1(i), r = radius->GetTuple1(i);
+    for (int k = 0; k < m; ++k)
+    {
+      c[k] = coeffs->GetComponent(i, k);
+    }
+    double glo, ghi;
+    if (!(h > 0.0) || !(r > 0.0) || !std::isfinite(h * r) ||
+      !pointsurfaces::HeightRange(c, degree, r / h, glo, ghi) || !std::isfinite(glo + ghi))
+    {
+      continue;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      // A disc's extent along an axis is R sqrt(1 - n_a^2); the patch rises
+      // from it by g h along n.
+      const double disc = r * std::sqrt(std::max(0.0, 1.0 - n[a] * n[a]));
+      const double e0 = n[a] * glo * h, e1 = n[a] * ghi * h;
+      lo[a] = std::min(lo[a], o[a] + std::min(e0, e1) - disc);
+      hi[a] = std::max(hi[a], o[a] + std::max(e0, e1) + disc);
+    }
+    any = true;
+  }
+  if (any)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      bounds[2 * a] = lo[a];
+      bounds[2 * a + 1] = hi[a];
+    }
+  }
+  return any;
 }
 
 //------------------------------------------------------------------------------

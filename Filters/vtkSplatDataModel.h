@@ -71,6 +71,14 @@ public:
   static const char* FeatureSizeName() { return "SplatFeatureSize"; }
   static const char* CoefficientsName() { return "SplatCoefficients"; }
   static const char* RadiusName() { return "SplatRadius"; }
+  /** Optional: largest deviation of a covered point from the patch, world units. */
+  static const char* MaxDeviationName() { return "SplatMaxDeviation"; }
+  /**
+   * Optional: the disc radius before it was bounded, world units. Level of
+   * detail scales it with the finest level drawn, and never draws a disc
+   * past SplatRadius.
+   */
+  static const char* NominalRadiusName() { return "SplatNominalRadius"; }
   static const char* LODName() { return "SplatLOD"; }
   static const char* DegreeName() { return "SplatDegree"; }
   /** Field data: 1 when the splats' normals are consistently oriented. */
@@ -105,6 +113,17 @@ public:
    * any part of the data model (arrays, components, tuple counts).
    */
   static int GetSplatDegree(vtkPolyData* pd);
+
+  /**
+   * Bounds of the splats themselves: each disc of radius SplatRadius in its
+   * plane, raised by the range its patch takes over the disc (the range
+   * the splat mapper's geometry shader draws), so that ResetCamera frames
+   * splats as it frames the points they were fitted to. Splats with
+   * non-finite or non-positive sizes are left out. Returns false (and
+   * uninitialised bounds) when `pd` lacks the data model or has no valid
+   * splat.
+   */
+  static bool ComputeSplatBounds(vtkPolyData* pd, double bounds[6]);
 
 #ifndef __VTK_WRAP__
   /**

@@ -99,28 +99,38 @@ void vtkAlgebraicSplatMapper::ReleaseGraphicsResources(vtkWindow* win)
 //------------------------------------------------------------------------------
 void vtkAlgebraicSplatMapper::ComputeBounds()
 {
-  // Points only: the bounds are the origins padded by the disc radii.
+  // The splats' own discs and heights (cached: the camera asks every frame).
   vtkPolyData* input = this->GetInput();
   if (!input || input->GetNumberOfPoints() == 0)
   {
     vtkMath::UninitializeBounds(this->Bounds);
     return;
   }
-  input->GetPoints()->GetBounds(this->Bounds);
-  vtkDataArray* radius = input->GetPointData()->GetArray(vtkSplatDataModel::RadiusName());
-  double pad = 0.0;
-  if (radius)
+  if (this->SplatBoundsTime > input->GetMTime() && this->SplatBoundsInput == input)
   {
-    double range[2];
-    radius->GetRange(range, 0);
-    pad = range[1];
+    std::copy(this->SplatBounds, this->SplatBounds + 6, this->Bounds);
+    return;
   }
-  // The patch may rise above its disc by about its radius.
-  for (int i = 0; i < 3; ++i)
+  if (!vtkSplatDataModel::ComputeSplatBounds(input, this->Bounds))
   {
-    this->Bounds[2 * i] -= 2.0 * pad;
-    this->Bounds[2 * i + 1] += 2.0 * pad;
+    // Not the data model (or no valid splat): the points, padded by the
+    // largest radius if there is one.
+    input->GetPoints()->GetBounds(this->Bounds);
+    vtkDataArray* radius = input->GetPointData()->GetArray(vtkSplatDataModel::RadiusName());
+    double range[2] = { 0.0, 0.0 };
+    if (radius)
+    {
+      radius->GetRange(range, 0);
+    }
+    for (int i = 0; i < 3; ++i)
+    {
+      this->Bounds[2 * i] -= range[1];
+      this->Bounds[2 * i + 1] += range[1];
+    }
   }
+  std::copy(this->Bounds, this->Bounds + 6, this->SplatBounds);
+  this->SplatBoundsInput = input;
+  this->SplatBoundsTime.Modified();
 }
 
 //------------------------------------------------------------------------------
@@ -341,6 +351,7 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
   vtkDataArray* coeffs = pd->GetArray(vtkSplatDataModel::CoefficientsName());
   vtkDataArray* size = pd->GetArray(vtkSplatDataModel::FeatureSizeName());
   vtkDataArray* radius = pd->GetArray(vtkSplatDataModel::RadiusName());
+  vtkDataArray* nominal = pd->GetArray(vtkSplatDataModel::NominalRadiusName());
   vtkDataArray* lod = pd->GetArray(vtkSplatDataModel::LODName());
   vtkDataArray* quality = poly->GetFieldData()->GetArray(vtkSplatDataModel::LODQualityName());
   vtkDataArray* normals = pd->GetArray(vtkSplatDataModel::NormalName());
@@ -404,7 +415,9 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
         // An invalid splat gets a zero radius: the geometry shader drops it.
         sizes->SetTypedComponent(i, 0, ok ? static_cast<float>(h) : 1.0f);
         sizes->SetTypedComponent(i, 1, ok ? static_cast<float>(r) : 0.0f);
-        sizes->SetTypedComponent(i, 2, ok && s > 0.0 ? static_cast<float>(r / s) : 0.0f);
+        // LOD scales the unbounded disc with s; the bound still holds (see the VS).
+        const double scaled = nominal ? std::max(r, nominal->GetComponent(i, 0)) : r;
+        sizes->SetTypedComponent(i, 2, ok && s > 0.0 ? static_cast<float>(scaled / s) : 0.0f);
         bad += ok ? 0 : 1;
       }
       invalid += bad;

@@ -232,6 +232,10 @@ protected:
   bool ShaderFailed = false;
   bool MissingHooks = false; // the last shader build lacked a hook or marker
   vtkTimeStamp ShaderFailedTime;
+  // ComputeBounds' cache: the splats' bounds, for the input they were computed from.
+  vtkTimeStamp SplatBoundsTime;
+  vtkPolyData* SplatBoundsInput = nullptr;
+  double SplatBounds[6] = { 0, 0, 0, 0, 0, 0 };
   ShaderVariant Variant; // the one to build
   // What each helper's program was built for.
   std::map<const vtkOpenGLHelper*, ShaderVariant> BuiltVariants;

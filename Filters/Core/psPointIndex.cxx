@@ -156,3 +156,85 @@ void PointIndex::Within(const double q[3],
   d2.resize(keep);
 }
 } // namespace pointsurfaces
+
+namespace pointsurfaces
+{
+std::vector<long long> UniquePoints(const double* xyz, long long n, double tolerance)
+{
+  std::vector<long long> kept;
+  if (n <= 0)
+  {
+    return kept;
+  }
+  double lo[3] = { xyz[0], xyz[1], xyz[2] };
+  for (long long i = 1; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lo[c] = std::min(lo[c], xyz[3 * i + c]);
+    }
+  }
+  // Points are sorted into cells 100 times the tolerance (exact coordinates
+  // without a tolerance); within a cell, a point within the tolerance of an
+  // earlier kept point is merged into it. Two points closer than the
+  // tolerance fall into different cells with a chance of 3 in 100 of their
+  // distance over the tolerance.
+  const double cell = 100.0 * tolerance;
+  struct Key
+  {
+    double K[3];
+    long long Id;
+  };
+  std::vector<Key> keys(static_cast<size_t>(n));
+  for (long long i = 0; i < n; ++i)
+  {
+    keys[i].Id = i;
+    for (int c = 0; c < 3; ++c)
+    {
+      const double d = xyz[3 * i + c] - lo[c];
+      keys[i].K[c] = tolerance > 0.0 ? std::floor(d / cell) : d;
+    }
+  }
+  auto sameCell = [](const Key& a, const Key& b)
+  { return a.K[0] == b.K[0] && a.K[1] == b.K[1] && a.K[2] == b.K[2]; };
+  std::sort(keys.begin(),
+    keys.end(),
+    [](const Key& a, const Key& b)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        if (a.K[c] != b.K[c])
+        {
+          return a.K[c] < b.K[c];
+        }
+      }
+      return a.Id < b.Id;
+    });
+  const double tol2 = tolerance * tolerance;
+  size_t first = 0; // first kept of the current cell, in `kept`
+  for (size_t j = 0; j < keys.size(); ++j)
+  {
+    if (j == 0 || !sameCell(keys[j], keys[j - 1]))
+    {
+      first = kept.size();
+      kept.push_back(keys[j].Id);
+      continue;
+    }
+    const double* p = xyz + 3 * keys[j].Id;
+    bool merged = tolerance <= 0.0; // same exact coordinates
+    for (size_t k = first; k < kept.size() && !merged; ++k)
+    {
+      const double* q = xyz + 3 * kept[k];
+      merged = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+          (p[2] - q[2]) * (p[2] - q[2]) <=
+        tol2;
+    }
+    if (!merged)
+    {
+      kept.push_back(keys[j].Id);
+    }
+  }
+  std::sort(kept.begin(), kept.end());
+  return kept;
+}
+} // namespace pointsurfaces

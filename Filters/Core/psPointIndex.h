@@ -56,6 +56,19 @@ private:
   struct Tree;
   std::unique_ptr<Tree> Impl;
 };
+/**
+ * Coincident and near-coincident points: a point within `tolerance` of an
+ * earlier point in the same cell of a grid 100 times that size is merged
+ * into it (exact duplicates always are; closer points straddle a cell
+ * border with a chance of 3 % of their distance over the tolerance). Returns the ids of the points kept, in
+ * increasing order. A scan exported with one vertex per face corner (OBJ
+ * with normals or texture coordinates) repeats each point several times;
+ * fitted as they are, the repeats count as neighbours and shrink the
+ * feature size, and the splats multiply.
+ */
+POINTSURFACESFILTERS_EXPORT std::vector<long long> UniquePoints(const double* xyz,
+  long long n,
+  double tolerance);
 } // namespace pointsurfaces
 
 #endif

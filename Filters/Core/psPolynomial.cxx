@@ -2,6 +2,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "psPolynomial.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace pointsurfaces
 {
 int DegreeFromMonomialCount(int count)
@@ -78,5 +81,21 @@ double EvaluateWithGradient(const double* c, int degree, double u, double v, dou
     }
   }
   return g;
+}
+bool HeightRange(const double* c, int degree, double rho, double& lo, double& hi)
+{
+  double k[15] = {};
+  std::copy(c, c + MonomialCount(std::max(1, std::min(degree, MaximumDegree))), k);
+  const double r2 = rho * rho;
+  const double linear = std::hypot(k[1], k[2]) * rho;
+  const double mean = 0.5 * (k[3] + k[5]);
+  const double spread = std::hypot(0.5 * (k[3] - k[5]), 0.5 * k[4]);
+  const double higher =
+    (std::abs(k[6]) + std::abs(k[7]) + std::abs(k[8]) + std::abs(k[9])) * r2 * rho +
+    (std::abs(k[10]) + std::abs(k[11]) + std::abs(k[12]) + std::abs(k[13]) + std::abs(k[14])) * r2 *
+      r2;
+  hi = std::min(k[0] + linear + std::max(mean + spread, 0.0) * r2 + higher, rho);
+  lo = std::max(k[0] - linear + std::min(mean - spread, 0.0) * r2 - higher, -rho);
+  return lo <= hi;
 }
 } // namespace pointsurfaces

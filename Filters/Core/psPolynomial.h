@@ -41,6 +41,20 @@ POINTSURFACESFILTERS_EXPORT double EvaluateWithGradient(const double* c,
   double v,
   double& du,
   double& dv);
+
+/**
+ * A range [lo, hi] that holds g over the disc u^2 + v^2 <= rho^2: the
+ * constant, the linear part's reach |grad| rho, the quadratic form's
+ * eigenvalues times rho^2, and sum |c_k| rho^k for the cubic and quartic
+ * terms, clamped to the splat's cylinder |height| <= rho. The splat
+ * mapper's geometry shader bounds each splat with the same range.
+ * Returns false when the patch leaves the cylinder over the whole disc.
+ */
+POINTSURFACESFILTERS_EXPORT bool HeightRange(const double* c,
+  int degree,
+  double rho,
+  double& lo,
+  double& hi);
 } // namespace pointsurfaces
 
 #endif

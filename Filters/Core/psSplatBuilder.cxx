@@ -3,19 +3,23 @@
 #include "psSplatBuilder.h"
 
 #include "psPointIndex.h"
+#include "psSplatBound.h"
 #include "psSplatSelection.h"
 
 #include "vtkSMPTools.h"
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
-#include <unordered_map>
 
 namespace pointsurfaces
 {
 namespace
 {
+// How far inside its disc a bounded splat's claims stay, in point spacings.
+constexpr double ClaimMargin = 0.5;
+
 struct Position
 {
   double Q[3];
@@ -230,14 +234,14 @@ BuildResult BuildSplats(const double* xyz,
   fit.FeatureSizeNeighbors = static_cast<int>(std::min<long long>(fit.FeatureSizeNeighbors, n - 1));
   const int kAll = std::max(fit.NumberOfNeighbors, fit.FeatureSizeNeighbors + 1);
 
-  // Neighbour lists of the points whose frame the selection computed: a
-  // chosen point's fit reuses them instead of searching again. One slot per
-  // point, so that selection threads never share one.
-  std::vector<std::vector<int>> neighbours(static_cast<size_t>(n));
-  FrameFunction frameOf = [&](long long i, LocalFrame& frame)
+  const bool bounded = fit.MaximumDeviation > 0.0;
+  // The neighbours of point i and its plane with h (Normal and Scale).
+  auto planeOf = [&](long long i,
+                   LocalFrame& frame,
+                   std::vector<int>& ids,
+                   std::vector<double>& d2,
+                   std::vector<double>& coords)
   {
-    thread_local std::vector<int> ids;
-    thread_local std::vector<double> d2, coords;
     Gather(index, index.Point(i), kAll, ids, d2, coords);
     const int m = std::min(fit.NumberOfNeighbors, static_cast<int>(ids.size()));
     if (FitReferencePlane(coords.data(), nullptr, m, frame, normals ? normals + 3 * i : nullptr) !=
@@ -247,12 +251,129 @@ BuildResult BuildSplats(const double* xyz,
     }
     frame.Scale = FeatureSize(
       index.Point(i), frame, coords.data(), static_cast<int>(ids.size()), fit.FeatureSizeNeighbors);
-    if (!(frame.Scale > 0.0))
+    return frame.Scale > 0.0;
+  };
+  // Bound a fitted splat of nominal radius `radius` and measure its deviation
+  // against the points around it; returns the covered point ids with their
+  // in-plane distances.
+  auto bound = [&](
+                 BuiltSplat& b, double tolerance, std::vector<int>* cover, std::vector<double>* rho)
+  {
+    thread_local std::vector<int> ids;
+    thread_local std::vector<double> d2, coords;
+    thread_local std::vector<int> local;
+    const Splat& sp = b.Fitted;
+    BoundParameters bp;
+    bp.Spacing = sp.Spacing;
+    bp.Tolerance = tolerance * sp.Spacing;
+    bp.MaximumReach =
+      std::max(bp.MaximumReach, 2.0 * tolerance); // a looser patch may stray farther
+    bp.MeasureOnly = !bounded;
+    index.Within(sp.Frame.Origin, BoundSearchRadius(b.Radius, sp.Spacing), ids, d2, false);
+    coords.resize(3 * ids.size());
+    for (size_t j = 0; j < ids.size(); ++j)
+    {
+      std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &coords[3 * j]);
+    }
+    const SplatBound sb =
+      BoundSplat(sp, b.Radius, coords.data(), static_cast<int>(ids.size()), bp, &local, rho);
+    b.NominalRadius = b.Radius;
+    b.Radius = sb.Radius;
+    b.MaxDeviation = sb.MaxDeviation;
+    b.Bounded = true;
+    if (cover)
+    {
+      cover->resize(local.size());
+      for (size_t j = 0; j < local.size(); ++j)
+      {
+        (*cover)[j] = ids[local[j]];
+      }
+    }
+  };
+
+  // What the selection computed for each chosen point, reused by its fit:
+  // its neighbours (and, error-bounded, its fitted splat and cover).
+  struct ChosenPoint
+  {
+    LocalFrame Plane;
+    std::vector<int> Neighbours;
+    std::unique_ptr<BuiltSplat> Built;
+    std::vector<int> Cover;
+    std::vector<double> Rho;
+  };
+  std::vector<std::unique_ptr<ChosenPoint>> chosenOf(static_cast<size_t>(n));
+  double levelS = params.Quality;
+  int levelIndex = 0;
+  // A coarser level is drawn where its splats are smaller on screen: its
+  // tolerance grows with its s, so that its discs can be as coarse.
+  SplatFitParameters levelFit = fit;
+  FrameFunction frameOf = [&](long long i, LocalFrame& frame)
+  {
+    thread_local std::vector<int> ids;
+    thread_local std::vector<double> d2, coords, w;
+    auto c = std::make_unique<ChosenPoint>();
+    if (!planeOf(i, c->Plane, ids, d2, coords))
     {
       return false;
     }
-    neighbours[i] = ids;
+    frame = c->Plane;
+    if (bounded)
+    {
+      auto b = std::make_unique<BuiltSplat>();
+      b->Fitted = FitSplat(index.Point(i),
+        coords.data(),
+        static_cast<int>(ids.size()),
+        levelFit,
+        normals ? normals + 3 * i : nullptr,
+        params.KeepWeights ? &w : nullptr);
+      if (b->Fitted.Fit.Degree <= 0)
+      {
+        return false;
+      }
+      b->Level = levelIndex;
+      b->Source = i;
+      // The disc reaches half a spacing past what it claims, so that the
+      // discs of neighbouring claims overlap (see cover below).
+      b->Radius =
+        params.RadiusScale * levelS * b->Fitted.Frame.Scale + ClaimMargin * b->Fitted.Spacing;
+      if (params.KeepWeights)
+      {
+        b->Ids.assign(ids.begin(), ids.begin() + w.size());
+        b->Weights.assign(w.begin(), w.end());
+      }
+      bound(*b, levelFit.MaximumDeviation, &c->Cover, &c->Rho);
+      frame = b->Fitted.Frame;
+      c->Built = std::move(b);
+    }
+    else
+    {
+      c->Neighbours = ids;
+    }
+    chosenOf[i] = std::move(c);
     return true;
+  };
+  CoverFunction cover = [&](long long i, double s, std::vector<int>& out)
+  {
+    const ChosenPoint& c = *chosenOf[i];
+    if (!c.Built)
+    {
+      CoverByDistance(index, index.Point(i), c.Plane, s, out);
+      return;
+    }
+    // A bounded splat covers its points up to its own radius, and at a
+    // finer level only as far as that level's discs reach.
+    // Every point it claims lies at least ClaimMargin spacings inside its
+    // disc: a point and its neighbours' claims leave no crack between them.
+    const double limit = std::min(c.Built->Radius - ClaimMargin * c.Built->Fitted.Spacing,
+      params.RadiusScale * s * c.Built->Fitted.Frame.Scale);
+    out.clear();
+    for (size_t j = 0; j < c.Cover.size(); ++j)
+    {
+      if (c.Rho[j] <= limit)
+      {
+        out.push_back(c.Cover[j]);
+      }
+    }
   };
 
   // 1. Positions.
@@ -273,36 +394,42 @@ BuildResult BuildSplats(const double* xyz,
     // Median h of a sample of points: it sizes the Lattice grid and the
     // slabs of the parallel selection.
     std::vector<double> hs;
-    std::mt19937 gen(params.Seed);
-    for (int t = 0; t < 64; ++t)
     {
-      LocalFrame f;
-      if (frameOf(static_cast<long long>(gen() % static_cast<unsigned long long>(n)), f))
+      std::mt19937 gen(params.Seed);
+      std::vector<int> ids;
+      std::vector<double> d2, coords;
+      for (int t = 0; t < 64; ++t)
       {
-        hs.push_back(f.Scale);
+        LocalFrame f;
+        if (planeOf(static_cast<long long>(gen() % static_cast<unsigned long long>(n)),
+              f,
+              ids,
+              d2,
+              coords))
+        {
+          hs.push_back(f.Scale);
+        }
       }
     }
     std::nth_element(hs.begin(), hs.begin() + hs.size() / 2, hs.end());
     const double h = hs.empty() ? 0.0 : hs[hs.size() / 2];
-    // The sampled points' neighbour lists are not those of chosen points.
-    for (auto& list : neighbours)
-    {
-      std::vector<int>().swap(list);
-    }
     const std::vector<long long> order = params.VisitOrder == Order::Lattice
       ? LatticeOrder(xyz, n, params.LatticeSpacing * params.Quality * h, params.Seed)
       : RandomOrder(n, params.Seed);
     const double coarsest =
       levels > 1 ? std::max(params.Quality, params.CoarsestQuality) : params.Quality;
-    const double slabWidth = params.SlabSpacing * coarsest * h;
+    const double slabWidth =
+      params.SlabSpacing * coarsest * h * (bounded ? std::max(1.0, params.RadiusScale) : 1.0);
     std::vector<PointState> state(static_cast<size_t>(n), PointState::Free);
     std::vector<long long> chosenAll;
-    std::vector<LocalFrame> framesAll;
     for (int level = 0; level < levels && !aborted(); ++level)
     {
       const double s = levels == 1 ? params.Quality
                                    : params.CoarsestQuality +
           (params.Quality - params.CoarsestQuality) * level / (levels - 1.0);
+      levelS = s;
+      levelIndex = level;
+      levelFit.MaximumDeviation = fit.MaximumDeviation * std::max(1.0, s / params.Quality);
       result.LevelQuality.push_back(s);
       for (auto& st : state)
       {
@@ -311,15 +438,13 @@ BuildResult BuildSplats(const double* xyz,
           st = PointState::Free; // claims depend on s: redo them at this level
         }
       }
-      std::vector<LocalFrame> frames;
       const std::vector<long long> chosen = SelectByQuality(index,
         s,
         order,
         frameOf,
+        cover,
         state,
-        frames,
         chosenAll,
-        framesAll,
         params.VisitOrder == Order::Front,
         slabWidth);
       for (size_t j = 0; j < chosen.size(); ++j)
@@ -328,7 +453,6 @@ BuildResult BuildSplats(const double* xyz,
         positions.push_back(Position{ { p[0], p[1], p[2] }, chosen[j], level, s });
       }
       chosenAll.insert(chosenAll.end(), chosen.begin(), chosen.end());
-      framesAll.insert(framesAll.end(), frames.begin(), frames.end());
       report(0.5 * (level + 1) / levels);
     }
     for (const auto st : state)
@@ -367,9 +491,17 @@ BuildResult BuildSplats(const double* xyz,
       for (long long k = begin; k < end && !aborted(); ++k)
       {
         const Position& pos = positions[k];
-        if (pos.Source >= 0 && !neighbours[pos.Source].empty())
+        ChosenPoint* chosen = pos.Source >= 0 ? chosenOf[pos.Source].get() : nullptr;
+        BuiltSplat& b = built[k];
+        if (chosen && chosen->Built)
         {
-          ids = neighbours[pos.Source];
+          b = std::move(*chosen->Built); // fitted and bounded when it was chosen
+          ok[k] = 1;
+          continue;
+        }
+        if (chosen && !chosen->Neighbours.empty())
+        {
+          ids = chosen->Neighbours;
           coords.resize(3 * ids.size());
           for (size_t j = 0; j < ids.size(); ++j)
           {
@@ -382,7 +514,6 @@ BuildResult BuildSplats(const double* xyz,
         }
         const long long orientFrom = pos.Source >= 0 ? pos.Source : (ids.empty() ? -1 : ids[0]);
         const double* orientation = normals && orientFrom >= 0 ? normals + 3 * orientFrom : nullptr;
-        BuiltSplat& b = built[k];
         b.Fitted = FitSplat(pos.Q,
           coords.data(),
           static_cast<int>(ids.size()),
@@ -431,6 +562,21 @@ BuildResult BuildSplats(const double* xyz,
         }
       });
   }
+
+  // Every disc not bounded at selection: bounded (or, unbounded, measured) now.
+  vtkSMPTools::For(0,
+    count,
+    [&](long long begin, long long end)
+    {
+      for (long long k = begin; k < end && !aborted(); ++k)
+      {
+        if (ok[k] && !built[k].Bounded)
+        {
+          bound(built[k], fit.MaximumDeviation, nullptr, nullptr);
+        }
+      }
+    });
+  report(0.95);
 
   for (long long k = 0; k < count; ++k)
   {

@@ -10,6 +10,14 @@
  * original points in parallel (vtkSMPTools). Each chosen point is fitted
  * once, at the level where it first appears: finer levels only add splats.
  *
+ * With Fit.MaximumDeviation > 0 every splat is error-bounded
+ * (psSplatBound.h): in the Quality selection a point is fitted when it is
+ * chosen, and it claims only the points its bounded splat covers, so that
+ * a point counts as covered only where a splat is within the tolerance
+ * there; on every level and in every selection mode the disc is bounded
+ * and the largest deviation measured. Without it the discs keep their
+ * nominal radius and the deviation over them is measured all the same.
+ *
  * Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
  * M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
  */
@@ -63,8 +71,11 @@ struct BuiltSplat
   Splat Fitted;
   double Radius = 0.0;
   int Level = 0;
-  long long Source = -1; ///< input point the splat grew from, -1 for LOP positions
-  std::vector<int> Ids;  ///< with KeepWeights: fit neighbours and their weights
+  long long Source = -1;      ///< input point the splat grew from, -1 for LOP positions
+  double MaxDeviation = 0.0;  ///< largest deviation of a point in its disc from its patch (world)
+  double NominalRadius = 0.0; ///< the disc's radius before it was bounded (world)
+  bool Bounded = false;       ///< Radius and MaxDeviation are final
+  std::vector<int> Ids;       ///< with KeepWeights: fit neighbours and their weights
   std::vector<float> Weights;
 };
 

@@ -26,6 +26,23 @@ double FeatureSize(const double q[3], const LocalFrame& frame, const double* nbr
   return count ? sum / count : 0.0;
 }
 
+double LocalSpacing(const double q[3], const double* nbrs, int n, int k)
+{
+  double sum = 0.0;
+  int count = 0;
+  for (int j = 0; j < n && count < k; ++j)
+  {
+    const double d[3] = { nbrs[3 * j] - q[0], nbrs[3 * j + 1] - q[1], nbrs[3 * j + 2] - q[2] };
+    const double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if (d2 > 0.0)
+    {
+      sum += std::sqrt(d2);
+      ++count;
+    }
+  }
+  return count ? sum / count : 0.0;
+}
+
 namespace
 {
 void Weigh(const double c[3], const double* nbrs, int m, double h, double scale, double* w)
@@ -60,6 +77,77 @@ FitStatus PlaneAt(const double centre[3],
   for (int c = 0; c < 3; ++c)
   {
     frame.Origin[c] = centre[c] - along * frame.Normal[c];
+  }
+  return FitStatus::Ok;
+}
+// Distance of each neighbour to the patch, along the frame's normal (world units).
+void Residuals(const LocalFrame& frame,
+  const PolynomialFit& fit,
+  const double* nbrs,
+  int m,
+  double* r)
+{
+  for (int j = 0; j < m; ++j)
+  {
+    double uvh[3];
+    ToLocal(frame, nbrs + 3 * j, uvh);
+    const double g = fit.Degree > 0 ? Evaluate(fit.Coefficients, fit.Degree, uvh[0], uvh[1]) : 0.0;
+    r[j] = std::abs(uvh[2] - g) * frame.Scale;
+  }
+}
+
+// The bounded fit's steps 3 to 5: iteratively reweighted least squares
+// that keeps to q's sheet (see psSplatFit.h). `w` holds the Gaussian
+// weights on entry and the final weights on return.
+FitStatus FitOnSheet(const double q[3],
+  const double* nbrs,
+  int m,
+  const SplatFitParameters& params,
+  const double* orient,
+  double sigma,
+  std::vector<double>& w,
+  Splat& splat)
+{
+  // The plane through q with the normal of its nearest neighbours.
+  LocalFrame seed;
+  const int k0 = std::min(m, 12);
+  FitStatus status = FitReferencePlane(nbrs, nullptr, k0, seed, orient);
+  if (status != FitStatus::Ok)
+  {
+    status = FitReferencePlane(nbrs, nullptr, m, seed, orient);
+  }
+  if (status != FitStatus::Ok)
+  {
+    return status;
+  }
+  std::copy(q, q + 3, seed.Origin);
+  seed.Scale = splat.Frame.Scale;
+  std::vector<double> r(m);
+  Residuals(seed, PolynomialFit(), nbrs, m, r.data());
+  const std::vector<double> gaussian = w;
+  const double inv2 = 1.0 / (sigma * sigma);
+  const double* normal = orient;
+  for (int it = 0; it < std::max(1, params.ReweightingIterations); ++it)
+  {
+    for (int j = 0; j < m; ++j)
+    {
+      w[j] = gaussian[j] * std::exp(-r[j] * r[j] * inv2);
+    }
+    LocalFrame frame = splat.Frame;
+    status = PlaneAt(q, nbrs, m, w.data(), normal, frame);
+    if (status != FitStatus::Ok)
+    {
+      return it > 0 ? FitStatus::Ok : status; // keep the last good iterate
+    }
+    const PolynomialFit fit = FitPolynomial(nbrs, w.data(), m, frame, params.Degree);
+    if (fit.Degree == 0)
+    {
+      return it > 0 ? FitStatus::Ok : fit.Status;
+    }
+    splat.Frame = frame;
+    splat.Fit = fit;
+    normal = splat.Frame.Normal; // later planes keep the sign of the first
+    Residuals(splat.Frame, splat.Fit, nbrs, m, r.data());
   }
   return FitStatus::Ok;
 }
@@ -98,15 +186,31 @@ Splat FitSplat(const double q[3],
   std::vector<double> w(m);
   Weigh(q, nbrs, m, h, params.WeightScale, w.data());
   splat.Frame.Scale = h;
+  splat.Spacing = LocalSpacing(q, nbrs, n);
   const double* orient = orientation ? orientation : domain.Normal;
-  status = PlaneAt(q, nbrs, m, w.data(), orient, splat.Frame);
-  if (status != FitStatus::Ok)
+  if (params.MaximumDeviation > 0.0 && splat.Spacing > 0.0)
   {
-    splat.Fit.Status = status;
-    return splat;
+    // 3-5 on q's sheet only.
+    status =
+      FitOnSheet(q, nbrs, m, params, orient, params.MaximumDeviation * splat.Spacing, w, splat);
+    if (status != FitStatus::Ok)
+    {
+      splat.Fit = PolynomialFit();
+      splat.Fit.Status = status;
+      return splat;
+    }
   }
-  // 5. The polynomial.
-  splat.Fit = FitPolynomial(nbrs, w.data(), m, splat.Frame, params.Degree);
+  else
+  {
+    status = PlaneAt(q, nbrs, m, w.data(), orient, splat.Frame);
+    if (status != FitStatus::Ok)
+    {
+      splat.Fit.Status = status;
+      return splat;
+    }
+    // 5. The polynomial.
+    splat.Fit = FitPolynomial(nbrs, w.data(), m, splat.Frame, params.Degree);
+  }
   if (params.Mode == FitMode::Projected)
   {
     for (int it = 0; it < params.MaximumIterations && splat.Fit.Degree > 0; ++it)

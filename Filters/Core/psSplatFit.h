@@ -21,6 +21,17 @@
  *    weighted least squares (Linear), with a robust loss through Ceres
  *    (Robust), or by iterating the MLS projection of the origin onto the
  *    surface (Projected).
+ *
+ * With MaximumDeviation > 0 (error-bounded splats, the default of the
+ * fitter) steps 3 to 5 keep to the sheet of the surface that q lies on: the
+ * fit starts from the plane through q itself, whose normal comes from q's
+ * nearest neighbours, and is repeated with every neighbour's Gaussian
+ * weight multiplied by exp(-(r / sigma)^2), r its distance to the current
+ * patch and sigma the tolerance (iteratively reweighted least squares,
+ * the residual term of robust implicit MLS, Oztireli et al. 2009). The other
+ * side of a thin part and the other face of a sharp edge lie farther than
+ * sigma from that plane and fall out of the fit, however close they are.
+ * Sheets closer than the tolerance are, by definition, within it.
  */
 #ifndef psSplatFit_h
 #define psSplatFit_h
@@ -56,13 +67,25 @@ struct SplatFitParameters
   double LossScale = 0.05;    ///< where the robust loss bends, in units of h
   int MaximumIterations = 10; ///< Projected: projection steps; Robust: solver iterations x 10
   double Tolerance = 1e-7;    ///< Projected: stop when |g(0,0)| < Tolerance (units of h)
+  /**
+   * Error bound, in units of the local point spacing (mean distance to the
+   * SpacingNeighbors nearest distinct points): a splat covers only points
+   * within it of its patch, and its fit keeps to q's sheet (see above).
+   * 0 turns both off: the unbounded fit of [Bolla 2010].
+   */
+  double MaximumDeviation = 0.0;
+  int ReweightingIterations = 4; ///< IRLS steps of the bounded fit
 };
+
+/** Neighbours whose mean distance is the local point spacing. */
+constexpr int SpacingNeighbors = 6;
 
 struct Splat
 {
   LocalFrame Frame; ///< origin, axes, and Scale = h
   PolynomialFit Fit;
-  int Iterations = 0; ///< projection steps (Projected) or solver iterations (Robust)
+  int Iterations = 0;   ///< projection steps (Projected) or solver iterations (Robust)
+  double Spacing = 0.0; ///< local point spacing around q (world units)
 };
 
 /**
@@ -89,6 +112,15 @@ POINTSURFACESFILTERS_EXPORT double FeatureSize(const double q[3],
   const double* nbrs,
   int n,
   int k);
+
+/**
+ * Local point spacing: mean distance from q to its first `k` distinct
+ * neighbours (`nbrs` sorted by distance). 0 when there is none.
+ */
+POINTSURFACESFILTERS_EXPORT double LocalSpacing(const double q[3],
+  const double* nbrs,
+  int n,
+  int k = SpacingNeighbors);
 
 /**
  * The robust fit of Fit Mode Robust: starting from `initial`, minimise

@@ -99,48 +99,63 @@ std::vector<long long> LatticeOrder(const double* xyz, long long n, double cell,
   return order;
 }
 
-void Claim(const PointIndex& index,
+void CoverByDistance(const PointIndex& index,
   const double centre[3],
   const LocalFrame& frame,
   double s,
-  std::vector<PointState>& state,
-  const int* slabOf,
-  int firstSlab,
-  int lastSlab)
+  std::vector<int>& covered)
 {
   const double r = s * frame.Scale;
   thread_local std::vector<int> ids;
   thread_local std::vector<double> d2;
   index.Within(centre, std::sqrt(2.0) * r, ids, d2, false);
+  covered.clear();
   for (size_t j = 0; j < ids.size(); ++j)
   {
-    if (state[ids[j]] != PointState::Free ||
-      (slabOf && (slabOf[ids[j]] < firstSlab || slabOf[ids[j]] > lastSlab)))
-    {
-      continue;
-    }
     const double* p = index.Point(ids[j]);
     const double d[3] = { p[0] - centre[0], p[1] - centre[1], p[2] - centre[2] };
     const double height = d[0] * frame.Normal[0] + d[1] * frame.Normal[1] + d[2] * frame.Normal[2];
     const double inPlane2 = d2[j] - height * height;
     if (inPlane2 <= r * r && std::abs(height) <= r)
     {
-      state[ids[j]] = PointState::Claimed;
+      covered.push_back(ids[j]);
     }
   }
 }
 
 namespace
 {
+// Mark the free points that chosen point i covers at s; with `slabOf`, only
+// points whose slab lies in [firstSlab, lastSlab].
+void Claim(const CoverFunction& cover,
+  long long i,
+  double s,
+  std::vector<PointState>& state,
+  const int* slabOf = nullptr,
+  int firstSlab = 0,
+  int lastSlab = 0)
+{
+  thread_local std::vector<int> ids;
+  cover(i, s, ids);
+  for (int id : ids)
+  {
+    if (state[id] == PointState::Free &&
+      !(slabOf && (slabOf[id] < firstSlab || slabOf[id] > lastSlab)))
+    {
+      state[id] = PointState::Claimed;
+    }
+  }
+}
+
 // The sequential selection over `seeds`; with `slabOf`, only points of slab
 // `slab` are chosen and claims reach slabs slab .. slab + claimRight.
 void SelectSlab(const PointIndex& index,
   double s,
   const std::vector<long long>& seeds,
   const FrameFunction& frameOf,
+  const CoverFunction& cover,
   std::vector<PointState>& state,
   std::vector<long long>& chosen,
-  std::vector<LocalFrame>& frames,
   bool front,
   const int* slabOf,
   int slab,
@@ -160,9 +175,8 @@ void SelectSlab(const PointIndex& index,
     }
     state[i] = PointState::Chosen;
     chosen.push_back(i);
-    frames.push_back(frame);
     const double* c = index.Point(i);
-    Claim(index, c, frame, s, state, slabOf, slab, slab + claimRight);
+    Claim(cover, i, s, state, slabOf, slab, slab + claimRight);
     if (!front)
     {
       return;
@@ -208,19 +222,17 @@ std::vector<long long> SelectByQuality(const PointIndex& index,
   double s,
   const std::vector<long long>& order,
   const FrameFunction& frameOf,
+  const CoverFunction& cover,
   std::vector<PointState>& state,
-  std::vector<LocalFrame>& frames,
   const std::vector<long long>& alreadyChosen,
-  const std::vector<LocalFrame>& chosenFrames,
   bool front,
   double slabWidth)
 {
-  for (size_t i = 0; i < alreadyChosen.size() && i < chosenFrames.size(); ++i)
+  for (long long i : alreadyChosen)
   {
-    Claim(index, index.Point(alreadyChosen[i]), chosenFrames[i], s, state);
+    Claim(cover, i, s, state);
   }
   std::vector<long long> chosen;
-  frames.clear();
   const long long n = index.Size();
 
   // Slabs along the longest axis of the bounding box.
@@ -244,7 +256,7 @@ std::vector<long long> SelectByQuality(const PointIndex& index,
   }
   if (slabs < 4)
   {
-    SelectSlab(index, s, order, frameOf, state, chosen, frames, front, nullptr, 0, 0);
+    SelectSlab(index, s, order, frameOf, cover, state, chosen, front, nullptr, 0, 0);
     return chosen;
   }
   const double width = (hi[axis] - lo[axis]) / slabs;
@@ -259,7 +271,6 @@ std::vector<long long> SelectByQuality(const PointIndex& index,
     seeds[slabOf[i]].push_back(i);
   }
   std::vector<std::vector<long long>> slabChosen(slabs);
-  std::vector<std::vector<LocalFrame>> slabFrames(slabs);
   // Even slabs together (claims reach their right neighbour), then their
   // claims on the left neighbour, then the odd slabs: no two threads ever
   // touch the same point, and the result does not depend on their number.
@@ -281,9 +292,9 @@ std::vector<long long> SelectByQuality(const PointIndex& index,
             s,
             seeds[k],
             frameOf,
+            cover,
             state,
             slabChosen[k],
-            slabFrames[k],
             front,
             slabOf.data(),
             k,
@@ -301,14 +312,7 @@ std::vector<long long> SelectByQuality(const PointIndex& index,
             const int k = mine[m];
             for (size_t j = 0; k > 0 && j < slabChosen[k].size(); ++j)
             {
-              Claim(index,
-                index.Point(slabChosen[k][j]),
-                slabFrames[k][j],
-                s,
-                state,
-                slabOf.data(),
-                k - 1,
-                k - 1);
+              Claim(cover, slabChosen[k][j], s, state, slabOf.data(), k - 1, k - 1);
             }
           }
         });
@@ -317,7 +321,6 @@ std::vector<long long> SelectByQuality(const PointIndex& index,
   for (int k = 0; k < slabs; ++k)
   {
     chosen.insert(chosen.end(), slabChosen[k].begin(), slabChosen[k].end());
-    frames.insert(frames.end(), slabFrames[k].begin(), slabFrames[k].end());
   }
   return chosen;
 }

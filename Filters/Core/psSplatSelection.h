@@ -7,9 +7,12 @@
  * Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
  * M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
  *
- * A chosen point i claims every point within s·h_i of it in its parametric
- * domain (in-plane distance <= s·h_i, and height <= s·h_i so that the other
- * side of a thin part is not claimed); claimed points are never chosen. The
+ * A chosen point claims the points its splat covers; claimed points are
+ * never chosen. In [Bolla 2010] that is every point within s·h_i of it in
+ * its parametric domain (in-plane distance <= s·h_i, and height <= s·h_i so
+ * that the other side of a thin part is not claimed: CoverByDistance());
+ * error-bounded splats cover only the points within their tolerance
+ * (psSplatBound.h). The
  * visiting order decides how many points end up chosen: RandomOrder() is
  * that of [Bolla 2010], LatticeOrder() visits first the points nearest to
  * the centres of a grid slightly coarser than the splat spacing, which
@@ -39,8 +42,17 @@ enum class PointState : signed char
   Unusable = 3 ///< no frame could be computed: degenerate neighbourhood
 };
 
-/** Frame (origin unused, Normal and Scale = h) of point i; false when degenerate. */
+/**
+ * Choose point i: compute what its splat needs and report its frame (origin
+ * unused, Normal and Scale = h, for front growth); false when degenerate.
+ */
 using FrameFunction = std::function<bool(long long, LocalFrame&)>;
+
+/**
+ * The points that chosen point i covers at quality s, as indices into the
+ * index (any order, duplicates allowed). Called only for chosen points.
+ */
+using CoverFunction = std::function<void(long long, double, std::vector<int>&)>;
 
 /** 0..n-1 shuffled with std::mt19937(seed): deterministic on every platform. */
 POINTSURFACESFILTERS_EXPORT std::vector<long long> RandomOrder(long long n, unsigned int seed);
@@ -55,45 +67,44 @@ POINTSURFACESFILTERS_EXPORT std::vector<long long> LatticeOrder(const double* xy
   unsigned int seed);
 
 /**
- * Choose points in `order` with quality factor s. With `front`, each choice
- * is followed by growing a front: the free points around it are chosen next,
- * those whose in-plane distance is nearest to sqrt(3) s h first (the spacing
- * of a hexagonal covering), and `order` only seeds new fronts. `state` (size n) is read
- * and updated; `frames` receives the frames of newly chosen points, indexed
- * like the returned list (chosen point ids, in the order they were chosen).
- * Points already Chosen in `state` first claim their neighbourhoods using
- * `chosenFrames` (same indexing as `alreadyChosen`).
+ * Choose points in `order` with quality factor s. Each chosen point claims
+ * the points that `cover` reports for it, and claimed points are never
+ * chosen. With `front`, each choice is followed by growing a front: the
+ * free points around it are chosen next, those whose in-plane distance is
+ * nearest to sqrt(3) s h first (the spacing of a hexagonal covering), and
+ * `order` only seeds new fronts. `state` (size n) is read and updated.
+ * Points already Chosen (`alreadyChosen`, from coarser levels) first claim
+ * what they cover at this s. Returns the newly chosen point ids, in the
+ * order they were chosen.
  *
  * With `slabWidth` > 0 the work runs in parallel: the points are cut into
  * slabs of at least that width along the longest axis, the even slabs are
  * decimated concurrently, then the odd ones, each in `order`. The result is
  * deterministic and independent of the number of threads; next to slab
  * borders a few more splats may be chosen than in one sequential pass.
- * `frameOf` must then be safe to call from several threads.
+ * `frameOf` and `cover` must then be safe to call from several threads
+ * for different points, and a point's cover must not reach beyond the
+ * neighbouring slabs.
  */
 POINTSURFACESFILTERS_EXPORT std::vector<long long> SelectByQuality(const PointIndex& index,
   double s,
   const std::vector<long long>& order,
   const FrameFunction& frameOf,
+  const CoverFunction& cover,
   std::vector<PointState>& state,
-  std::vector<LocalFrame>& frames,
   const std::vector<long long>& alreadyChosen = {},
-  const std::vector<LocalFrame>& chosenFrames = {},
   bool front = false,
   double slabWidth = 0.0);
 
 /**
- * Mark the points that `frame` at point `centre` claims for quality s; with
- * `slabOf`, only points whose slab lies in [firstSlab, lastSlab].
+ * The cover of [Bolla 2010] 3.3.1: the points within s·h of `centre` in the
+ * plane of `frame` whose height above it is at most s·h.
  */
-POINTSURFACESFILTERS_EXPORT void Claim(const PointIndex& index,
+POINTSURFACESFILTERS_EXPORT void CoverByDistance(const PointIndex& index,
   const double centre[3],
   const LocalFrame& frame,
   double s,
-  std::vector<PointState>& state,
-  const int* slabOf = nullptr,
-  int firstSlab = 0,
-  int lastSlab = 0);
+  std::vector<int>& ids);
 } // namespace pointsurfaces
 
 #endif

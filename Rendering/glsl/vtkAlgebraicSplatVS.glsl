@@ -56,8 +56,10 @@ void main()
   splatAxisVVSOutput = mcvc * (b * h);
   splatAxisNVSOutput = mcvc * (n * h);
   // With LOD, a splat's disc follows the finest level drawn around it
-  // ([Bolla 2010] 3.2: R is chosen at run time from h and s).
-  splatRadiusVSOutput = (lodQuality > 0.0 ? lodQuality * splatSizeMC.z : splatSizeMC.y) / h;
+  // ([Bolla 2010] 3.2: R is chosen at run time from h and s), never past
+  // its own (error-bounded) radius.
+  splatRadiusVSOutput =
+    (lodQuality > 0.0 ? min(lodQuality * splatSizeMC.z, splatSizeMC.y) : splatSizeMC.y) / h;
   splatC0VSOutput = splatC0;
   splatC1VSOutput = vec4(0.0);
   splatC2VSOutput = vec4(0.0);

@@ -1,0 +1,215 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "psSplatBound.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace pointsurfaces
+{
+double BoundSearchRadius(double radius, double spacing)
+{
+  return std::sqrt(2.0) * std::max(radius, 3.0 * spacing);
+}
+
+SplatBound BoundSplat(const Splat& splat,
+  double radius,
+  const double* points,
+  int n,
+  const BoundParameters& params,
+  std::vector<int>* covered,
+  std::vector<double>* rho)
+{
+  SplatBound bound;
+  if (covered)
+  {
+    covered->clear();
+  }
+  if (rho)
+  {
+    rho->clear();
+  }
+  const LocalFrame& f = splat.Frame;
+  const double h = f.Scale;
+  if (splat.Fit.Degree <= 0 || !(h > 0.0) || !(radius > 0.0))
+  {
+    return bound;
+  }
+  const double spacing = params.Spacing > 0.0 ? params.Spacing : h;
+  const double tol = params.Tolerance;
+  const double reach = std::max(radius, 3.0 * spacing); // the border test looks this far
+
+  // In-plane position (world units), in-plane distance and deviation of each candidate.
+  struct Candidate
+  {
+    double U, V, Rho, E;
+    int Index;
+  };
+  std::vector<Candidate> on, off;
+  on.reserve(n);
+  for (int j = 0; j < n; ++j)
+  {
+    double uvh[3];
+    ToLocal(f, points + 3 * j, uvh);
+    const Candidate c{ uvh[0] * h,
+      uvh[1] * h,
+      std::hypot(uvh[0], uvh[1]) * h,
+      std::abs(uvh[2] - Evaluate(splat.Fit.Coefficients, splat.Fit.Degree, uvh[0], uvh[1])) * h,
+      j };
+    if (c.Rho > reach)
+    {
+      continue;
+    }
+    if (params.MeasureOnly)
+    {
+      // The unbounded disc of [Bolla 2010] covers its cylinder of height R.
+      if (c.Rho <= radius && std::abs(uvh[2]) * h <= radius)
+      {
+        on.push_back(c);
+      }
+      continue;
+    }
+    (c.E <= tol ? on : off).push_back(c);
+  }
+  if (params.MeasureOnly)
+  {
+    bound.Radius = radius;
+    for (const Candidate& m : on)
+    {
+      bound.MaxDeviation = std::max(bound.MaxDeviation, m.E);
+      if (covered)
+      {
+        covered->push_back(m.Index);
+      }
+      if (rho)
+      {
+        rho->push_back(m.Rho);
+      }
+    }
+    return bound;
+  }
+
+  // Where the surface bends away: the nearest point off the patch that
+  // continues the points on or near it (within twice the tolerance). A
+  // point barely off (under twice the tolerance) is noise as often as it is
+  // a bend: it is not covered, but does not stop the disc; nor does a point
+  // within a spacing of the centre, where the fit itself is within the
+  // tolerance (so that the disc always covers its own centre).
+  double r = radius;
+  std::sort(
+    off.begin(), off.end(), [](const Candidate& a, const Candidate& b) { return a.Rho < b.Rho; });
+  std::vector<const double*> near;
+  near.reserve(on.size() + off.size());
+  for (const Candidate& m : on)
+  {
+    near.push_back(points + 3 * m.Index);
+  }
+  for (const Candidate& c : off)
+  {
+    if (c.E <= 2.0 * tol)
+    {
+      near.push_back(points + 3 * c.Index);
+    }
+  }
+  const double adjacent2 = (params.Adjacency * spacing) * (params.Adjacency * spacing);
+  for (const Candidate& c : off)
+  {
+    if (c.Rho >= r || bound.BentAway)
+    {
+      break;
+    }
+    if (c.E <= 2.0 * tol || c.Rho < spacing)
+    {
+      continue; // noise, or a bend closer to the centre than the patch can resolve
+    }
+    const double* p = points + 3 * c.Index;
+    for (const double* q : near)
+    {
+      const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+        (p[2] - q[2]) * (p[2] - q[2]);
+      if (d2 <= adjacent2)
+      {
+        r = c.Rho;
+        bound.BentAway = true;
+        break;
+      }
+    }
+  }
+
+  // Where the data ends: the support of the points on the patch in
+  // Directions directions of the plane (how far they reach each way). A
+  // side that falls short of the disc by more than a spacing has a border:
+  // the disc may reach only BorderMargin spacings past it. (Inside the data
+  // a direction falls a spacing short with a chance of about 1 in 100.)
+  constexpr int Directions = 16;
+  double support[Directions];
+  std::fill(support, support + Directions, 0.0);
+  for (const Candidate& m : on)
+  {
+    for (int k = 0; k < Directions; ++k)
+    {
+      const double t = 2.0 * 3.14159265358979323846 * k / Directions;
+      support[k] = std::max(support[k], m.U * std::cos(t) + m.V * std::sin(t));
+    }
+  }
+  const double shortest = *std::min_element(support, support + Directions);
+  if (shortest + params.BorderSlack * spacing < r)
+  {
+    r = std::min(r, shortest + params.BorderMargin * spacing);
+    bound.Border = true;
+  }
+  // Last, the patch itself must stay by the data over its whole disc: its
+  // rim, sampled in the same directions, may lie at most MaximumReach
+  // spacings from the nearest point on or near it (a patch fitted on one
+  // side of a border can turn steeply past it). Shrink until it does.
+  const double reach2 = (params.MaximumReach * spacing) * (params.MaximumReach * spacing);
+  for (int step = 0; step < 8 && r > 0.0; ++step)
+  {
+    bool inside = true;
+    for (int k = 0; k < Directions && inside; ++k)
+    {
+      const double t = 2.0 * 3.14159265358979323846 * k / Directions;
+      const double u = r * std::cos(t) / h, v = r * std::sin(t) / h;
+      const double g = Evaluate(splat.Fit.Coefficients, splat.Fit.Degree, u, v);
+      double p[3];
+      for (int c = 0; c < 3; ++c)
+      {
+        p[c] = f.Origin[c] + h * (u * f.Tangent[c] + v * f.Bitangent[c] + g * f.Normal[c]);
+      }
+      double best = std::numeric_limits<double>::max();
+      for (const double* q : near)
+      {
+        best = std::min(best,
+          (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+            (p[2] - q[2]) * (p[2] - q[2]));
+      }
+      inside = best <= reach2;
+    }
+    if (inside)
+    {
+      break;
+    }
+    r *= 0.8;
+    bound.Border = true;
+  }
+  bound.Radius = r;
+
+  for (const Candidate& m : on)
+  {
+    if (m.Rho <= r)
+    {
+      bound.MaxDeviation = std::max(bound.MaxDeviation, m.E);
+      if (covered)
+      {
+        covered->push_back(m.Index);
+      }
+      if (rho)
+      {
+        rho->push_back(m.Rho);
+      }
+    }
+  }
+  return bound;
+}
+} // namespace pointsurfaces

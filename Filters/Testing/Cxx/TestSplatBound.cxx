@@ -1,0 +1,364 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+// Error-bounded splats (psSplatBound, the bounded fit of psSplatFit) against
+// surfaces whose exact shape is known, where the unbounded discs of [Bolla
+// 2010] stick out: two parallel sheets closer than the fit's neighbourhood,
+// a thin fin, a cube's edges and corners, and a flat disc with an exact rim.
+// Each splat's patch is sampled over its disc and measured against the
+// exact surface; the unbounded fit of the same points is measured the same
+// way, so the test shows what the bound buys. The deviation that each
+// splat reports is checked against the points it covers.
+#include "psPointIndex.h"
+#include "psPolynomial.h"
+#include "psSplatBound.h"
+#include "psSplatBuilder.h"
+#include "psSplatError.h"
+#include "psSplatFit.h"
+
+#include "psFiltersTestSupport.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+using namespace pointsurfaces;
+
+namespace
+{
+using Distance = std::function<double(const double p[3])>;
+
+// Points of a w x l rectangle at height z (spacing 1, jittered by 0.2).
+void Rectangle(std::vector<double>& p, double w, double l, double z, std::mt19937& gen)
+{
+  std::uniform_real_distribution<double> jitter(-0.2, 0.2);
+  for (int i = 0; i <= static_cast<int>(w); ++i)
+  {
+    for (int j = 0; j <= static_cast<int>(l); ++j)
+    {
+      p.insert(
+        p.end(), { std::clamp(i + jitter(gen), 0.0, w), std::clamp(j + jitter(gen), 0.0, l), z });
+    }
+  }
+}
+
+// Points on the surface of the box [0, a] x [0, b] x [0, c], spacing about 1.
+std::vector<double> BoxSurface(double a, double b, double c)
+{
+  std::vector<double> p;
+  const double size[3] = { a, b, c };
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const int nu = std::max(1, static_cast<int>(std::round(size[u])));
+    const int nv = std::max(1, static_cast<int>(std::round(size[v])));
+    for (int side = 0; side < 2; ++side)
+    {
+      for (int i = 0; i <= nu; ++i)
+      {
+        for (int j = 0; j <= nv; ++j)
+        {
+          // Edge rows belong to the faces of the lower axis only: no duplicates.
+          const bool edgeU = i == 0 || i == nu, edgeV = j == 0 || j == nv;
+          if ((edgeU && u < axis) || (edgeV && v < axis))
+          {
+            continue;
+          }
+          double q[3];
+          q[axis] = side * size[axis];
+          q[u] = size[u] * i / nu;
+          q[v] = size[v] * j / nv;
+          p.insert(p.end(), q, q + 3);
+        }
+      }
+    }
+  }
+  return p;
+}
+
+// Distance from p to the surface of the box [0, a] x [0, b] x [0, c].
+double BoxDistance(const double p[3], const double size[3])
+{
+  double outside = 0.0, inside = 1e300;
+  for (int c = 0; c < 3; ++c)
+  {
+    const double d = std::max({ -p[c], p[c] - size[c], 0.0 });
+    outside += d * d;
+    inside = std::min({ inside, std::abs(p[c]), std::abs(size[c] - p[c]) });
+  }
+  const bool in = outside == 0.0;
+  return in ? inside : std::sqrt(outside);
+}
+
+// Distance from p to the rectangle [0, w] x [0, l] at height z.
+double RectangleDistance(const double p[3], double w, double l, double z)
+{
+  const double dx = std::max({ -p[0], p[0] - w, 0.0 }), dy = std::max({ -p[1], p[1] - l, 0.0 });
+  return std::sqrt(dx * dx + dy * dy + (p[2] - z) * (p[2] - z));
+}
+
+struct Measure
+{
+  double Worst = 0.0;    ///< largest distance of a patch sample from the exact surface
+  double P95 = 0.0;      ///< 95th percentile over the splats of each one's largest distance
+  double Reach = 0.0;    ///< largest distance of a patch sample from the nearest input point
+  double Reported = 0.0; ///< largest SplatMaxDeviation / spacing
+  long long Splats = 0;
+  long long Uncovered = 0;
+};
+
+// Sample every patch over its disc and measure it.
+Measure MeasureSplats(const BuildResult& built,
+  const std::vector<double>& pts,
+  const Distance& exact)
+{
+  Measure m;
+  const long long n = static_cast<long long>(pts.size() / 3);
+  PointIndex index(pts.data(), n);
+  std::vector<int> ids;
+  std::vector<double> d2;
+  std::vector<double> origin, normal, tangent, scale, radius, coeffs;
+  int degree = 1;
+  std::vector<double> perSplat;
+  for (const BuiltSplat& b : built.Splats)
+  {
+    const Splat& s = b.Fitted;
+    const LocalFrame& f = s.Frame;
+    degree = std::max(degree, s.Fit.Degree);
+    double worst = 0.0;
+    for (int ring = 0; ring <= 4; ++ring)
+    {
+      for (int k = 0; k < 16; ++k)
+      {
+        const double rr = b.Radius * ring / 4.0 / f.Scale, t = 2.0 * 3.14159265358979 * k / 16;
+        const double u = rr * std::cos(t), v = rr * std::sin(t);
+        const double g = Evaluate(s.Fit.Coefficients, s.Fit.Degree, u, v);
+        double p[3];
+        for (int c = 0; c < 3; ++c)
+        {
+          p[c] = f.Origin[c] + f.Scale * (u * f.Tangent[c] + v * f.Bitangent[c] + g * f.Normal[c]);
+        }
+        worst = std::max(worst, exact(p));
+        index.Nearest(p, 1, ids, d2);
+        m.Reach = std::max(m.Reach, std::sqrt(d2[0]));
+      }
+    }
+    m.Worst = std::max(m.Worst, worst);
+    perSplat.push_back(worst);
+    m.Reported = std::max(m.Reported, b.MaxDeviation / s.Spacing);
+    origin.insert(origin.end(), f.Origin, f.Origin + 3);
+    normal.insert(normal.end(), f.Normal, f.Normal + 3);
+    tangent.insert(tangent.end(), f.Tangent, f.Tangent + 3);
+    scale.push_back(f.Scale);
+    radius.push_back(b.Radius);
+  }
+  for (const BuiltSplat& b : built.Splats)
+  {
+    for (int c = 0; c < MonomialCount(degree); ++c)
+    {
+      coeffs.push_back(c < MonomialCount(b.Fitted.Fit.Degree) ? b.Fitted.Fit.Coefficients[c] : 0.0);
+    }
+  }
+  m.Splats = static_cast<long long>(built.Splats.size());
+  if (!perSplat.empty())
+  {
+    std::sort(perSplat.begin(), perSplat.end());
+    m.P95 = perSplat[static_cast<size_t>(0.95 * (perSplat.size() - 1))];
+  }
+  SplatArrays arrays;
+  arrays.Origin = origin.data();
+  arrays.Normal = normal.data();
+  arrays.Tangent = tangent.data();
+  arrays.Scale = scale.data();
+  arrays.Radius = radius.data();
+  arrays.Coefficients = coeffs.data();
+  arrays.Degree = degree;
+  arrays.Count = m.Splats;
+  std::vector<double> delta, distance;
+  std::vector<int> covering;
+  m.Uncovered = EvaluateSplatError(arrays, pts.data(), n, delta, distance, covering).Uncovered;
+  return m;
+}
+
+BuildResult Build(const std::vector<double>& pts, double maximumDeviation, int degree = 2)
+{
+  BuildParameters params;
+  params.Fit.Degree = degree;
+  params.Fit.MaximumDeviation = maximumDeviation;
+  params.Quality = 1.0;
+  return BuildSplats(pts.data(), static_cast<long long>(pts.size() / 3), nullptr, params);
+}
+
+// Bounded and unbounded fits of `pts`, measured against `exact`; `bound` is
+// the largest distance from the exact surface allowed to a bounded patch
+// and `reachBound` from the nearest input point, in units of the grid
+// spacing (1; the local spacing of the 6 nearest is 1.1 to 1.3 of it).
+void Compare(const char* name,
+  const std::vector<double>& pts,
+  const Distance& exact,
+  double bound,
+  double reachBound,
+  double gain)
+{
+  const double tolerance = 0.5;
+  const Measure old = MeasureSplats(Build(pts, 0.0), pts, exact);
+  const BuildResult bounded = Build(pts, tolerance);
+  const Measure now = MeasureSplats(bounded, pts, exact);
+  std::printf("%-16s unbounded: %5lld splats, off the surface %.3f (p95 %.3f), past the data "
+              "%.3f | bounded: %5lld splats, off the surface %.3f (p95 %.3f), past the data %.3f, "
+              "reported deviation %.3f spacings, %lld uncovered\n",
+    name,
+    old.Splats,
+    old.Worst,
+    old.P95,
+    old.Reach,
+    now.Splats,
+    now.Worst,
+    now.P95,
+    now.Reach,
+    now.Reported,
+    now.Uncovered);
+  Check(now.Worst <= bound, (std::string(name) + ": bounded patches stay on the surface").c_str());
+  Check(now.Reach <= reachBound,
+    (std::string(name) + ": bounded patches stop at the data's borders").c_str());
+  Check(old.P95 > gain * now.P95,
+    (std::string(name) + ": the unbounded discs stick out (the case is a real one)").c_str());
+  Check(now.Reported <= tolerance * (1.0 + 1e-9),
+    (std::string(name) + ": reported deviations are within the tolerance").c_str());
+  Check(now.Uncovered == 0, (std::string(name) + ": no point is left uncovered").c_str());
+}
+
+// The deviation BoundSplat reports is the largest over exactly the points
+// it says the splat covers, and none of them is farther than the tolerance.
+void TestCoveredWithinTolerance()
+{
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<double> uni(-6.0, 6.0);
+  std::vector<double> pts;
+  for (int i = 0; i < 3000; ++i)
+  {
+    const double x = uni(gen), y = uni(gen);
+    // Fine relief: ripples of wavelength 3 spacings on a bump.
+    pts.insert(pts.end(), { x, y, 0.3 * std::sin(2.0 * x) * std::cos(2.0 * y) + 0.02 * x * x });
+  }
+  PointIndex index(pts.data(), 3000);
+  SplatFitParameters par;
+  par.Degree = 2;
+  par.MaximumDeviation = 0.2;
+  const double q[3] = { 0.0, 0.0, pts[2] * 0.0 };
+  std::vector<int> ids;
+  std::vector<double> d2, c;
+  index.Nearest(q, 121, ids, d2);
+  for (size_t j = 0; j < ids.size(); ++j)
+  {
+    c.insert(c.end(), index.Point(ids[j]), index.Point(ids[j]) + 3);
+  }
+  const Splat s = FitSplat(index.Point(ids[0]), c.data(), static_cast<int>(ids.size()), par);
+  Check(s.Fit.Degree == 2 && s.Spacing > 0.0, "the bounded fit succeeds");
+  BoundParameters bp;
+  bp.Spacing = s.Spacing;
+  bp.Tolerance = par.MaximumDeviation * s.Spacing;
+  const double nominal = 4.0 * s.Spacing;
+  index.Within(s.Frame.Origin, BoundSearchRadius(nominal, s.Spacing), ids, d2);
+  c.clear();
+  for (int id : ids)
+  {
+    c.insert(c.end(), index.Point(id), index.Point(id) + 3);
+  }
+  std::vector<int> covered;
+  std::vector<double> rho;
+  const SplatBound b =
+    BoundSplat(s, nominal, c.data(), static_cast<int>(ids.size()), bp, &covered, &rho);
+  double worst = 0.0;
+  for (size_t j = 0; j < covered.size(); ++j)
+  {
+    double uvh[3];
+    ToLocal(s.Frame, &c[3 * covered[j]], uvh);
+    const double e =
+      std::abs(uvh[2] - Evaluate(s.Fit.Coefficients, s.Fit.Degree, uvh[0], uvh[1])) * s.Frame.Scale;
+    worst = std::max(worst, e);
+    Check(rho[j] <= b.Radius, "covered points lie in the bounded disc");
+  }
+  std::printf("relief: radius %.3f of %.3f, %zu covered, deviation %.4f (reported %.4f, "
+              "tolerance %.4f)\n",
+    b.Radius,
+    nominal,
+    covered.size(),
+    worst,
+    b.MaxDeviation,
+    bp.Tolerance);
+  Check(b.BentAway && b.Radius < nominal, "the ripples bound the disc");
+  Check(!covered.empty() && std::abs(worst - b.MaxDeviation) <= 1e-12 * s.Frame.Scale,
+    "the reported deviation is that of the covered points");
+  Check(worst <= bp.Tolerance, "every covered point is within the tolerance");
+}
+} // namespace
+
+int TestSplatBound(int, char*[])
+{
+  std::mt19937 gen(7);
+  // Two parallel sheets 2 spacings apart: a fit's 40 neighbours reach 2.5
+  // spacings, its feature size neighbourhood 4.4.
+  {
+    std::vector<double> pts;
+    Rectangle(pts, 40, 40, 0.0, gen);
+    Rectangle(pts, 40, 40, 2.0, gen);
+    Compare(
+      "parallel sheets",
+      pts,
+      [](const double p[3])
+      { return std::min(RectangleDistance(p, 40, 40, 0.0), RectangleDistance(p, 40, 40, 2.0)); },
+      1.5,
+      1.5,
+      2.0);
+  }
+  // A thin fin: a closed box 40 x 12 x 2.
+  {
+    const double size[3] = { 40, 12, 2 };
+    Compare(
+      "thin fin",
+      BoxSurface(size[0], size[1], size[2]),
+      [&](const double p[3]) { return BoxDistance(p, size); },
+      0.75,
+      1.0,
+      2.0);
+  }
+  // A cube's edges and corners.
+  {
+    const double size[3] = { 20, 20, 20 };
+    Compare(
+      "cube",
+      BoxSurface(size[0], size[1], size[2]),
+      [&](const double p[3]) { return BoxDistance(p, size); },
+      1.0,
+      1.1,
+      1.5);
+  }
+  // A flat disc of radius 20 with an exact rim (sunflower sampling, spacing about 1).
+  {
+    std::vector<double> pts;
+    const int n = 1257;
+    const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < n; ++i)
+    {
+      const double r = 20.0 * std::sqrt((i + 0.5) / n), t = golden * i;
+      pts.insert(pts.end(), { r * std::cos(t), r * std::sin(t), 0.0 });
+    }
+    Compare(
+      "disc",
+      pts,
+      [](const double p[3])
+      {
+        const double rim = std::max(0.0, std::hypot(p[0], p[1]) - 20.0);
+        return std::hypot(rim, p[2]);
+      },
+      0.75,
+      1.1,
+      2.0);
+  }
+  TestCoveredWithinTolerance();
+  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
