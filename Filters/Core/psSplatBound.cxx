@@ -139,37 +139,53 @@ SplatBound BoundSplat(const Splat& splat,
 
   // Where the data ends: the support of the points on the patch in
   // Directions directions of the plane (how far they reach each way). A
-  // side that falls short of the disc by more than a spacing has a border:
-  // the disc may reach only BorderMargin spacings past it. (Inside the data
-  // a direction falls a spacing short with a chance of about 1 in 100.)
+  // side that falls short of the disc by more than a band w has a border:
+  // the disc may reach only BorderMargin spacings past it. w is where,
+  // for points spread at random with the density found around the splat
+  // (Poisson), the band would hold BorderPoints points on average, so that
+  // irregular sampling does not pass for a border: a spacing or two.
   constexpr int Directions = 16;
+  const double pi = 3.14159265358979323846;
+  // The density from the spacing (the mean distance of the 6 nearest is
+  // about 1 / sqrt(density) for random points, 1.14 of it on a grid), not
+  // from a count in the disc, which a thin strip of data would make small.
+  const double density = 1.0 / (spacing * spacing);
   double support[Directions];
   std::fill(support, support + Directions, 0.0);
   for (const Candidate& m : on)
   {
     for (int k = 0; k < Directions; ++k)
     {
-      const double t = 2.0 * 3.14159265358979323846 * k / Directions;
+      const double t = 2.0 * pi * k / Directions;
       support[k] = std::max(support[k], m.U * std::cos(t) + m.V * std::sin(t));
     }
   }
+  // A cap of depth w of a disc of radius r has an area of about (4/3) sqrt(2 r w) w.
+  const double band = density > 0.0 && r > 0.0
+    ? std::pow(3.0 * params.BorderPoints / (4.0 * density * std::sqrt(2.0 * r)), 2.0 / 3.0)
+    : r;
   const double shortest = *std::min_element(support, support + Directions);
-  if (shortest + params.BorderSlack * spacing < r)
+  // A small disc holds too few points to tell a border from chance; half its
+  // radius short is a border all the same.
+  if (shortest + std::max(std::min(band, 0.5 * r), params.BorderSlack * spacing) < r)
   {
     r = std::min(r, shortest + params.BorderMargin * spacing);
     bound.Border = true;
   }
   // Last, the patch itself must stay by the data over its whole disc: its
-  // rim, sampled in the same directions, may lie at most MaximumReach
-  // spacings from the nearest point on or near it (a patch fitted on one
-  // side of a border can turn steeply past it). Shrink until it does.
-  const double reach2 = (params.MaximumReach * spacing) * (params.MaximumReach * spacing);
+  // rim, sampled in the same directions, must lie near a point on or near
+  // the patch: within MaximumReach sampling distances (1 / sqrt(density))
+  // along the plane and twice the tolerance (at least half a spacing) across
+  // it. A patch fitted on one side of a border can turn steeply past it.
+  // Shrink until it does.
+  const double along = params.MaximumReach / std::sqrt(std::max(density, 1e-300));
+  const double across = std::max(2.0 * tol, 0.5 * spacing);
   for (int step = 0; step < 8 && r > 0.0; ++step)
   {
     bool inside = true;
     for (int k = 0; k < Directions && inside; ++k)
     {
-      const double t = 2.0 * 3.14159265358979323846 * k / Directions;
+      const double t = 2.0 * pi * k / Directions;
       const double u = r * std::cos(t) / h, v = r * std::sin(t) / h;
       const double g = Evaluate(splat.Fit.Coefficients, splat.Fit.Degree, u, v);
       double p[3];
@@ -177,14 +193,15 @@ SplatBound BoundSplat(const Splat& splat,
       {
         p[c] = f.Origin[c] + h * (u * f.Tangent[c] + v * f.Bitangent[c] + g * f.Normal[c]);
       }
-      double best = std::numeric_limits<double>::max();
-      for (const double* q : near)
+      inside = false;
+      for (size_t j = 0; j < near.size() && !inside; ++j)
       {
-        best = std::min(best,
-          (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-            (p[2] - q[2]) * (p[2] - q[2]));
+        const double* q = near[j];
+        const double d[3] = { p[0] - q[0], p[1] - q[1], p[2] - q[2] };
+        const double dn = d[0] * f.Normal[0] + d[1] * f.Normal[1] + d[2] * f.Normal[2];
+        const double dt2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - dn * dn;
+        inside = dt2 / (along * along) + dn * dn / (across * across) <= 1.0;
       }
-      inside = best <= reach2;
     }
     if (inside)
     {

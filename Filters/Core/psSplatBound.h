@@ -23,13 +23,16 @@
  *   do not bound the disc;
  * - the points on the patch within max(R, 3 spacings) are projected on 16
  *   directions of the plane: where their reach in a direction (the support
- *   function) falls short of the disc by more than `BorderSlack` spacings,
- *   the data ends on that side (an open border, or the rim of a thin part),
- *   and the disc reaches at most `BorderMargin` spacings past it;
+ *   function) falls short of the disc by more than the band in which
+ *   randomly spread points of the local density would put `BorderPoints`
+ *   points (at least `BorderSlack` spacings), the data ends on that side
+ *   (an open border, or the rim of a thin part), and the disc reaches at
+ *   most `BorderMargin` spacings past it;
  * - last, the patch's rim is sampled in the same 16 directions, and the disc
- *   shrinks until every sample lies within `MaximumReach` spacings of a
- *   point on or near the patch: a patch fitted on one side of a border can
- *   turn steeply just past it.
+ *   shrinks until every sample lies within `MaximumReach` sampling
+ *   distances (one over the square root of the density) along the plane,
+ *   and twice the tolerance across it, of a point on or near the patch: a
+ *   patch fitted on one side of a border can turn steeply just past it.
  *
  * The splat covers exactly the points on its patch within the final R, so
  * its measured maximum deviation over what it covers is within the
@@ -47,14 +50,15 @@ namespace pointsurfaces
 {
 struct BoundParameters
 {
-  double Tolerance = 0.0; ///< largest deviation of a covered point (world units)
-  double Spacing = 0.0;   ///< local point spacing (world units)
-  double Adjacency = 1.5; ///< same-sheet distance, in spacings
-  double BorderSlack =
-    1.0; ///< how far short of the disc the data must end to be a border, in spacings
+  double Tolerance = 0.0;    ///< largest deviation of a covered point (world units)
+  double Spacing = 0.0;      ///< local point spacing (world units)
+  double Adjacency = 1.5;    ///< same-sheet distance, in spacings
+  double BorderSlack = 1.0;  ///< least shortfall of the data that is a border, in spacings
+  double BorderPoints = 7.0; ///< points expected in the band that would make a border
   double BorderMargin = 0.5; ///< how far a disc may reach past the data, in spacings
-  double MaximumReach = 1.0; ///< how far the disc's rim may lie from the data, in spacings
-  bool MeasureOnly = false;  ///< only measure: keep the radius, cover every point in the disc
+  double MaximumReach =
+    2.5;                    ///< how far the disc's rim may lie from the data, in sampling distances
+  bool MeasureOnly = false; ///< only measure: keep the radius, cover every point in the disc
 };
 
 struct SplatBound
