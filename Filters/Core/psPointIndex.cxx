@@ -5,6 +5,8 @@
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 
+#include "vtkSMPTools.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -197,7 +199,7 @@ std::vector<long long> UniquePoints(const double* xyz, long long n, double toler
   }
   auto sameCell = [](const Key& a, const Key& b)
   { return a.K[0] == b.K[0] && a.K[1] == b.K[1] && a.K[2] == b.K[2]; };
-  std::sort(keys.begin(),
+  vtkSMPTools::Sort(keys.begin(),
     keys.end(),
     [](const Key& a, const Key& b)
     {

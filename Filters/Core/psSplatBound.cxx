@@ -150,14 +150,18 @@ SplatBound BoundSplat(const Splat& splat,
   // about 1 / sqrt(density) for random points, 1.14 of it on a grid), not
   // from a count in the disc, which a thin strip of data would make small.
   const double density = 1.0 / (spacing * spacing);
-  double support[Directions];
-  std::fill(support, support + Directions, 0.0);
+  double cosine[Directions], sine[Directions], support[Directions];
+  for (int k = 0; k < Directions; ++k)
+  {
+    cosine[k] = std::cos(2.0 * pi * k / Directions);
+    sine[k] = std::sin(2.0 * pi * k / Directions);
+    support[k] = 0.0;
+  }
   for (const Candidate& m : on)
   {
     for (int k = 0; k < Directions; ++k)
     {
-      const double t = 2.0 * pi * k / Directions;
-      support[k] = std::max(support[k], m.U * std::cos(t) + m.V * std::sin(t));
+      support[k] = std::max(support[k], m.U * cosine[k] + m.V * sine[k]);
     }
   }
   // A cap of depth w of a disc of radius r has an area of about (4/3) sqrt(2 r w) w.
@@ -185,8 +189,7 @@ SplatBound BoundSplat(const Splat& splat,
     bool inside = true;
     for (int k = 0; k < Directions && inside; ++k)
     {
-      const double t = 2.0 * pi * k / Directions;
-      const double u = r * std::cos(t) / h, v = r * std::sin(t) / h;
+      const double u = r * cosine[k] / h, v = r * sine[k] / h;
       const double g = Evaluate(splat.Fit.Coefficients, splat.Fit.Degree, u, v);
       double p[3];
       for (int c = 0; c < 3; ++c)

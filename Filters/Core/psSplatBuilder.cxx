@@ -6,6 +6,7 @@
 #include "psSplatBound.h"
 #include "psSplatSelection.h"
 
+#include "vtkMath.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
@@ -256,10 +257,18 @@ BuildResult BuildSplats(const double* xyz,
   // Bound a fitted splat of nominal radius `radius` and measure its deviation
   // against the points around it; returns the covered point ids with their
   // in-plane distances.
-  auto bound = [&](
-                 BuiltSplat& b, double tolerance, std::vector<int>* cover, std::vector<double>* rho)
+  // `nearest` (ids, sorted by distance, and their squared distances from the
+  // splat's point `from`), when they reach far enough, stand in for a
+  // search of the index.
+  auto bound = [&](BuiltSplat& b,
+                 double tolerance,
+                 std::vector<int>* cover,
+                 std::vector<double>* rho,
+                 const std::vector<int>* nearest = nullptr,
+                 const std::vector<double>* nearestD2 = nullptr,
+                 const double* from = nullptr)
   {
-    thread_local std::vector<int> ids;
+    thread_local std::vector<int> found;
     thread_local std::vector<double> d2, coords;
     thread_local std::vector<int> local;
     const Splat& sp = b.Fitted;
@@ -269,7 +278,19 @@ BuildResult BuildSplats(const double* xyz,
     bp.MaximumReach =
       std::max(bp.MaximumReach, 2.0 * tolerance); // a looser patch may stray farther
     bp.MeasureOnly = !bounded;
-    index.Within(sp.Frame.Origin, BoundSearchRadius(b.Radius, sp.Spacing), ids, d2, false);
+    const double search = BoundSearchRadius(b.Radius, sp.Spacing);
+    const std::vector<int>* candidates = &found;
+    if (nearest && !nearest->empty() &&
+      std::sqrt(nearestD2->back()) >=
+        search + std::sqrt(vtkMath::Distance2BetweenPoints(from, sp.Frame.Origin)))
+    {
+      candidates = nearest; // a superset of the points within `search` of the origin
+    }
+    else
+    {
+      index.Within(sp.Frame.Origin, search, found, d2, false);
+    }
+    const std::vector<int>& ids = *candidates;
     coords.resize(3 * ids.size());
     for (size_t j = 0; j < ids.size(); ++j)
     {
@@ -341,7 +362,7 @@ BuildResult BuildSplats(const double* xyz,
         b->Ids.assign(ids.begin(), ids.begin() + w.size());
         b->Weights.assign(w.begin(), w.end());
       }
-      bound(*b, levelFit.MaximumDeviation, &c->Cover, &c->Rho);
+      bound(*b, levelFit.MaximumDeviation, &c->Cover, &c->Rho, &ids, &d2, index.Point(i));
       frame = b->Fitted.Frame;
       c->Built = std::move(b);
     }
