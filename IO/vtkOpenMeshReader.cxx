@@ -526,6 +526,14 @@ int vtkOpenMeshReader::RequestData(vtkInformation*,
                   << " (a corrupt or truncated file, or not the format its extension names).");
     return 1;
   }
+  if (Extension(this->FileName) == "stl")
+  {
+    // STL has no vertex normals or colours, but OpenMesh 9's STL reader
+    // leaves those options set: the properties would hold uninitialised memory.
+    options -= OpenMesh::IO::Options::VertexNormal;
+    options -= OpenMesh::IO::Options::VertexColor;
+    options -= OpenMesh::IO::Options::FaceColor;
+  }
   // OpenMesh accepts an ASCII OFF file that ends early: compare with its header.
   if (Extension(this->FileName) == "off")
   {

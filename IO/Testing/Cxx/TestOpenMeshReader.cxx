@@ -120,6 +120,9 @@ int TestOpenMeshReader(int, char*[])
   Check(Errors == 0 && out->GetNumberOfPolys() == triangles->GetOutput()->GetNumberOfPolys() &&
       out->GetNumberOfPoints() == triangles->GetOutput()->GetNumberOfPoints(),
     "binary STL (vertices merged)");
+  Check(!out->GetPointData()->GetNormals() && !out->GetPointData()->GetScalars() &&
+      !out->GetCellData()->GetScalars(),
+    "STL gives no normals or colours (it has none; OpenMesh leaves the options on)");
 
   // A coloured face that OpenMesh rejects (a repeated vertex): OpenMesh used
   // to write its colour at face -1 (ASan sees it in the asan preset). The
