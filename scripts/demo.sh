@@ -2,8 +2,10 @@
 # The main job: set everything up on a fresh Debian 12 machine, then render a
 # real scan headless to a PNG and print what it cost.
 #
-# Usage: scripts/demo.sh [input.{ply,vtp,pcd,xyz}] [output.png]
+# Usage: scripts/demo.sh [input.{ply,vtp,pcd,xyz,obj,off,om,stl}] [output.png]
 #   default input: Testing/Data/bunny.vtp (the Stanford Bunny), output: bunny.png
+#   Examples/Python/render_scan.py reads the scan (pointsurfaces.scanio); a file
+#   it cannot read stops it with one line naming the file and exit status 1.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 input="${1:-$root/Testing/Data/bunny.vtp}"

@@ -4,8 +4,15 @@
 """Fit a point scan with algebraic splats, render it headless to a PNG, and
 report what it cost.
 
-    render_scan.py [input.{ply,vtp,pcd,xyz}] [output.png] [--size N]
-                   [--degree D] [--quality S] [--points]
+    render_scan.py [input.{ply,vtp,pcd,xyz,obj,off,om,stl}] [output.png]
+                   [--size N] [--degree D] [--quality S] [--points]
+
+The scan is read by pointsurfaces.scanio.read_scan: PLY with any elements
+(MeshLab's range maps, with a camera before the vertices, included), ASCII
+or binary, by that module's own reader; VTP by VTK; PCD by PCL; OBJ, OFF, OM
+and STL by OpenMesh; XYZ as x y z per line. A file that cannot be read (a
+missing, truncated or damaged file, an unknown extension) ends the script
+with one line on stderr naming the file, and exit status 1.
 
 The splats are fitted with vtkAlgebraicSplatFitter (degree D, quality s),
 measured against the scan with vtkSplatErrorMetric and ray cast with
@@ -20,39 +27,14 @@ import sys
 import time
 
 import pointsurfaces
-from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkPolyData
+from pointsurfaces.scanio import ScanReadError, read_scan
 from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkIOPLY import vtkPLYReader
-from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkRenderer, vtkRenderWindow,
                                          vtkWindowToImageFilter)
 from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLPointGaussianMapper
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_INPUT = os.path.join(HERE, "..", "..", "Testing", "Data", "bunny.vtp")
-
-
-def read(path):
-    ext = os.path.splitext(path)[1].lower()
-    if ext == ".xyz":
-        points = vtkPoints()
-        with open(path) as f:
-            for line in f:
-                parts = line.split()
-                if len(parts) >= 3:
-                    points.InsertNextPoint(*map(float, parts[:3]))
-        poly = vtkPolyData()
-        poly.SetPoints(points)
-        return poly
-    reader = {".ply": vtkPLYReader, ".vtp": vtkXMLPolyDataReader,
-              ".pcd": pointsurfaces.vtkPCDReader}.get(ext)
-    if reader is None:
-        sys.exit("render_scan.py: cannot read %s files" % ext)
-    r = reader()
-    r.SetFileName(path)
-    r.Update()
-    return r.GetOutput()
 
 
 def main():
@@ -69,11 +51,12 @@ def main():
     args = parser.parse_args()
 
     t0 = time.perf_counter()
-    poly = read(args.input)
+    try:
+        poly = read_scan(args.input)
+    except ScanReadError as e:
+        sys.exit("render_scan.py: %s" % e)
     load_s = time.perf_counter() - t0
     n = poly.GetNumberOfPoints()
-    if n == 0:
-        sys.exit("render_scan.py: no points in " + args.input)
 
     report = []
     if args.points:

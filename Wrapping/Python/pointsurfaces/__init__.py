@@ -8,7 +8,9 @@ Import it with Debian's ``/usr/bin/python3`` next to ``vtkmodules``::
     pointsurfaces.use_egl()          # optional: render headless through EGL
 
 Every class of the PointSurfaces modules is available here, for example
-``pointsurfaces.vtkEGLHeadlessRenderWindow``.
+``pointsurfaces.vtkEGLHeadlessRenderWindow``. ``pointsurfaces.scanio``
+reads scans (.ply .vtp .pcd .xyz .obj .off .om .stl) into a vtkPolyData,
+with one clear error for a bad file: ``scanio.read_scan(path)``.
 
 Which window ``vtkRenderWindow()`` returns is decided by the environment
 variable ``POINTSURFACES_RENDER_WINDOW`` (``auto``, ``egl``, ``x11`` or
