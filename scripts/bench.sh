@@ -26,6 +26,9 @@ env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \
   --out "$out/render-bunny-1M"
 env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \
   "$root/Testing/Benchmarks/bench_metaballs.py" --out "$out"
+# Splat image quality against the mesh: Bunny, Horse, Lucy, six views each.
+env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \
+  "$root/Testing/Benchmarks/bench_splat_quality.py" --data "$scans" --out "$out/quality"
 env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl "$build/bin/BenchComputeTiles" | tee "$out/compute_tiles.csv"
 /usr/bin/python3 "$root/Testing/Benchmarks/plot_csv.py" "$out/compute_tiles.csv" "$out/compute_tiles.png" \
   n gpu_ms cpu_ms --logx --logy

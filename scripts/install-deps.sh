@@ -25,8 +25,8 @@ packages=(
   libcgal-dev
   # headless GL: Mesa llvmpipe through EGL (surfaceless) or GLX under Xvfb
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev xvfb xauth
-  # benchmark plots
-  python3-matplotlib
+  # benchmark plots and image metrics (SSIM)
+  python3-matplotlib python3-skimage
   # the fuzz preset: clang with libFuzzer and the sanitizer runtimes
   clang libclang-rt-14-dev
   # mpiexec: the ghost-ball test runs over three MPI ranks

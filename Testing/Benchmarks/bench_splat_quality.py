@@ -1,0 +1,702 @@
+#!/usr/bin/env python3
+# SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+# SPDX-License-Identifier: BSD-3-Clause
+"""Image quality of algebraic splats against the mesh of the same scan, as a user sees it.
+
+For each scan that has faces (default: ../shared/data/scans/{bunny,horse,lucy_50k}.ply;
+--models takes any .ply or .vtp with triangles) and each of several views
+(cameras around the model, at azimuths and elevations about its up axis):
+
+- the ground truth is the triangle mesh itself, drawn by vtkPolyDataMapper
+  with smooth normals (vtkPolyDataNormals, no splitting) on a white
+  background. The camera is set once per view from the mesh's bounds
+  (ResetCamera on the mesh alone, then Azimuth and Elevation) and its
+  clipping range from the mesh's bounds (padded by 10 % of their diagonal);
+  the same camera is reused for everything drawn in that view, so the
+  splats' own bounds never move it.
+- the splats are fitted by vtkAlgebraicSplatFitter from the mesh's vertices
+  alone (no normals, no faces, no arrays: as from a scanner) and drawn by
+  vtkAlgebraicSplatMapper with its defaults (two-pass blending on, no
+  anti-aliasing, no LOD), with the same headlight and material (light grey,
+  ambient 0.1, diffuse 0.9, no specular; scalar colouring off).
+
+Metrics per view, over the pixels that either image covers (the mask: pixels
+not exactly the background colour in the mesh image or in the splat image):
+
+- masked_rmse: RMSE of the RGB images (0..1) over the masked pixels;
+- masked_ssim: mean over the masked pixels of the full SSIM map of
+  skimage.metrics.structural_similarity on the grey images (luminance
+  0.299 R + 0.587 G + 0.114 B; Wang et al.'s settings: 11 x 11 Gaussian
+  window, sigma 1.5, population covariance, data range 1);
+- coverage_iou: |mesh pixels AND splat pixels| / |mesh pixels OR splat pixels|.
+
+Also per row: the splat count, the fit time (fit_ms: the wall-clock time of
+one vtkAlgebraicSplatFitter.Update(), or the median of --fit-runs runs, with
+every core vtkSMPTools uses) and the frame time (frame_ms: the median of
+--frames renders, each followed by a one-pixel depth read-back, which waits
+for the GPU; the first render of an actor, which compiles shaders and uploads
+buffers, is not timed). fit_cpu_ms and frame_cpu_ms are the CPU time of this
+process over the same runs: on llvmpipe, whose threads draw in this process,
+they move less than the wall times when other work shares the cores.
+
+Sweep: QualityFactor s (--s) times degree (--degrees), the "s" sweep. When
+the fitter has the MaximumDeviation tolerance (in local point spacings; found
+with hasattr), the s sweep runs at its default value, and --tolerances (and
+the default) are swept at the few s of --tolerance-s: the "tol@s=..." sweeps.
+Without it the tolerance column is empty. A setting in both sweeps is fitted
+and drawn once.
+
+Rows with method "mesh" are the mesh scored against itself through the same
+path (score_mesh): masked RMSE 0, SSIM 1, IoU 1 is the self-check, and their
+frame_ms and splats (its triangle count) put the mesh's own cost beside the
+splats'. score_mesh() is where a reconstruction peer plugs in: any vtkPolyData
+with triangles (CGAL's reconstruction at the splats' primitive budget, an
+OpenMesh decimation) is scored against the same reference images in the same
+views; --peer-mesh MODEL PATH does it for a mesh written to a file.
+
+Output (in --out): splat_quality.csv (also on stdout), one row per view;
+splat_quality_summary.csv, the mean over views (also printed as # lines);
+splat_quality_ssim_vs_splats.png and splat_quality_ssim_vs_frame.png (mean
+masked SSIM over the views, one panel per model, one line per fitter label and
+degree; --compare PREVIOUS.csv adds the curves of an earlier run, for example
+of another fitter, told apart by --label); splat_quality_rmse_iou.png (masked
+RMSE and coverage IoU against splat count); and <model>_mesh_vs_splats.png,
+the mesh beside the splats in the first view at the fitter's default degree
+and s = 1, cut to the model. --images writes, for every setting and view, the
+mesh, the splats and their difference (grey: 4 x the RGB difference; red:
+pixels only the mesh covers, holes; blue: pixels only the splats cover,
+spill past the silhouette).
+
+Frame times come from whatever GL this runs on (llvmpipe on the CPU: cost
+follows shaded fragments); compare them only within one machine, and with the
+load averages printed at the start and end of the run (other work on the
+cores inflates both times; the image metrics do not depend on it).
+
+--quick is the smoke test ctest runs: the first model only (default
+Testing/Data/bunny.vtp, which a clean clone has), one view, 128 x 128,
+degree 3, s = 2 and 1 (and MaximumDeviation 0.2 at s = 1 when the fitter has
+it), one frame. It fails when the mesh does not score 1 against itself.
+
+Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
+M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
+"""
+import argparse
+import csv
+import os
+import statistics
+import sys
+import time
+
+import numpy as np
+
+import pointsurfaces
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
+from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
+from vtkmodules.vtkIOImage import vtkPNGWriter
+from vtkmodules.vtkIOPLY import vtkPLYReader
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderWindow, vtkRenderer
+
+try:
+    from skimage.metrics import structural_similarity
+except ImportError:
+    sys.exit("bench_splat_quality.py: needs scikit-image (Debian: python3-skimage; "
+             "scripts/install-deps.sh installs it)")
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+SCANS = os.path.join(ROOT, "..", "shared", "data", "scans")
+MODELS = ["bunny.ply", "horse.ply", "lucy_50k.ply"]
+SMOKE_MODEL = os.path.join(ROOT, "Testing", "Data", "bunny.vtp")
+# Up axis per model (file stem prefix); the Bunny's is y. Lucy and the horse stand on z.
+UP_AXIS = {"horse": "z", "lucy": "z"}
+# (azimuth, elevation) in degrees about the up axis, from the front view.
+VIEWS = [(0, 15), (60, 30), (120, -10), (180, 15), (240, 30), (300, -10)]
+BACKGROUND = (1.0, 1.0, 1.0)
+COLOUR = (0.8, 0.8, 0.8)
+FIELDS = ["fitter_label", "method", "model", "view", "azimuth", "elevation", "degree", "s",
+          "tolerance", "sweep", "splats", "points", "fit_ms", "fit_cpu_ms", "frame_ms",
+          "frame_cpu_ms", "masked_rmse", "masked_ssim", "coverage_iou", "covered_reference",
+          "covered_test"]
+
+
+def parse_size(text):
+    if "x" in text:
+        w, h = text.split("x")
+        return int(w), int(h)
+    return int(text), int(text)
+
+
+def load_mesh(path):
+    """Points and triangles only: arrays (the horse's RGB, PLY confidence) are dropped."""
+    reader = vtkXMLPolyDataReader() if path.endswith(".vtp") else vtkPLYReader()
+    reader.SetFileName(path)
+    reader.Update()
+    raw = reader.GetOutput()
+    mesh = vtkPolyData()
+    mesh.SetPoints(raw.GetPoints())
+    mesh.SetPolys(raw.GetPolys())
+    return mesh
+
+
+def scan_of(mesh):
+    """The mesh's vertices alone, as a scanner would give them."""
+    points = vtkPolyData()
+    points.SetPoints(mesh.GetPoints())
+    return points
+
+
+def material(actor):
+    p = actor.GetProperty()
+    p.SetColor(*COLOUR)
+    p.SetAmbient(0.1)
+    p.SetDiffuse(0.9)
+    p.SetSpecular(0.0)
+    return actor
+
+
+def mesh_actor(mesh):
+    normals = vtkPolyDataNormals()
+    normals.SetInputData(mesh)
+    normals.SplittingOff()
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputConnection(normals.GetOutputPort())
+    mapper.ScalarVisibilityOff()
+    actor = material(vtkActor())
+    actor.SetMapper(mapper)
+    return actor
+
+
+def splat_actor(splats):
+    mapper = pointsurfaces.vtkAlgebraicSplatMapper()
+    mapper.SetInputData(splats)
+    mapper.ScalarVisibilityOff()
+    actor = material(vtkActor())
+    actor.SetMapper(mapper)
+    return actor
+
+
+class Scene:
+    """One off-screen window and renderer; actors are swapped, the camera is set per view."""
+
+    def __init__(self, size):
+        self.size = size
+        self.window = vtkRenderWindow()
+        self.window.SetMultiSamples(0)
+        self.window.SetOffScreenRendering(1)
+        self.window.SetSize(*size)
+        self.renderer = vtkRenderer()
+        self.renderer.SetBackground(*BACKGROUND)
+        self.window.AddRenderer(self.renderer)
+
+    def show(self, actor):
+        self.renderer.RemoveAllViewProps()
+        self.renderer.AddActor(actor)
+
+    def cameras(self, mesh, up_axis, views):
+        """One camera state per view, set from the mesh alone and kept for everything after."""
+        up = {"x": (1, 0, 0), "y": (0, 1, 0), "z": (0, 0, 1)}[up_axis]
+        front = {"x": (0, 0, 1), "y": (0, 0, 1), "z": (0, 1, 0)}[up_axis]
+        b = mesh.GetBounds()
+        pad = 0.1 * ((b[1] - b[0]) ** 2 + (b[3] - b[2]) ** 2 + (b[5] - b[4]) ** 2) ** 0.5
+        padded = [b[0] - pad, b[1] + pad, b[2] - pad, b[3] + pad, b[4] - pad, b[5] + pad]
+        self.show(mesh_actor(mesh))
+        states = []
+        for azimuth, elevation in views:
+            cam = self.renderer.GetActiveCamera()
+            cam.SetFocalPoint(0, 0, 0)
+            cam.SetPosition(*front)
+            cam.SetViewUp(*up)
+            cam.SetViewAngle(30)
+            self.renderer.ResetCamera()  # from the mesh's bounds: it is the only actor
+            cam.Azimuth(azimuth)
+            cam.Elevation(elevation)
+            cam.OrthogonalizeViewUp()
+            self.renderer.ResetCameraClippingRange(padded)
+            states.append(dict(position=cam.GetPosition(), focal=cam.GetFocalPoint(),
+                               up=cam.GetViewUp(), angle=cam.GetViewAngle(),
+                               clip=cam.GetClippingRange()))
+        return states
+
+    def use(self, state):
+        cam = self.renderer.GetActiveCamera()
+        cam.SetPosition(*state["position"])
+        cam.SetFocalPoint(*state["focal"])
+        cam.SetViewUp(*state["up"])
+        cam.SetViewAngle(state["angle"])
+        cam.SetClippingRange(*state["clip"])
+
+    def image(self, state):
+        """RGB image (rows bottom-up, 0..1) of the current actor from one camera state."""
+        self.use(state)
+        self.window.Render()
+        assert self.renderer.GetActiveCamera().GetClippingRange() == state["clip"], \
+            "the renderer moved the camera's clipping range"
+        w, h = self.size
+        rgb = vtkUnsignedCharArray()
+        self.window.GetPixelData(0, 0, w - 1, h - 1, 0, rgb, 0)
+        return vtk_to_numpy(rgb).reshape(h, w, 3).astype(np.float64) / 255.0
+
+    def frame_ms(self, state, frames):
+        """Median wall-clock and process-CPU milliseconds of a frame."""
+        self.use(state)
+        wall, cpu = [], []
+        for _ in range(frames):
+            t0, c0 = time.perf_counter(), time.process_time()
+            self.window.Render()
+            self.window.GetZbufferDataAtPoint(0, 0)  # waits for the frame
+            wall.append(1000.0 * (time.perf_counter() - t0))
+            cpu.append(1000.0 * (time.process_time() - c0))
+        return statistics.median(wall), statistics.median(cpu)
+
+
+def covered(image):
+    return np.any(image != np.asarray(BACKGROUND), axis=2)
+
+
+def grey(image):
+    return image @ np.array([0.299, 0.587, 0.114])
+
+
+def score_images(reference, test):
+    """Masked RMSE, masked SSIM and coverage IoU of test against reference (see the docstring)."""
+    ref_mask, test_mask = covered(reference), covered(test)
+    mask = ref_mask | test_mask
+    union = int(mask.sum())
+    if union == 0:
+        return dict(masked_rmse=0.0, masked_ssim=1.0, coverage_iou=1.0,
+                    covered_reference=0, covered_test=0)
+    rmse = float(np.sqrt(np.mean((reference[mask] - test[mask]) ** 2)))
+    _, ssim_map = structural_similarity(grey(reference), grey(test), data_range=1.0,
+                                        gaussian_weights=True, sigma=1.5,
+                                        use_sample_covariance=False, full=True)
+    return dict(masked_rmse=rmse, masked_ssim=float(ssim_map[mask].mean()),
+                coverage_iou=float((ref_mask & test_mask).sum()) / union,
+                covered_reference=int(ref_mask.sum()), covered_test=int(test_mask.sum()))
+
+
+def score_actor(scene, model, actor, frames, images_out=None, tag=""):
+    """Per view: the actor's image scored against the model's references, and its frame time."""
+    scene.show(actor)
+    rows = []
+    for view, (state, reference) in enumerate(zip(model["cameras"], model["references"])):
+        image = scene.image(state)  # also the warm-up render of this view
+        if view == 0:
+            model["last_image"] = image
+        row = score_images(reference, image)
+        wall, cpu = scene.frame_ms(state, frames) if frames > 0 else ("", "")
+        row.update(view=view, azimuth=model["views"][view][0],
+                   elevation=model["views"][view][1], frame_ms=wall, frame_cpu_ms=cpu)
+        rows.append(row)
+        if images_out:
+            write_diagnostic(os.path.join(images_out, "%s_%s_view%d.png" % (
+                model["name"], tag, view)), reference, image)
+    return rows
+
+
+def score_mesh(scene, model, mesh, frames, images_out=None, tag="mesh"):
+    """Score any triangle mesh against the model's reference in its views.
+
+    The entry point for a reconstruction peer: pass the mesh a reconstruction
+    (CGAL, Poisson, a decimation) made from the same scan, at a triangle
+    budget comparable to the splat count, and compare its rows with the
+    splats'. Scoring the reference mesh itself is the self-check (RMSE 0,
+    SSIM 1, IoU 1)."""
+    return score_actor(scene, model, mesh_actor(mesh), frames, images_out, tag)
+
+
+def fit_splats(points, degree, s, tolerance, runs):
+    """Splats of one setting, and the fit's wall-clock and process-CPU ms (medians of runs)."""
+    times, cpu = [], []
+    for _ in range(max(1, runs)):
+        fitter = pointsurfaces.vtkAlgebraicSplatFitter()
+        fitter.SetInputData(points)
+        fitter.SetDegree(degree)
+        fitter.SetQualityFactor(s)
+        if tolerance is not None:
+            fitter.SetMaximumDeviation(tolerance)
+        t0, c0 = time.perf_counter(), time.process_time()
+        fitter.Update()
+        times.append(1000.0 * (time.perf_counter() - t0))
+        cpu.append(1000.0 * (time.process_time() - c0))
+    splats = vtkPolyData()
+    splats.ShallowCopy(fitter.GetOutput())
+    return splats, statistics.median(times), statistics.median(cpu)
+
+
+def settings(args, tol0):
+    """(degree, s, tolerance or None, sweep) to run: the s sweep at the fitter's default
+    tolerance (tol0, None without the knob), then the tolerance sweep at a few s."""
+    runs = []
+    for degree in args.degrees:
+        for s in args.s:
+            runs.append((degree, s, tol0, "s"))
+        if tol0 is not None:
+            tol_s = args.s if args.tolerance_s == ["all"] else [float(v) for v in args.tolerance_s]
+            for s in tol_s:
+                # The default tolerance too: its point, fitted in the s sweep, joins the curve.
+                for tol in sorted(set(args.tolerances) | {tol0}):
+                    runs.append((degree, s, tol, "tol@s=%g" % s))
+    return runs
+
+
+def to_png_array(image):
+    """0..1 RGB rows bottom-up (VTK's order) to uint8 rows bottom-up."""
+    return (255.0 * np.clip(image, 0, 1)).round().astype(np.uint8)
+
+
+def write_png(path, image):
+    h, w, _ = image.shape
+    data = vtkImageData()
+    data.SetDimensions(w, h, 1)
+    data.GetPointData().SetScalars(numpy_to_vtk(to_png_array(image).reshape(-1, 3), deep=True))
+    writer = vtkPNGWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(data)
+    writer.Write()
+
+
+def side_by_side(*images, gap=8):
+    h = images[0].shape[0]
+    spacer = np.ones((h, gap, 3))
+    parts = []
+    for i, image in enumerate(images):
+        if i:
+            parts.append(spacer)
+        parts.append(image)
+    return np.concatenate(parts, axis=1)
+
+
+def cropped(*images, margin=8):
+    """The images cut to the box around what any of them covers (the same box for all)."""
+    mask = np.any([covered(image) for image in images], axis=0)
+    if not mask.any():
+        return images
+    rows, cols = np.where(mask)
+    y0, y1 = max(rows.min() - margin, 0), rows.max() + margin + 1
+    x0, x1 = max(cols.min() - margin, 0), cols.max() + margin + 1
+    return [image[y0:y1, x0:x1] for image in images]
+
+
+def write_diagnostic(path, reference, image):
+    """mesh | test | |difference| x 4 (grey) with the mask's disagreement in red / blue."""
+    diff = np.clip(4.0 * np.abs(reference - image).mean(axis=2), 0, 1)
+    panel = np.repeat((1.0 - diff)[:, :, None], 3, axis=2)
+    ref_mask, test_mask = covered(reference), covered(image)
+    panel[ref_mask & ~test_mask] = (1.0, 0.0, 0.0)  # mesh only: a hole in the test
+    panel[test_mask & ~ref_mask] = (0.0, 0.3, 1.0)  # test only: spill past the silhouette
+    write_png(path, side_by_side(*cropped(reference, image, panel)))
+
+
+SUMMARY_FIELDS = ["fitter_label", "method", "model", "degree", "s", "tolerance", "sweep",
+                  "views", "splats", "fit_ms", "fit_cpu_ms", "frame_ms", "frame_cpu_ms",
+                  "masked_rmse", "masked_ssim", "coverage_iou"]
+
+
+def summarise(rows):
+    """Mean over views per (label, method, model, degree, s, tolerance, sweep)."""
+    groups = {}
+    for r in rows:
+        key = tuple(str(r[f]) for f in ("fitter_label", "method", "model", "degree", "s",
+                                         "tolerance", "sweep"))
+        groups.setdefault(key, []).append(r)
+    out = []
+    for key, rs in groups.items():
+        def mean(field):
+            values = [float(r[field]) for r in rs if r[field] != ""]
+            return statistics.fmean(values) if values else None
+        ms, cpu = mean("frame_ms"), mean("frame_cpu_ms") if "frame_cpu_ms" in rs[0] else None
+        out.append(dict(zip(("fitter_label", "method", "model", "degree", "s", "tolerance",
+                             "sweep"), key),
+                        views=len(rs), splats=int(rs[0]["splats"]), fit_ms=rs[0]["fit_ms"],
+                        fit_cpu_ms=rs[0].get("fit_cpu_ms", ""),
+                        frame_ms="" if ms is None else "%.2f" % ms,
+                        frame_cpu_ms="" if cpu is None else "%.2f" % cpu,
+                        masked_rmse="%.5f" % mean("masked_rmse"),
+                        masked_ssim="%.5f" % mean("masked_ssim"),
+                        coverage_iou="%.5f" % mean("coverage_iou")))
+    return out
+
+
+def plot(summary, compare, out):
+    """Mean masked SSIM against splat count and frame time; RMSE and IoU against splat count."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    rows = [dict(r, source="") for r in summary]
+    ours = {r["fitter_label"] for r in summary}
+    rows += [dict(r, source=" (compare)" if r["fitter_label"] in ours else "") for r in compare]
+    models = list(dict.fromkeys(r["model"] for r in rows if r["method"] == "splats"))
+    if not models:
+        return []
+    curves = {}
+    for r in rows:
+        if r["method"] == "splats":
+            key = (r["fitter_label"] + r["source"], r["model"], int(r["degree"]), r["sweep"])
+            curves.setdefault(key, []).append(r)
+    colours = {d: "C%d" % i for i, d in enumerate(sorted({k[2] for k in curves}))}
+    labels = sorted({k[0] for k in curves})
+    sweeps = sorted({k[3] for k in curves}, key=lambda v: (v != "s", v))
+    styles = ["-", "--", ":", "-."]
+    markers = ["o", "^", "s", "v", "D", "x"]
+
+    def draw(metric, xfield, axes, ylabel):
+        for col, model in enumerate(models):
+            ax = axes[col]
+            for (label, m, degree, sweep), rs in sorted(curves.items()):
+                pts = sorted((float(r[xfield]), float(r[metric]), r["s"], r["tolerance"])
+                             for r in rs if m == model and r[xfield] != "")
+                if not pts:
+                    continue
+                ax.plot([p[0] for p in pts], [p[1] for p in pts],
+                        styles[labels.index(label) % len(styles)],
+                        marker=markers[sweeps.index(sweep) % len(markers)],
+                        color=colours[degree], markersize=4,
+                        label="%s, degree %d%s" % (label, degree,
+                                                   "" if sweep == "s" else ", " + sweep))
+                if label in ours:  # this run's settings, not the compared run's
+                    for x, y, s, tol in pts:
+                        ax.annotate(("s=%g" % float(s)) if sweep == "s" else "t=%s" % tol,
+                                    (x, y), fontsize=6, textcoords="offset points",
+                                    xytext=(3, -8))
+            # Meshes scored by score_mesh (reconstruction peers): one point each.
+            for r in rows:
+                if r["method"] == "peer-mesh" and r["model"] == model and r[xfield] != "":
+                    ax.plot([float(r[xfield])], [float(r[metric])], "k*", markersize=8,
+                            label="%s%s (mesh)" % (r["fitter_label"], r["source"]))
+            # The mesh's own cost: its triangle count, its frame time.
+            mesh = [r for r in rows if r["method"] == "mesh" and r["model"] == model
+                    and r["source"] == "" and r[xfield] != ""]
+            if mesh:
+                ax.axvline(float(mesh[0][xfield]), color="grey", linestyle=":", linewidth=1,
+                           label="mesh: %s" % ("triangles" if xfield == "splats"
+                                               else "its frame time"))
+            ax.set_xscale("log")
+            ax.set_title(model)
+            ax.set_xlabel("splats" if xfield == "splats" else "frame time (ms, median)")
+            ax.grid(True, alpha=0.3, which="both")
+            if col == 0:
+                ax.set_ylabel(ylabel)
+            ax.legend(fontsize=6)
+
+    written = []
+    for xfield, name in (("splats", "splat_quality_ssim_vs_splats.png"),
+                         ("frame_ms", "splat_quality_ssim_vs_frame.png")):
+        fig, axes = plt.subplots(1, len(models), figsize=(5 * len(models), 4.5), squeeze=False)
+        draw("masked_ssim", xfield, axes[0], "masked SSIM against the mesh (mean over views)")
+        fig.tight_layout()
+        fig.savefig(os.path.join(out, name), dpi=100)
+        plt.close(fig)
+        written.append(name)
+    fig, axes = plt.subplots(2, len(models), figsize=(5 * len(models), 8.5), squeeze=False)
+    draw("masked_rmse", "splats", axes[0], "masked RMSE, RGB (mean over views)")
+    draw("coverage_iou", "splats", axes[1], "coverage IoU (mean over views)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "splat_quality_rmse_iou.png"), dpi=100)
+    plt.close(fig)
+    written.append("splat_quality_rmse_iou.png")
+    return written
+
+
+def write_csv(path, fields, rows):
+    with open(path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
+        writer.writeheader()
+        writer.writerows(rows)
+
+
+def picture_setting(args, default_degree, tol0):
+    """The setting of the mesh-beside-splats picture: default degree, the s nearest 1."""
+    degree = default_degree if default_degree in args.degrees else args.degrees[0]
+    s = min(args.s, key=lambda v: abs(v - 1.0))
+    return (degree, s, tol0, "s")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--models", nargs="+", metavar="PATH",
+                        help="meshes with triangles, .ply or .vtp (default: %s in --data)"
+                        % ", ".join(MODELS))
+    parser.add_argument("--data", default=SCANS, help="folder of the default models")
+    parser.add_argument("--out", default="bench-results")
+    parser.add_argument("--label", default="current",
+                        help="names the fitter in the CSV and plots (e.g. previous, new)")
+    parser.add_argument("--compare", metavar="CSV",
+                        help="splat_quality.csv of an earlier run, drawn beside this one")
+    parser.add_argument("--size", default="512", help="window size: 512 or WxH")
+    parser.add_argument("--views", type=int, default=len(VIEWS),
+                        help="number of views, the first N of %s" % (VIEWS,))
+    parser.add_argument("--up", choices=["auto", "x", "y", "z"], default="auto",
+                        help="the models' up axis (auto: z for horse and lucy, else y)")
+    parser.add_argument("--s", type=float, nargs="+", default=[2, 1.5, 1, 0.75, 0.5, 0.35, 0.25],
+                        help="QualityFactor values")
+    parser.add_argument("--degrees", type=int, nargs="+", default=[2, 3],
+                        help="splat degrees (1 to 4)")
+    parser.add_argument("--tolerances", type=float, nargs="+", default=[0.05, 0.1, 0.2, 0.4],
+                        help="MaximumDeviation values, when the fitter has it (0: no bound)")
+    parser.add_argument("--tolerance-s", nargs="+", default=["1", "0.5"],
+                        help="the s at which the tolerances are swept ('all': every s)")
+    parser.add_argument("--frames", type=int, default=5, help="renders per frame-time median")
+    parser.add_argument("--fit-runs", type=int, default=1, help="fits per fit-time median")
+    parser.add_argument("--peer-mesh", nargs=2, action="append", default=[],
+                        metavar=("MODEL", "PATH"),
+                        help="also score this mesh (e.g. a reconstruction) for MODEL")
+    parser.add_argument("--images", action="store_true",
+                        help="write every view's mesh | splats | difference picture")
+    parser.add_argument("--quick", action="store_true",
+                        help="smoke test: first model, one view, 128 px, degree 3, s = 2 and 1")
+    parser.add_argument("--require-module-under", metavar="DIR",
+                        help="fail unless the pointsurfaces module is loaded from under DIR")
+    args = parser.parse_args()
+
+    module = os.path.realpath(pointsurfaces.__file__)
+    print("# pointsurfaces module: %s" % module, file=sys.stderr)
+    if args.require_module_under:
+        root = os.path.realpath(args.require_module_under)
+        if not module.startswith(root + os.sep):
+            print("bench_splat_quality.py: pointsurfaces is %s, not under %s" % (module, root),
+                  file=sys.stderr)
+            return 2
+        # The shared libraries too: a build tree's RUNPATH may point at another tree.
+        libs = set()
+        if os.path.exists("/proc/self/maps"):
+            with open("/proc/self/maps") as maps:
+                libs = {line.split()[-1] for line in maps if "libPointSurfaces" in line}
+        stray = sorted(lib for lib in libs if not os.path.realpath(lib).startswith(root + os.sep))
+        for lib in sorted(libs):
+            print("# loaded: %s" % lib, file=sys.stderr)
+        if stray:
+            print("bench_splat_quality.py: libraries not under %s: %s (set LD_LIBRARY_PATH)"
+                  % (root, ", ".join(stray)), file=sys.stderr)
+            return 2
+    if not os.environ.get("POINTSURFACES_RENDER_WINDOW"):
+        pointsurfaces.use_egl()
+
+    paths = args.models or ([SMOKE_MODEL] if args.quick else
+                            [os.path.join(args.data, m) for m in MODELS])
+    views = VIEWS[:max(1, args.views)]
+    size = parse_size(args.size)
+    frames = args.frames
+    if args.quick:
+        paths, views, size, frames = paths[:1], VIEWS[:1], (128, 128), 1
+        args.degrees, args.s, args.tolerances, args.tolerance_s = [3], [2.0, 1.0], [0.2], ["1"]
+    for p in paths:
+        if not os.path.isfile(p):
+            print("bench_splat_quality.py: no model %s (see --data, --models)" % p, file=sys.stderr)
+            return 1
+    os.makedirs(args.out, exist_ok=True)
+    images_out = args.out if args.images else None
+
+    probe = pointsurfaces.vtkAlgebraicSplatFitter()
+    tol0 = probe.GetMaximumDeviation() if hasattr(probe, "SetMaximumDeviation") else None
+    runs = settings(args, tol0)
+    picture = picture_setting(args, probe.GetDegree(), tol0)
+    print("# fitter %s: tolerance knob MaximumDeviation %s; %d fits per model, %d view(s), "
+          "%dx%d" % (args.label, "absent" if tol0 is None else "present (default %g)" % tol0,
+                     len({r[:3] for r in runs}), len(views), size[0], size[1]), file=sys.stderr)
+
+    print("# load average at start: %.2f %.2f %.2f" % os.getloadavg(), file=sys.stderr)
+    scene = Scene(size)
+    rows = []
+    start = time.perf_counter()
+    for path in paths:
+        name = os.path.splitext(os.path.basename(path))[0]
+        mesh = load_mesh(path)
+        if mesh.GetNumberOfPolys() == 0:
+            print("bench_splat_quality.py: %s has no triangles for the reference" % path,
+                  file=sys.stderr)
+            return 1
+        up = args.up if args.up != "auto" else next(
+            (a for k, a in UP_AXIS.items() if name.startswith(k)), "y")
+        model = dict(name=name, views=views, cameras=scene.cameras(mesh, up, views))
+        scene.show(mesh_actor(mesh))
+        model["references"] = [scene.image(state) for state in model["cameras"]]
+        points = scan_of(mesh)
+        common = dict(model=name, points=points.GetNumberOfPoints(), sweep="", degree="", s="",
+                      tolerance="")
+
+        # The mesh against itself, through the path a reconstruction peer takes.
+        for r in score_mesh(scene, model, mesh, frames):
+            rows.append(dict(r, **common, fitter_label="mesh", method="mesh",
+                             splats=mesh.GetNumberOfPolys(), fit_ms="", fit_cpu_ms=""))
+        for model_name, peer_path in args.peer_mesh:
+            if model_name == name:
+                peer = load_mesh(peer_path)
+                peer_label = os.path.splitext(os.path.basename(peer_path))[0]
+                for r in score_mesh(scene, model, peer, frames, images_out, "peer-" + peer_label):
+                    rows.append(dict(r, **common, fitter_label=peer_label, method="peer-mesh",
+                                     splats=peer.GetNumberOfPolys(), fit_ms="",
+                                     fit_cpu_ms=""))
+
+        done = {}
+        for degree, s, tol, sweep in runs:
+            setting = dict(common, fitter_label=args.label, method="splats", degree=degree, s=s,
+                           tolerance="" if tol is None else tol, sweep=sweep)
+            if (degree, s, tol) in done:  # the same fit in the other sweep: reuse it
+                rows += [dict(r, sweep=sweep) for r in done[(degree, s, tol)]]
+                continue
+            splats, fit_ms, fit_cpu_ms = fit_splats(points, degree, s, tol, args.fit_runs)
+            tag = "%s_d%d_s%g%s" % (args.label, degree, s, "" if tol is None else "_t%g" % tol)
+            view_rows = [dict(r, **setting, splats=splats.GetNumberOfPoints(),
+                              fit_ms="%.1f" % fit_ms, fit_cpu_ms="%.1f" % fit_cpu_ms)
+                         for r in score_actor(scene, model, splat_actor(splats), frames,
+                                              images_out, tag)]
+            done[(degree, s, tol)] = view_rows
+            rows += view_rows
+            if (degree, s, tol, sweep) == picture:
+                write_png(os.path.join(args.out, "%s_mesh_vs_splats.png" % name),
+                          side_by_side(*cropped(model["references"][0], model["last_image"])))
+            print("# %s %s d%d s=%g%s: %d splats, fit %.0f ms, SSIM %.4f, RMSE %.4f, IoU %.4f, "
+                  "%s ms/frame (%.0f s so far)" % (
+                      args.label, name, degree, s, "" if tol is None else " tol=%g" % tol,
+                      splats.GetNumberOfPoints(), fit_ms,
+                      statistics.fmean(r["masked_ssim"] for r in view_rows),
+                      statistics.fmean(r["masked_rmse"] for r in view_rows),
+                      statistics.fmean(r["coverage_iou"] for r in view_rows),
+                      "%.1f" % statistics.median(r["frame_ms"] for r in view_rows)
+                      if frames > 0 else "-", time.perf_counter() - start), file=sys.stderr)
+
+    print("# load average at end: %.2f %.2f %.2f (%.0f s)" % (
+        os.getloadavg() + (time.perf_counter() - start,)), file=sys.stderr)
+    for r in rows:
+        for f in ("masked_rmse", "masked_ssim", "coverage_iou"):
+            r[f] = "%.5f" % r[f]
+        for f in ("frame_ms", "frame_cpu_ms"):
+            if r[f] != "":
+                r[f] = "%.2f" % r[f]
+    path = os.path.join(args.out, "splat_quality.csv")
+    write_csv(path, FIELDS, rows)
+    writer = csv.DictWriter(sys.stdout, fieldnames=FIELDS, extrasaction="ignore")
+    writer.writeheader()
+    writer.writerows(rows)
+
+    summary = summarise(rows)
+    write_csv(os.path.join(args.out, "splat_quality_summary.csv"), SUMMARY_FIELDS, summary)
+    print("# mean over %d view(s): %s" % (len(views), " ".join(SUMMARY_FIELDS)))
+    for r in summary:
+        print("# " + " ".join(str(r[f]) for f in SUMMARY_FIELDS))
+    status = 0
+    for r in summary:
+        if r["method"] == "mesh" and (float(r["masked_ssim"]) < 0.99999 or
+                                      float(r["coverage_iou"]) < 0.99999):
+            print("bench_splat_quality.py: the mesh of %s does not match itself" % r["model"],
+                  file=sys.stderr)
+            status = 1
+
+    compare = summarise(read_csv(args.compare)) if args.compare else []
+    for name in plot(summary, compare, args.out):
+        print("# wrote " + os.path.join(args.out, name))
+    print("# wrote " + path)
+    return status
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
