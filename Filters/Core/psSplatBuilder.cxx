@@ -363,6 +363,40 @@ BuildResult BuildSplats(const double* xyz,
         b->Weights.assign(w.begin(), w.end());
       }
       bound(*b, levelFit.MaximumDeviation, &c->Cover, &c->Rho, &ids, &d2, index.Point(i));
+      // Where the surface bent away well inside the disc, the patch averaged
+      // over more than it may cover: fit again with weights that reach no
+      // farther than the bounded disc, and keep the fit that reaches farther.
+      const double nominalRadius = b->NominalRadius;
+      if (b->Radius < 0.6 * nominalRadius)
+      {
+        SplatFitParameters narrow = levelFit;
+        narrow.WeightScale *= std::max(0.35, b->Radius / nominalRadius);
+        auto n2 = std::make_unique<BuiltSplat>(*b);
+        n2->Fitted = FitSplat(index.Point(i),
+          coords.data(),
+          static_cast<int>(ids.size()),
+          narrow,
+          normals ? normals + 3 * i : nullptr,
+          params.KeepWeights ? &w : nullptr);
+        if (n2->Fitted.Fit.Degree > 0)
+        {
+          n2->Radius = nominalRadius;
+          std::vector<int> cover2;
+          std::vector<double> rho2;
+          bound(*n2, levelFit.MaximumDeviation, &cover2, &rho2, &ids, &d2, index.Point(i));
+          if (n2->Radius > b->Radius)
+          {
+            if (params.KeepWeights)
+            {
+              n2->Ids.assign(ids.begin(), ids.begin() + w.size());
+              n2->Weights.assign(w.begin(), w.end());
+            }
+            b = std::move(n2);
+            c->Cover.swap(cover2);
+            c->Rho.swap(rho2);
+          }
+        }
+      }
       frame = b->Fitted.Frame;
       c->Built = std::move(b);
     }
