@@ -9,7 +9,9 @@
 INPUT is a time series, one file a step, in the order given (a shell glob
 such as 'steps/*.vtp' sorts them): .vtp or .vtu (any point set; a "Radius"
 point array is used when present), .vdb (OpenVDB point grids, through
-vtkOpenVDBPointsReader; "pscale" is the radius) or .xyz (x y z per line).
+vtkOpenVDBPointsReader; "pscale" is the radius) or .xyz (x y z per line);
+or a LAMMPS dump (.lammpstrj, .dump), every snapshot of which is a step
+(vtkLAMMPSDumpReader; a "radius" column is the radius).
 With no input, a built-in simulation runs instead: 20 000 particles falling
 into a swirling vortex, coloured by speed.
 
@@ -32,6 +34,7 @@ import pointsurfaces
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkPolyData
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkIOXML import vtkXMLGenericDataObjectReader
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtkRenderer,
@@ -39,11 +42,40 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtk
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 
 
-def read_step(path):
+LAMMPS = (".lammpstrj", ".dump")
+
+
+def expand_steps(inputs):
+    """(file, time or None) for each time step: a LAMMPS dump gives one per snapshot."""
+    steps = []
+    for path in inputs:
+        if os.path.splitext(path)[1].lower() in LAMMPS:
+            reader = pointsurfaces.vtkLAMMPSDumpReader()
+            reader.SetFileName(path)
+            reader.UpdateInformation()
+            times = reader.GetOutputInformation(0).Get(
+                vtkStreamingDemandDrivenPipeline.TIME_STEPS()) or ()
+            steps += [(path, t) for t in times]
+        else:
+            steps.append((path, None))
+    return steps
+
+
+def read_step(path, time_value=None):
     """Centres (n x 3) and radii (n, or None) of one time step."""
     ext = os.path.splitext(path)[1].lower()
     if ext == ".xyz":
         return np.loadtxt(path, ndmin=2)[:, :3], None
+    if ext in LAMMPS:
+        reader = pointsurfaces.vtkLAMMPSDumpReader()
+        reader.SetFileName(path)
+        reader.UpdateTimeStep(time_value)
+        data = reader.GetOutput()
+        if data.GetNumberOfPoints() == 0:
+            raise RuntimeError("no atoms in %s at time %g" % (path, time_value))
+        xyz = vtk_to_numpy(data.GetPoints().GetData()).astype(np.float64)
+        radius = data.GetPointData().GetArray("radius")
+        return xyz, vtk_to_numpy(radius).astype(np.float64) if radius is not None else None
     if ext == ".vdb":
         reader = pointsurfaces.vtkOpenVDBPointsReader()
         radius_name = "pscale"
@@ -105,7 +137,8 @@ def main():
     os.makedirs(args.out, exist_ok=True)
 
     vortex = None if args.inputs else Vortex(args.particles)
-    steps = len(args.inputs) if args.inputs else args.frames
+    inputs = expand_steps(args.inputs)
+    steps = len(inputs) if args.inputs else args.frames
 
     poly = vtkPolyData()
     points = vtkPoints()
@@ -137,7 +170,7 @@ def main():
             speed = vortex.step()
             xyz, radii = vortex.xyz, None
         else:
-            xyz, radii = read_step(args.inputs[k])
+            xyz, radii = read_step(*inputs[k])
             speed = None
         if radii is None:
             if args.radius <= 0.0:

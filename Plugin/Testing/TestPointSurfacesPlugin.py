@@ -87,8 +87,18 @@ if mpi:
 pxm = servermanager.ProxyManager()
 for proxy in ("AlgebraicSplatFitter", "MultiResolutionSplatBuilder", "SplatErrorMetric"):
     check(pxm.GetPrototypeProxy("filters", proxy) is not None, "filter " + proxy)
-for proxy in ("OpenMeshReader", "OpenVDBPointsReader"):
+for proxy in ("OpenMeshReader", "OpenVDBPointsReader", "LAMMPSDumpReader"):
     check(pxm.GetPrototypeProxy("sources", proxy) is not None, "reader " + proxy)
+
+# A LAMMPS run's dump, animated over its snapshots.
+dump = LAMMPSDumpReader(FileName=os.path.join(
+    os.path.dirname(os.path.abspath(__file__)), "..", "..", "IO", "Testing", "Data", "lammps",
+    "melt.lammpstrj"))
+dump.UpdatePipeline(0.3)
+check(len(dump.TimestepValues) == 6 and abs(dump.TimestepValues[-1] - 0.5) < 1e-9,
+      "the LAMMPS dump's six snapshots are time steps (%s)" % list(dump.TimestepValues))
+check(dump.GetDataInformation().GetNumberOfPoints() == 256, "256 atoms at t = 0.3")
+Delete(dump)
 
 view = new_view()
 

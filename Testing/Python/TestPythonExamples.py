@@ -24,7 +24,8 @@ from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-EXAMPLES = os.path.join(HERE, "..", "..", "Examples", "Python")
+ROOT = os.path.join(HERE, "..", "..")
+EXAMPLES = os.path.join(ROOT, "Examples", "Python")
 TEMP = os.environ.get("POINTSURFACES_TEMP_DIR", ".")
 os.makedirs(TEMP, exist_ok=True)
 SCANS = os.path.join(TEMP, "scans")  # the inputs written below, remade every run
@@ -161,6 +162,11 @@ runs = [
     ("particle_animation.py", ["--out", frames, "--frames", "3", "--particles", "2000",
                                "--size", "160", "--vdb"],
      "uploads:      3", os.path.join(frames, "frame_0002.png")),
+    # A LAMMPS run's dump: its six snapshots are the frames.
+    ("particle_animation.py", [os.path.join(ROOT, "IO", "Testing", "Data", "lammps",
+                                            "melt.lammpstrj"),
+                               "--out", os.path.join(TEMP, "lammps"), "--size", "120"],
+     "frames:       6", os.path.join(TEMP, "lammps", "frame_0005.png")),
     ("speed_accuracy_sweep.py", [data_file("hemoglobin_chainA.pdb"), temp("sweep.png"),
                                  "--size", "96", "--steps", "0.4,0.1", "--bisections", "0,5"],
      "sweep:        4 settings", os.path.join(TEMP, "sweep.png")),
