@@ -3,6 +3,7 @@
 #include "vtkLAMMPSDumpReader.h"
 
 #include "psLAMMPSDump.h"
+#include "psReaderTime.h"
 
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -17,7 +18,6 @@
 #include "vtkPolyData.h"
 #include "vtkSplatDataModel.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-#include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
 #include <fstream>
@@ -26,20 +26,9 @@
 
 vtkStandardNewMacro(vtkLAMMPSDumpReader);
 
-struct vtkLAMMPSDumpReader::Index
+struct vtkLAMMPSDumpReader::Index : pointsurfaces::FrameIndex<pointsurfaces::DumpSnapshotInfo>
 {
-  std::string File;
-  long long Modified = -1; ///< the file's modification time when scanned
-  std::vector<pointsurfaces::DumpSnapshotInfo> Infos;
 };
-
-namespace
-{
-long long ModifiedTime(const std::string& file)
-{
-  return static_cast<long long>(vtksys::SystemTools::ModifiedTime(file));
-}
-} // namespace
 
 //------------------------------------------------------------------------------
 vtkLAMMPSDumpReader::vtkLAMMPSDumpReader()
@@ -54,7 +43,7 @@ vtkLAMMPSDumpReader::~vtkLAMMPSDumpReader() = default;
 //------------------------------------------------------------------------------
 int vtkLAMMPSDumpReader::GetNumberOfSnapshots()
 {
-  return static_cast<int>(this->Snapshots->Infos.size());
+  return static_cast<int>(this->Snapshots->Frames.size());
 }
 
 //------------------------------------------------------------------------------
@@ -73,73 +62,38 @@ int vtkLAMMPSDumpReader::RequestInformation(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
-  vtkInformation* info = outputVector->GetInformationObject(0);
-  info->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  info->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
   Index& index = *this->Snapshots;
   if (this->FileName.empty())
   {
     index = Index();
     vtkErrorMacro(<< "No FileName: nothing to read.");
-    return 1;
   }
-  const long long modified = ModifiedTime(this->FileName);
-  if (index.File != this->FileName || index.Modified != modified)
+  else if (index.Stale(this->FileName))
   {
     index = Index();
     std::ifstream in(this->FileName, std::ios::binary);
     if (!in)
     {
       vtkErrorMacro(<< "Cannot open " << this->FileName << ".");
-      return 1;
     }
-    std::string error;
-    index.Infos = pointsurfaces::ScanDump(in, error);
-    index.File = this->FileName;
-    index.Modified = modified;
-    if (!error.empty())
+    else
     {
-      vtkErrorMacro(<< this->FileName << " is damaged after " << index.Infos.size()
-                    << " snapshots: " << error << ".");
-    }
-    // Time steps must increase: a restarted run can repeat timesteps, and
-    // then the later snapshot of a time is the one kept.
-    std::stable_sort(index.Infos.begin(),
-      index.Infos.end(),
-      [](const pointsurfaces::DumpSnapshotInfo& a, const pointsurfaces::DumpSnapshotInfo& b)
-      { return a.Time < b.Time; });
-    std::vector<pointsurfaces::DumpSnapshotInfo> unique;
-    for (const auto& s : index.Infos)
-    {
-      if (!unique.empty() && unique.back().Time == s.Time)
+      std::string error;
+      index.Frames = pointsurfaces::ScanDump(in, error);
+      index.Scanned(this->FileName);
+      if (!error.empty())
       {
-        unique.back() = s;
+        vtkErrorMacro(<< this->FileName << " is damaged after " << index.Frames.size()
+                      << " snapshots: " << error << ".");
       }
-      else
+      if (const size_t dropped = index.SortByTime())
       {
-        unique.push_back(s);
+        vtkWarningMacro(<< this->FileName << " repeats " << dropped
+                        << " times (a restarted run?): the last snapshot of each is read.");
       }
     }
-    if (unique.size() < index.Infos.size())
-    {
-      vtkWarningMacro(<< this->FileName << " repeats " << index.Infos.size() - unique.size()
-                      << " times (a restarted run?): the last snapshot of each is read.");
-    }
-    index.Infos.swap(unique);
   }
-  if (index.Infos.empty())
-  {
-    return 1;
-  }
-  std::vector<double> times;
-  for (const auto& s : index.Infos)
-  {
-    times.push_back(s.Time);
-  }
-  info->Set(
-    vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
-  const double range[2] = { times.front(), times.back() };
-  info->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  index.Publish(outputVector->GetInformationObject(0));
   return 1;
 }
 
@@ -151,33 +105,17 @@ int vtkLAMMPSDumpReader::RequestData(vtkInformation*,
   vtkInformation* info = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   const Index& index = *this->Snapshots;
-  if (index.Infos.empty())
+  if (index.Frames.empty() || pointsurfaces::LaterPiece(info))
   {
-    return 1; // RequestInformation said why
+    return 1; // RequestInformation said why; or another piece than the first
   }
-  // The whole snapshot goes to piece 0 (a dump is one text stream); other
-  // pieces of a parallel pipeline stay empty.
-  if (info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
-    info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0)
-  {
-    return 1;
-  }
-  // The last snapshot at or before the requested time (the first one before it all).
-  size_t pick = 0;
-  if (info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
-  {
-    const double t = info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
-    for (size_t k = 0; k < index.Infos.size() && index.Infos[k].Time <= t; ++k)
-    {
-      pick = k;
-    }
-  }
+  const size_t pick = index.Pick(info);
   std::ifstream in(this->FileName, std::ios::binary);
   pointsurfaces::DumpSnapshot snap;
   std::string error;
-  if (!in || !pointsurfaces::ReadSnapshot(in, index.Infos[pick].Offset, snap, error))
+  if (!in || !pointsurfaces::ReadSnapshot(in, index.Frames[pick].Offset, snap, error))
   {
-    vtkErrorMacro(<< "Cannot read timestep " << index.Infos[pick].Timestep << " of "
+    vtkErrorMacro(<< "Cannot read timestep " << index.Frames[pick].Timestep << " of "
                   << this->FileName << ": " << (error.empty() ? "cannot open it" : error) << ".");
     return 1;
   }
@@ -317,5 +255,5 @@ void vtkLAMMPSDumpReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "SortById: " << this->SortById << "\n";
-  os << indent << "Snapshots: " << this->Snapshots->Infos.size() << "\n";
+  os << indent << "Snapshots: " << this->Snapshots->Frames.size() << "\n";
 }

@@ -10,8 +10,9 @@ INPUT is a time series, one file a step, in the order given (a shell glob
 such as 'steps/*.vtp' sorts them): .vtp or .vtu (any point set; a "Radius"
 point array is used when present), .vdb (OpenVDB point grids, through
 vtkOpenVDBPointsReader; "pscale" is the radius) or .xyz (x y z per line);
-or a LAMMPS dump (.lammpstrj, .dump), every snapshot of which is a step
-(vtkLAMMPSDumpReader; a "radius" column is the radius).
+or a trajectory in one file, every frame of which is a step: a LAMMPS dump
+(.lammpstrj, .dump, vtkLAMMPSDumpReader; a "radius" column is the radius)
+or a GROMACS .gro (vtkGromacsGroReader; van der Waals radii of the elements).
 With no input, a built-in simulation runs instead: 20 000 particles falling
 into a swirling vortex, coloured by speed.
 
@@ -42,15 +43,18 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkColorTransferFunction, vtk
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 
 
-LAMMPS = (".lammpstrj", ".dump")
+# Trajectories whose one file holds every step: their reader and radius array.
+TRAJECTORIES = {".lammpstrj": "vtkLAMMPSDumpReader", ".dump": "vtkLAMMPSDumpReader",
+                ".gro": "vtkGromacsGroReader"}
 
 
 def expand_steps(inputs):
     """(file, time or None) for each time step: a LAMMPS dump gives one per snapshot."""
     steps = []
     for path in inputs:
-        if os.path.splitext(path)[1].lower() in LAMMPS:
-            reader = pointsurfaces.vtkLAMMPSDumpReader()
+        ext = os.path.splitext(path)[1].lower()
+        if ext in TRAJECTORIES:
+            reader = getattr(pointsurfaces, TRAJECTORIES[ext])()
             reader.SetFileName(path)
             reader.UpdateInformation()
             times = reader.GetOutputInformation(0).Get(
@@ -66,8 +70,8 @@ def read_step(path, time_value=None):
     ext = os.path.splitext(path)[1].lower()
     if ext == ".xyz":
         return np.loadtxt(path, ndmin=2)[:, :3], None
-    if ext in LAMMPS:
-        reader = pointsurfaces.vtkLAMMPSDumpReader()
+    if ext in TRAJECTORIES:
+        reader = getattr(pointsurfaces, TRAJECTORIES[ext])()
         reader.SetFileName(path)
         reader.UpdateTimeStep(time_value)
         data = reader.GetOutput()

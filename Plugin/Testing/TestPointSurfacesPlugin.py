@@ -87,7 +87,7 @@ if mpi:
 pxm = servermanager.ProxyManager()
 for proxy in ("AlgebraicSplatFitter", "MultiResolutionSplatBuilder", "SplatErrorMetric"):
     check(pxm.GetPrototypeProxy("filters", proxy) is not None, "filter " + proxy)
-for proxy in ("OpenMeshReader", "OpenVDBPointsReader", "LAMMPSDumpReader"):
+for proxy in ("OpenMeshReader", "OpenVDBPointsReader", "LAMMPSDumpReader", "GromacsGroReader"):
     check(pxm.GetPrototypeProxy("sources", proxy) is not None, "reader " + proxy)
 
 # A LAMMPS run's dump, animated over its snapshots.
@@ -99,6 +99,13 @@ check(len(dump.TimestepValues) == 6 and abs(dump.TimestepValues[-1] - 0.5) < 1e-
       "the LAMMPS dump's six snapshots are time steps (%s)" % list(dump.TimestepValues))
 check(dump.GetDataInformation().GetNumberOfPoints() == 256, "256 atoms at t = 0.3")
 Delete(dump)
+gro = GromacsGroReader(FileName=os.path.join(
+    os.path.dirname(os.path.abspath(__file__)), "..", "..", "IO", "Testing", "Data", "gromacs",
+    "water_traj.gro"))
+gro.UpdatePipeline(0.02)
+check(len(gro.TimestepValues) == 4 and gro.GetDataInformation().GetNumberOfPoints() == 327,
+      "the GROMACS trajectory's four frames of 327 atoms")
+Delete(gro)
 
 view = new_view()
 

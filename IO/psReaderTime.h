@@ -1,0 +1,116 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file psReaderTime.h
+ * @brief What the readers of simulation trajectories share: time steps in and out of the pipeline.
+ *
+ * A trajectory file holds frames, each with a time. A reader scans the
+ * file once (again when the file changes), offers the times as TIME_STEPS,
+ * and reads the frame at or before the time asked for, on the first piece
+ * of a parallel pipeline only.
+ */
+#ifndef psReaderTime_h
+#define psReaderTime_h
+
+#include "vtkInformation.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtksys/SystemTools.hxx"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+namespace pointsurfaces
+{
+/** A scanned file: its name, modification time and frames (each with a Time). */
+template<typename Frame>
+struct FrameIndex
+{
+  std::string File;
+  long long Modified = -1;
+  std::vector<Frame> Frames;
+
+  /** Whether `file` must be scanned (again): another file, or changed since. */
+  bool Stale(const std::string& file) const
+  {
+    return file != this->File ||
+      static_cast<long long>(vtksys::SystemTools::ModifiedTime(file)) != this->Modified;
+  }
+  /** Remember that `file` was scanned into Frames. */
+  void Scanned(const std::string& file)
+  {
+    this->File = file;
+    this->Modified = static_cast<long long>(vtksys::SystemTools::ModifiedTime(file));
+  }
+  /**
+   * Order the frames by time, keeping the last of frames with equal times
+   * (a restarted run repeats them). Returns how many were dropped.
+   */
+  size_t SortByTime()
+  {
+    std::stable_sort(this->Frames.begin(),
+      this->Frames.end(),
+      [](const Frame& a, const Frame& b) { return a.Time < b.Time; });
+    std::vector<Frame> unique;
+    for (const Frame& f : this->Frames)
+    {
+      if (!unique.empty() && unique.back().Time == f.Time)
+      {
+        unique.back() = f;
+      }
+      else
+      {
+        unique.push_back(f);
+      }
+    }
+    const size_t dropped = this->Frames.size() - unique.size();
+    this->Frames.swap(unique);
+    return dropped;
+  }
+  /** TIME_STEPS and TIME_RANGE of the frames (removed when there are none). */
+  void Publish(vtkInformation* info) const
+  {
+    info->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+    info->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+    if (this->Frames.empty())
+    {
+      return;
+    }
+    std::vector<double> times;
+    for (const Frame& f : this->Frames)
+    {
+      times.push_back(f.Time);
+    }
+    info->Set(
+      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+    const double range[2] = { times.front(), times.back() };
+    info->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  }
+  /** The last frame at or before the requested time (the first when earlier). */
+  size_t Pick(vtkInformation* info) const
+  {
+    size_t pick = 0;
+    if (info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+    {
+      const double t = info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+      for (size_t k = 0; k < this->Frames.size() && this->Frames[k].Time <= t; ++k)
+      {
+        pick = k;
+      }
+    }
+    return pick;
+  }
+};
+
+/**
+ * Whether this update asks for a piece other than the first: a text
+ * trajectory is one stream, read whole into piece 0; the others stay empty.
+ */
+inline bool LaterPiece(vtkInformation* info)
+{
+  return info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
+    info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0;
+}
+} // namespace pointsurfaces
+
+#endif

@@ -1,0 +1,221 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkGromacsGroReader.h"
+
+#include "psGromacsGro.h"
+#include "psReaderTime.h"
+
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSplatDataModel.h"
+#include "vtkStringArray.h"
+
+#include <fstream>
+#include <set>
+
+vtkStandardNewMacro(vtkGromacsGroReader);
+
+struct vtkGromacsGroReader::Index : pointsurfaces::FrameIndex<pointsurfaces::GroFrameInfo>
+{
+};
+
+namespace
+{
+// A radius for atoms whose element the table lacks, nm.
+constexpr double DefaultRadius = 0.15;
+} // namespace
+
+//------------------------------------------------------------------------------
+vtkGromacsGroReader::vtkGromacsGroReader()
+  : Frames(new Index)
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+//------------------------------------------------------------------------------
+vtkGromacsGroReader::~vtkGromacsGroReader() = default;
+
+//------------------------------------------------------------------------------
+int vtkGromacsGroReader::GetNumberOfFrames()
+{
+  return static_cast<int>(this->Frames->Frames.size());
+}
+
+//------------------------------------------------------------------------------
+bool vtkGromacsGroReader::CanReadFile(const char* fileName)
+{
+  std::ifstream in(fileName ? fileName : "");
+  std::string title, count, atom;
+  if (!std::getline(in, title) || !std::getline(in, count) || !std::getline(in, atom))
+  {
+    return false;
+  }
+  char* end = nullptr;
+  const long long n = std::strtoll(count.c_str(), &end, 10);
+  return end != count.c_str() && n > 0 && atom.size() >= 44 &&
+    atom.find('.', 20) != std::string::npos;
+}
+
+//------------------------------------------------------------------------------
+int vtkGromacsGroReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  Index& index = *this->Frames;
+  if (this->FileName.empty())
+  {
+    index = Index();
+    vtkErrorMacro(<< "No FileName: nothing to read.");
+  }
+  else if (index.Stale(this->FileName))
+  {
+    index = Index();
+    std::ifstream in(this->FileName, std::ios::binary);
+    if (!in)
+    {
+      vtkErrorMacro(<< "Cannot open " << this->FileName << ".");
+    }
+    else
+    {
+      std::string error;
+      index.Frames = pointsurfaces::ScanGro(in, error);
+      index.Scanned(this->FileName);
+      if (!error.empty())
+      {
+        vtkErrorMacro(<< this->FileName << " is damaged after " << index.Frames.size()
+                      << " frames: " << error << ".");
+      }
+      if (const size_t dropped = index.SortByTime())
+      {
+        vtkWarningMacro(<< this->FileName << " repeats " << dropped
+                        << " times: the last frame of each is read.");
+      }
+    }
+  }
+  index.Publish(outputVector->GetInformationObject(0));
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkGromacsGroReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* info = outputVector->GetInformationObject(0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  const Index& index = *this->Frames;
+  if (index.Frames.empty() || pointsurfaces::LaterPiece(info))
+  {
+    return 1; // RequestInformation said why; or another piece than the first
+  }
+  const pointsurfaces::GroFrameInfo& where = index.Frames[index.Pick(info)];
+  std::ifstream in(this->FileName, std::ios::binary);
+  pointsurfaces::GroFrame frame;
+  std::string error;
+  if (!in || !pointsurfaces::ReadGroFrame(in, where, frame, error))
+  {
+    vtkErrorMacro(<< "Cannot read the frame at t = " << where.Time << " of " << this->FileName
+                  << ": " << (error.empty() ? "cannot open it" : error) << ".");
+    return 1;
+  }
+  const vtkIdType n = static_cast<vtkIdType>(where.NumberOfAtoms);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  vtkNew<vtkIntArray> resid, atomid;
+  resid->SetName("resid");
+  atomid->SetName("atomid");
+  vtkNew<vtkStringArray> resname, name, element;
+  resname->SetName("resname");
+  name->SetName("name");
+  element->SetName("element");
+  vtkNew<vtkDoubleArray> radius;
+  radius->SetName("radius");
+  for (auto* a : { static_cast<vtkAbstractArray*>(resid),
+         static_cast<vtkAbstractArray*>(atomid),
+         static_cast<vtkAbstractArray*>(resname),
+         static_cast<vtkAbstractArray*>(name),
+         static_cast<vtkAbstractArray*>(element),
+         static_cast<vtkAbstractArray*>(radius) })
+  {
+    a->SetNumberOfValues(n);
+  }
+  std::set<std::string> unknown;
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    points->SetPoint(k, &frame.Positions[3 * k]);
+    resid->SetValue(k, frame.ResidueNumbers[k]);
+    atomid->SetValue(k, frame.AtomNumbers[k]);
+    resname->SetValue(k, frame.ResidueNames[k]);
+    name->SetValue(k, frame.AtomNames[k]);
+    const std::string e =
+      pointsurfaces::ElementFromAtomName(frame.AtomNames[k], frame.ResidueNames[k]);
+    element->SetValue(k, e);
+    const double r = pointsurfaces::VanDerWaalsRadius(e);
+    if (r <= 0.0)
+    {
+      unknown.insert(frame.AtomNames[k] + " (" + frame.ResidueNames[k] + ")");
+    }
+    radius->SetValue(k, r > 0.0 ? r : DefaultRadius);
+  }
+  if (!unknown.empty())
+  {
+    vtkWarningMacro(<< this->FileName << ": no van der Waals radius for the element of "
+                    << unknown.size() << " atom names, such as " << *unknown.begin()
+                    << ": their radius is " << DefaultRadius << " nm.");
+  }
+  output->SetPoints(points);
+  vtkSplatDataModel::AddVertexCells(output);
+  vtkPointData* pd = output->GetPointData();
+  for (auto* a : { static_cast<vtkAbstractArray*>(resid),
+         static_cast<vtkAbstractArray*>(atomid),
+         static_cast<vtkAbstractArray*>(resname),
+         static_cast<vtkAbstractArray*>(name),
+         static_cast<vtkAbstractArray*>(element),
+         static_cast<vtkAbstractArray*>(radius) })
+  {
+    pd->AddArray(a);
+  }
+  if (!frame.Velocities.empty())
+  {
+    vtkNew<vtkDoubleArray> v;
+    v->SetName("v");
+    v->SetNumberOfComponents(3);
+    v->SetNumberOfTuples(n);
+    std::copy(frame.Velocities.begin(), frame.Velocities.end(), v->GetPointer(0));
+    pd->AddArray(v);
+  }
+  vtkFieldData* fd = output->GetFieldData();
+  vtkNew<vtkDoubleArray> time;
+  time->SetName("Time");
+  time->InsertNextValue(where.Time);
+  fd->AddArray(time);
+  vtkNew<vtkIdTypeArray> step;
+  step->SetName("Step");
+  step->InsertNextValue(static_cast<vtkIdType>(where.Step));
+  fd->AddArray(step);
+  vtkNew<vtkDoubleArray> box;
+  box->SetName("Box");
+  box->SetNumberOfComponents(9);
+  box->InsertNextTypedTuple(frame.Box);
+  fd->AddArray(box);
+  output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), where.Time);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkGromacsGroReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "Frames: " << this->Frames->Frames.size() << "\n";
+}
