@@ -18,6 +18,8 @@
 #ifndef psGromacsGro_h
 #define psGromacsGro_h
 
+#include "psElements.h" // For atoms' elements and radii
+
 #include <cstdint> // For offsets
 #include <istream> // For the input
 #include <string>  // For names and errors
@@ -53,20 +55,6 @@ std::vector<GroFrameInfo> ScanGro(std::istream& in, std::string& error);
 /** The frame at `offset` (from ScanGro); false and `error` when it is damaged. */
 bool ReadGroFrame(std::istream& in, const GroFrameInfo& where, GroFrame& frame, std::string& error);
 
-/**
- * The chemical element an atom name stands for, as force fields name
- * atoms: the name's letters without digits; two letters (Cl, Na, Mg, ...)
- * only when the residue is named like the atom (an ion) or the name is a
- * known two-letter element that no common atom name starts with; else the
- * first letter (CA is an alpha carbon, HW1 a water hydrogen).
- */
-std::string ElementFromAtomName(const std::string& atomName, const std::string& residueName);
-
-/**
- * Van der Waals radius of an element in nm (Bondi 1964; Na, K, Mg, Ca from
- * Mantina et al. 2009), or 0 when the element is not in the table.
- */
-double VanDerWaalsRadius(const std::string& element);
 } // namespace pointsurfaces
 
 #endif

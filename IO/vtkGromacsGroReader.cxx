@@ -157,6 +157,12 @@ int vtkGromacsGroReader::RequestData(vtkInformation*,
     atomid->SetValue(k, frame.AtomNumbers[k]);
     resname->SetValue(k, frame.ResidueNames[k]);
     name->SetValue(k, frame.AtomNames[k]);
+    if (pointsurfaces::IsVirtualSite(frame.AtomNames[k]))
+    {
+      element->SetValue(k, ""); // a massless site of a water model: no atom, radius 0
+      radius->SetValue(k, 0.0);
+      continue;
+    }
     const std::string e =
       pointsurfaces::ElementFromAtomName(frame.AtomNames[k], frame.ResidueNames[k]);
     element->SetValue(k, e);

@@ -15,8 +15,9 @@
  *   (vtkStringArray, from the atom name as force fields name atoms: HW1 and
  *   CA are H and C; NA in residue NA is sodium) and `radius`, the element's
  *   van der Waals radius in nm (Bondi 1964; 0.15 nm and a warning for an
- *   element not in the table): what vtkMetaballField's RadiusArrayName can
- *   name for a molecular surface.
+ *   element not in the table; 0 for the massless virtual sites of water
+ *   models, MW, EP, LP): what vtkMetaballField's RadiusArrayName can name
+ *   for a molecular surface.
  * - Field data: `Time`, `Step` (-1 when the title has none) and `Box` (the
  *   nine numbers v1x v2y v3z v1y v1z v2x v2z v3x v3y, zero beyond the first
  *   three for a rectangular box).
