@@ -99,7 +99,7 @@ check(len(dump.TimestepValues) == 6 and abs(dump.TimestepValues[-1] - 0.5) < 1e-
       "the LAMMPS dump's six snapshots are time steps (%s)" % list(dump.TimestepValues))
 check(dump.GetDataInformation().GetNumberOfPoints() == 256, "256 atoms at t = 0.3")
 Delete(dump)
-gro = GromacsGroReader(FileName=os.path.join(
+gro = GROMACSGROReader(FileName=os.path.join(
     os.path.dirname(os.path.abspath(__file__)), "..", "..", "IO", "Testing", "Data", "gromacs",
     "water_traj.gro"))
 gro.UpdatePipeline(0.02)
