@@ -17,6 +17,7 @@
 #include "vtksys/SystemTools.hxx"
 
 #include <algorithm>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,40 @@ struct FrameIndex
     this->Frames.swap(unique);
     return dropped;
   }
+  /**
+   * Scan `file` with `scan` (a function of an istream and an error string
+   * that returns the frames) unless it is scanned already and unchanged.
+   * Returns whether it scanned; then `error` tells what went wrong (the
+   * frames before damage are kept) and `dropped` how many repeated times
+   * SortByTime dropped.
+   */
+  template<typename Scan>
+  bool Refresh(const std::string& file, Scan scan, std::string& error, size_t& dropped)
+  {
+    error.clear();
+    dropped = 0;
+    if (!this->Stale(file))
+    {
+      return false;
+    }
+    *this = FrameIndex();
+    std::ifstream in(file, std::ios::binary);
+    if (!in)
+    {
+      error = "cannot be opened";
+      return true;
+    }
+    std::string damage;
+    this->Frames = scan(in, damage);
+    this->Scanned(file);
+    if (!damage.empty())
+    {
+      error = "is damaged after " + std::to_string(this->Frames.size()) + " frames: " + damage;
+    }
+    dropped = this->SortByTime();
+    return true;
+  }
+
   /** TIME_STEPS and TIME_RANGE of the frames (removed when there are none). */
   void Publish(vtkInformation* info) const
   {

@@ -76,28 +76,20 @@ int vtkGromacsGroReader::RequestInformation(vtkInformation*,
     index = Index();
     vtkErrorMacro(<< "No FileName: nothing to read.");
   }
-  else if (index.Stale(this->FileName))
+  else
   {
-    index = Index();
-    std::ifstream in(this->FileName, std::ios::binary);
-    if (!in)
+    std::string error;
+    size_t dropped = 0;
+    if (index.Refresh(this->FileName, pointsurfaces::ScanGro, error, dropped))
     {
-      vtkErrorMacro(<< "Cannot open " << this->FileName << ".");
-    }
-    else
-    {
-      std::string error;
-      index.Frames = pointsurfaces::ScanGro(in, error);
-      index.Scanned(this->FileName);
       if (!error.empty())
       {
-        vtkErrorMacro(<< this->FileName << " is damaged after " << index.Frames.size()
-                      << " frames: " << error << ".");
+        vtkErrorMacro(<< this->FileName << " " << error << ".");
       }
-      if (const size_t dropped = index.SortByTime())
+      if (dropped > 0)
       {
         vtkWarningMacro(<< this->FileName << " repeats " << dropped
-                        << " times: the last frame of each is read.");
+                        << " times (a restarted run?): the last frame of each is read.");
       }
     }
   }
@@ -140,12 +132,8 @@ int vtkGromacsGroReader::RequestData(vtkInformation*,
   element->SetName("element");
   vtkNew<vtkDoubleArray> radius;
   radius->SetName("radius");
-  for (auto* a : { static_cast<vtkAbstractArray*>(resid),
-         static_cast<vtkAbstractArray*>(atomid),
-         static_cast<vtkAbstractArray*>(resname),
-         static_cast<vtkAbstractArray*>(name),
-         static_cast<vtkAbstractArray*>(element),
-         static_cast<vtkAbstractArray*>(radius) })
+  vtkAbstractArray* const arrays[] = { resid, atomid, resname, name, element, radius };
+  for (vtkAbstractArray* a : arrays)
   {
     a->SetNumberOfValues(n);
   }
@@ -182,12 +170,7 @@ int vtkGromacsGroReader::RequestData(vtkInformation*,
   output->SetPoints(points);
   vtkSplatDataModel::AddVertexCells(output);
   vtkPointData* pd = output->GetPointData();
-  for (auto* a : { static_cast<vtkAbstractArray*>(resid),
-         static_cast<vtkAbstractArray*>(atomid),
-         static_cast<vtkAbstractArray*>(resname),
-         static_cast<vtkAbstractArray*>(name),
-         static_cast<vtkAbstractArray*>(element),
-         static_cast<vtkAbstractArray*>(radius) })
+  for (vtkAbstractArray* a : arrays)
   {
     pd->AddArray(a);
   }

@@ -68,25 +68,17 @@ int vtkLAMMPSDumpReader::RequestInformation(vtkInformation*,
     index = Index();
     vtkErrorMacro(<< "No FileName: nothing to read.");
   }
-  else if (index.Stale(this->FileName))
+  else
   {
-    index = Index();
-    std::ifstream in(this->FileName, std::ios::binary);
-    if (!in)
+    std::string error;
+    size_t dropped = 0;
+    if (index.Refresh(this->FileName, pointsurfaces::ScanDump, error, dropped))
     {
-      vtkErrorMacro(<< "Cannot open " << this->FileName << ".");
-    }
-    else
-    {
-      std::string error;
-      index.Frames = pointsurfaces::ScanDump(in, error);
-      index.Scanned(this->FileName);
       if (!error.empty())
       {
-        vtkErrorMacro(<< this->FileName << " is damaged after " << index.Frames.size()
-                      << " snapshots: " << error << ".");
+        vtkErrorMacro(<< this->FileName << " " << error << ".");
       }
-      if (const size_t dropped = index.SortByTime())
+      if (dropped > 0)
       {
         vtkWarningMacro(<< this->FileName << " repeats " << dropped
                         << " times (a restarted run?): the last snapshot of each is read.");

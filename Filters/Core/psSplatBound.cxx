@@ -72,22 +72,30 @@ SplatBound BoundSplat(const Splat& splat,
     }
     (c.E <= tol ? on : off).push_back(c);
   }
-  if (params.MeasureOnly)
+  // The disc of radius r covers the points on the patch within it.
+  auto finish = [&](double r)
   {
-    bound.Radius = radius;
+    bound.Radius = r;
     for (const Candidate& m : on)
     {
-      bound.MaxDeviation = std::max(bound.MaxDeviation, m.E);
-      if (covered)
+      if (m.Rho <= r)
       {
-        covered->push_back(m.Index);
-      }
-      if (rho)
-      {
-        rho->push_back(m.Rho);
+        bound.MaxDeviation = std::max(bound.MaxDeviation, m.E);
+        if (covered)
+        {
+          covered->push_back(m.Index);
+        }
+        if (rho)
+        {
+          rho->push_back(m.Rho);
+        }
       }
     }
     return bound;
+  };
+  if (params.MeasureOnly)
+  {
+    return finish(radius);
   }
 
   // Where the surface bends away: the nearest point off the patch that
@@ -213,23 +221,6 @@ SplatBound BoundSplat(const Splat& splat,
     r *= 0.8;
     bound.Border = true;
   }
-  bound.Radius = r;
-
-  for (const Candidate& m : on)
-  {
-    if (m.Rho <= r)
-    {
-      bound.MaxDeviation = std::max(bound.MaxDeviation, m.E);
-      if (covered)
-      {
-        covered->push_back(m.Index);
-      }
-      if (rho)
-      {
-        rho->push_back(m.Rho);
-      }
-    }
-  }
-  return bound;
+  return finish(r);
 }
 } // namespace pointsurfaces

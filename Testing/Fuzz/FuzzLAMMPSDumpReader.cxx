@@ -2,30 +2,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: vtkLAMMPSDumpReader on arbitrary dump bytes, every snapshot read. See README.md.
 #include "psFuzzFile.h"
-#include "vtkInformation.h"
 #include "vtkLAMMPSDumpReader.h"
-#include "vtkNew.h"
-#include "vtkPolyData.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
-
-#include <vector>
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
-  const std::string path = pointsurfaces::FuzzFile(data, size, "lammpstrj");
-  vtkNew<vtkLAMMPSDumpReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->UpdateInformation();
-  vtkInformation* info = reader->GetOutputInformation(0);
-  const int steps = info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  const double* times = info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
-  const std::vector<double> all(times, times + (times ? steps : 0));
-  for (double t : all)
-  {
-    reader->UpdateTimeStep(t);
-    // Touch what was read, so that a bad array shows up here.
-    double bounds[6];
-    reader->GetOutput()->GetBounds(bounds);
-  }
+  pointsurfaces::FuzzEveryTimeStep<vtkLAMMPSDumpReader>(
+    pointsurfaces::FuzzFile(data, size, "lammpstrj"));
   return 0;
 }

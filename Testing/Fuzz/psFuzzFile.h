@@ -14,13 +14,18 @@
 #ifndef psFuzzFile_h
 #define psFuzzFile_h
 
+#include "vtkInformation.h"
+#include "vtkNew.h"
 #include "vtkObject.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace pointsurfaces
 {
@@ -34,7 +39,7 @@ inline std::string FuzzFile(const uint8_t* data, size_t size, const std::string&
   static const int cleanup = std::atexit(
     []
     {
-      for (const char* ext : { "pcd", "off", "obj", "om", "stl", "vdb" })
+      for (const char* ext : { "pcd", "off", "obj", "om", "stl", "vdb", "lammpstrj", "gro" })
       {
         std::remove((base + ext).c_str());
       }
@@ -50,6 +55,28 @@ inline std::string FuzzFile(const uint8_t* data, size_t size, const std::string&
     std::fclose(f);
   }
   return path;
+}
+
+/**
+ * Run a trajectory reader over `path`: every time step it offers is read,
+ * and what was read is touched, so that a bad array shows up here.
+ */
+template<typename Reader>
+void FuzzEveryTimeStep(const std::string& path)
+{
+  vtkNew<Reader> reader;
+  reader->SetFileName(path.c_str());
+  reader->UpdateInformation();
+  vtkInformation* info = reader->GetOutputInformation(0);
+  const int steps = info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  const double* times = info->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  const std::vector<double> all(times, times + (times ? steps : 0));
+  for (double t : all)
+  {
+    reader->UpdateTimeStep(t);
+    double bounds[6];
+    reader->GetOutput()->GetBounds(bounds);
+  }
 }
 } // namespace pointsurfaces
 

@@ -127,8 +127,8 @@ int TestAtomRadii(int, char*[])
   radii->SetLengthUnitsPerNanometer(1.0);
   radii->Update();
   after = radii->GetOutput()->GetPointData()->GetArray("radius");
-  Check(after && std::abs(after->GetComponent(0, 0) - 0.170) < 1e-6 &&
-      after->GetComponent(8, 0) == 0.0,
+  Check(
+    after && std::abs(after->GetComponent(0, 0) - 0.170) < 1e-6 && after->GetComponent(8, 0) == 0.0,
     "FillMissingOnly off: every radius from the element, in nm (CA 0.17, MW 0)");
 
   // No atom names: an error, the data passed through.

@@ -78,21 +78,6 @@ vtkPolyData* ReadAt(vtkLAMMPSDumpReader* reader, double time)
   return reader->GetOutput();
 }
 
-void Expect(const std::string& file, const std::string& expected, vtkIdType points)
-{
-  vtkNew<vtkLAMMPSDumpReader> reader;
-  vtkNew<vtkTest::ErrorObserver> errors;
-  reader->AddObserver(vtkCommand::ErrorEvent, errors);
-  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
-  reader->SetFileName(file.c_str());
-  reader->Update();
-  Check(errors->GetError() && errors->GetErrorMessage().find(expected) != std::string::npos,
-    "an error mentioning '" + expected + "' for " + file + " (got '" + errors->GetErrorMessage() +
-      "')");
-  Check(reader->GetOutput()->GetNumberOfPoints() == points,
-    "output of " + std::to_string(points) + " points for " + file);
-}
-
 std::string Write(const std::string& path, const std::string& text)
 {
   std::ofstream(path, std::ios::binary) << text;
@@ -226,26 +211,30 @@ int TestLAMMPSDumpReader(int, char*[])
     Check(r->GetNumberOfSnapshots() == 3, "the three whole snapshots stay readable");
     Check(ReadAt(r, 0.2)->GetNumberOfPoints() == 256, "a snapshot before the damage reads");
   }
-  Expect(temp + "/missing.lammpstrj", "Cannot open", 0);
-  Expect(
+  ExpectReadError<vtkLAMMPSDumpReader>(temp + "/missing.lammpstrj", "cannot be opened", 0);
+  ExpectReadError<vtkLAMMPSDumpReader>(
     Write(temp + "/garbage.lammpstrj", "solid garbage\n\x01\x02\x03"), "expected an ITEM line", 0);
-  Expect(Write(temp + "/huge.lammpstrj",
-           "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n4000000000000\nITEM: BOX BOUNDS pp pp pp\n"
-           "0 1\n0 1\n0 1\nITEM: ATOMS id x y z\n1 0 0 0\n"),
+  ExpectReadError<vtkLAMMPSDumpReader>(
+    Write(temp + "/huge.lammpstrj",
+      "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n4000000000000\nITEM: BOX BOUNDS pp pp pp\n"
+      "0 1\n0 1\n0 1\nITEM: ATOMS id x y z\n1 0 0 0\n"),
     "too short",
     0);
-  Expect(Write(temp + "/short-row.lammpstrj",
-           "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS pp pp pp\n"
-           "0 1\n0 1\n0 1\nITEM: ATOMS id x y z\n1 0 0 0\n2 0.5 0.5\n"),
+  ExpectReadError<vtkLAMMPSDumpReader>(
+    Write(temp + "/short-row.lammpstrj",
+      "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n2\nITEM: BOX BOUNDS pp pp pp\n"
+      "0 1\n0 1\n0 1\nITEM: ATOMS id x y z\n1 0 0 0\n2 0.5 0.5\n"),
     "has 3 numbers",
     0);
-  Expect(Write(temp + "/no-xyz.lammpstrj",
-           "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp pp\n"
-           "0 1\n0 1\n0 1\nITEM: ATOMS id q\n1 0.5\n"),
+  ExpectReadError<vtkLAMMPSDumpReader>(
+    Write(temp + "/no-xyz.lammpstrj",
+      "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp pp\n"
+      "0 1\n0 1\n0 1\nITEM: ATOMS id q\n1 0.5\n"),
     "has no coordinates",
     0);
-  Expect(Write(temp + "/no-box.lammpstrj",
-           "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: ATOMS id x y z\n1 0 0 0\n"),
+  ExpectReadError<vtkLAMMPSDumpReader>(
+    Write(temp + "/no-box.lammpstrj",
+      "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: ATOMS id x y z\n1 0 0 0\n"),
     "no ITEM: BOX BOUNDS",
     0);
   return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

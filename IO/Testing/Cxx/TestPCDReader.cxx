@@ -26,19 +26,6 @@ using namespace pointsurfaces_test;
 namespace
 {
 
-// Read `file` expecting an error that mentions `expected`; the output must be empty.
-void ExpectError(const std::string& file, const std::string& expected)
-{
-  vtkNew<vtkPCDReader> reader;
-  vtkNew<vtkTest::ErrorObserver> errors;
-  reader->AddObserver(vtkCommand::ErrorEvent, errors);
-  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
-  reader->SetFileName(file.c_str());
-  reader->Update();
-  Check(errors->GetError() && errors->GetErrorMessage().find(expected) != std::string::npos,
-    "an error mentioning '" + expected + "' for " + file);
-  Check(reader->GetOutput()->GetNumberOfPoints() == 0, "empty output for " + file);
-}
 } // namespace
 
 int TestPCDReader(int, char*[])
@@ -80,24 +67,24 @@ int TestPCDReader(int, char*[])
   vtkDataArray* curvature = a->GetPointData()->GetArray("curvature");
   Check(curvature && curvature->GetComponent(3, 0) == 2.0, "extra fields become arrays");
 
-  ExpectError(data + "/does_not_exist.pcd", "missing or is not a PCD file");
+  ExpectReadError<vtkPCDReader>(data + "/does_not_exist.pcd", "missing or is not a PCD file");
 
   // Truncate the compressed file in the middle of its data.
   std::ifstream in(data + "/milk_subset.pcd", std::ios::binary);
   std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string truncated = temp + "/truncated.pcd";
   std::ofstream(truncated, std::ios::binary).write(bytes.data(), bytes.size() / 2);
-  ExpectError(truncated, "corrupt or truncated");
+  ExpectReadError<vtkPCDReader>(truncated, "corrupt or truncated");
 
   // A header that promises more ASCII points than the file holds.
   const std::string shortAscii = temp + "/short_ascii.pcd";
   std::ofstream(shortAscii) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
                                "WIDTH 10\nHEIGHT 1\nPOINTS 10\nDATA ascii\n1 2 3\n";
-  ExpectError(shortAscii, "corrupt or truncated");
+  ExpectReadError<vtkPCDReader>(shortAscii, "corrupt or truncated");
 
   const std::string garbage = temp + "/garbage.pcd";
   std::ofstream(garbage) << "# .PCD v0.7\nthis is not a header\n\x01\x02\x03";
-  ExpectError(garbage, "Cannot read");
+  ExpectReadError<vtkPCDReader>(garbage, "Cannot read");
 
   if (Failures)
   {

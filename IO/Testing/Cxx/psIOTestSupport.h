@@ -10,13 +10,16 @@
 #ifndef psIOTestSupport_h
 #define psIOTestSupport_h
 
+#include "vtkCommand.h"
 #include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
 #include "vtkNew.h"
 #include "vtkObject.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkTestErrorObserver.h"
 
 #include <iostream>
 #include <string>
@@ -46,6 +49,26 @@ inline void CountError(vtkObject*, unsigned long, void*, void*)
 inline void CountWarning(vtkObject*, unsigned long, void*, void*)
 {
   ++Warnings;
+}
+
+/**
+ * Read `file` with a new `Reader`, expecting an error that mentions
+ * `expected` and an output of `points` points (empty by default).
+ */
+template<typename Reader>
+void ExpectReadError(const std::string& file, const std::string& expected, vtkIdType points = 0)
+{
+  vtkNew<Reader> reader;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  reader->AddObserver(vtkCommand::ErrorEvent, errors);
+  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  Check(errors->GetError() && errors->GetErrorMessage().find(expected) != std::string::npos,
+    "an error mentioning '" + expected + "' for " + file + " (got '" + errors->GetErrorMessage() +
+      "')");
+  Check(reader->GetOutput()->GetNumberOfPoints() == points,
+    "an output of " + std::to_string(points) + " points for " + file);
 }
 
 /** Balls at `xyz` with point arrays "Radius" and, when given, "Strength". */
