@@ -267,16 +267,22 @@ void OFFCounts(const std::string& name,
       }
       continue;
     }
+    // A lone number counts too: OpenMesh reads it as the vertex count and
+    // then the face count from whatever follows (found by FuzzOpenMeshReader:
+    // "OFF 0 0 1" over "666660" ran for minutes).
     std::istringstream counts(line);
     long long v = -1, f = -1;
-    if (counts >> v >> f)
+    if (counts >> v)
     {
       afterV = v;
-      afterF = f;
-      if (vertices < 0)
+      if (counts >> f)
       {
-        vertices = v;
-        faces = f;
+        afterF = f;
+        if (vertices < 0)
+        {
+          vertices = v;
+          faces = f;
+        }
       }
     }
     return;

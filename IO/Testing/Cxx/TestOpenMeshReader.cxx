@@ -152,6 +152,7 @@ int TestOpenMeshReader(int, char*[])
     Write(dir, "index-zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n"),
     Write(dir, "huge-count.off", "OFF\n2 6606666666666666066 0\n0 0 0\n1 1 1\n"),
     Write(dir, "bad-keyword.off", std::string("OFF\b5 0 \0\0\0", 12)),
+    Write(dir, "lone-count.off", "OFF 0 0 1\n666660\n"), // ran for minutes in OpenMesh
     Write(dir, "huge.om", std::string("OMP\x02\xff\xff\xff\x7f\x01\0\0\0\x01\0\0\0", 16)) };
   for (const std::string& path : bad)
   {
