@@ -13,6 +13,8 @@
 #define psReaderTime_h
 
 #include "vtkInformation.h"
+#include "vtkObject.h"
+#include "vtkSetGet.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtksys/SystemTools.hxx"
 
@@ -100,6 +102,42 @@ struct FrameIndex
     }
     dropped = this->SortByTime();
     return true;
+  }
+
+  /**
+   * A reader's RequestInformation: Refresh from `file` with `scan`, report
+   * what went wrong through `reader` (one error; a warning for repeated
+   * times, naming the `unit` a frame is called in the format), and Publish
+   * the time steps into `info`.
+   */
+  template<typename Scan>
+  void Update(vtkObject* reader,
+    const std::string& file,
+    Scan scan,
+    const char* unit,
+    vtkInformation* info)
+  {
+    std::string error;
+    size_t dropped = 0;
+    if (file.empty())
+    {
+      *this = FrameIndex();
+      vtkErrorWithObjectMacro(reader, << "No FileName: nothing to read.");
+    }
+    else if (this->Refresh(file, scan, error, dropped))
+    {
+      if (!error.empty())
+      {
+        vtkErrorWithObjectMacro(reader, << file << " " << error << ".");
+      }
+      if (dropped > 0)
+      {
+        vtkWarningWithObjectMacro(reader,
+          << file << " repeats " << dropped << " times (a restarted run?): the last " << unit
+          << " of each is read.");
+      }
+    }
+    this->Publish(info);
   }
 
   /** TIME_STEPS and TIME_RANGE of the frames (removed when there are none). */

@@ -70,30 +70,8 @@ int vtkGromacsGroReader::RequestInformation(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
-  Index& index = *this->Frames;
-  if (this->FileName.empty())
-  {
-    index = Index();
-    vtkErrorMacro(<< "No FileName: nothing to read.");
-  }
-  else
-  {
-    std::string error;
-    size_t dropped = 0;
-    if (index.Refresh(this->FileName, pointsurfaces::ScanGro, error, dropped))
-    {
-      if (!error.empty())
-      {
-        vtkErrorMacro(<< this->FileName << " " << error << ".");
-      }
-      if (dropped > 0)
-      {
-        vtkWarningMacro(<< this->FileName << " repeats " << dropped
-                        << " times (a restarted run?): the last frame of each is read.");
-      }
-    }
-  }
-  index.Publish(outputVector->GetInformationObject(0));
+  this->Frames->Update(
+    this, this->FileName, pointsurfaces::ScanGro, "frame", outputVector->GetInformationObject(0));
   return 1;
 }
 

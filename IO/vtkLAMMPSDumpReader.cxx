@@ -62,30 +62,11 @@ int vtkLAMMPSDumpReader::RequestInformation(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
-  Index& index = *this->Snapshots;
-  if (this->FileName.empty())
-  {
-    index = Index();
-    vtkErrorMacro(<< "No FileName: nothing to read.");
-  }
-  else
-  {
-    std::string error;
-    size_t dropped = 0;
-    if (index.Refresh(this->FileName, pointsurfaces::ScanDump, error, dropped))
-    {
-      if (!error.empty())
-      {
-        vtkErrorMacro(<< this->FileName << " " << error << ".");
-      }
-      if (dropped > 0)
-      {
-        vtkWarningMacro(<< this->FileName << " repeats " << dropped
-                        << " times (a restarted run?): the last snapshot of each is read.");
-      }
-    }
-  }
-  index.Publish(outputVector->GetInformationObject(0));
+  this->Snapshots->Update(this,
+    this->FileName,
+    pointsurfaces::ScanDump,
+    "snapshot",
+    outputVector->GetInformationObject(0));
   return 1;
 }
 
