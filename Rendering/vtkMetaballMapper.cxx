@@ -4,6 +4,7 @@
 
 #include "vtkMetaballMapper.h"
 
+#include "psMetaballCast.h"
 #include "psShaderHooks.h"
 
 #include "vtkActor.h"
@@ -43,6 +44,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -142,6 +144,10 @@ struct vtkMetaballMapper::Internals
   double Shift[3] = { 0.0, 0.0, 0.0 };
   vtkIdType Count = 0;
   bool HasStrengths = false;
+  // What went to the GPU, kept for the CPU ray caster; its last images.
+  std::vector<float> HostBalls, HostStrengths;
+  std::vector<unsigned int> HostColors;
+  pointsurfaces::MetaballCastImages CastImages;
   int Width = 0;
   int Height = 0;
 };
@@ -388,6 +394,9 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
   ok = ok && in.Strengths->Upload(q.data(), q.size() * sizeof(float));
   in.HasStrengths = strengths;
   in.Count = ok ? n : 0;
+  in.HostBalls.swap(balls);
+  in.HostStrengths.swap(q);
+  in.HostColors.swap(colors);
   this->NumberOfInvalidBalls = invalid;
   ++this->NumberOfUploads;
   in.UploadTime.Modified();
@@ -440,26 +449,8 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   vtkMatrix4x4::Invert(viewToClip, clipToView);
   const bool parallel = cam->GetParallelProjection() != 0;
 
-  // [Bolla 2010] Algorithm 2: the perspective grid.
-  in.Grid->SetTileSize(this->TileSize);
-  in.Grid->SetCollectStatistics(this->CollectStatistics);
-  in.Grid->SetSlabs(this->Slabs);
-  if (!in.Grid->Build(renWin,
-        in.Balls,
-        in.Count,
-        worldToView->GetData(),
-        viewToClip->GetData(),
-        parallel,
-        width,
-        height))
-  {
-    return;
-  }
-  this->NumberOfPairs = in.Grid->GetNumberOfPairs();
-  this->MaximumBallsPerVoxel = in.Grid->GetMaximumBallsPerVoxel();
-  this->NumberOfCulledBalls = in.Grid->GetNumberOfCulledBalls();
-
-  // [Bolla 2010] Algorithm 3: coherent ray casting, into colour, normal and depth images.
+  // [Bolla 2010] Algorithms 2 and 3: the perspective grid, and coherent ray
+  // casting into colour, normal and depth images, on the GPU or the CPU.
   if (width != in.Width || height != in.Height)
   {
     in.ColorImage->SetContext(renWin);
@@ -471,50 +462,8 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
     in.Width = width;
     in.Height = height;
   }
-  const std::string defines = "#define TILE_SIZE " + std::to_string(this->TileSize) +
-    "\n#define MAX_SHARED " + std::to_string(MaxShared) + "\n#define KERNEL " +
-    std::to_string(this->Field->GetKernel()) + "\n";
-  if (defines != in.RayCastDefines)
-  {
-    std::string source = vtkMetaballRayCastCS;
-    if (!pointsurfaces::ReplaceHook(source, "//VTK::Defines::Dec", defines))
-    {
-      vtkErrorMacro(
-        << "vtkMetaballRayCastCS lacks its //VTK::Defines::Dec hook: nothing is drawn.");
-      return;
-    }
-    in.RayCast->ReleaseGraphicsResources(renWin);
-    in.RayCast->SetName("vtkMetaballRayCastCS");
-    in.RayCast->SetSource(source);
-    in.RayCastDefines = defines;
-  }
-  if (!in.RayCast->IsCompiled() && !in.RayCast->Compile(renWin))
-  {
-    return;
-  }
-  in.RayCast->Bind(renWin);
-  float m[16];
-  ToFloat(worldToView, m);
-  in.RayCast->SetUniformMatrix4x4("worldToView", m);
-  ToFloat(viewToClip, m);
-  in.RayCast->SetUniformMatrix4x4("viewToClip", m);
-  ToFloat(clipToView, m);
-  in.RayCast->SetUniformMatrix4x4("clipToView", m);
-  in.RayCast->SetUniformi("parallelProjection", parallel ? 1 : 0);
-  in.RayCast->SetUniform2i("viewport", width, height);
-  in.RayCast->SetUniform2i("tiles", in.Grid->GetTilesX(), in.Grid->GetTilesY());
-  in.RayCast->SetUniformi("slabs", this->Slabs);
-  in.RayCast->SetUniformf("slabNear", static_cast<float>(in.Grid->GetSlabPlane(0)));
-  in.RayCast->SetUniformf("slabFar", static_cast<float>(in.Grid->GetSlabPlane(this->Slabs)));
-  in.RayCast->SetUniformf("threshold", static_cast<float>(this->Field->GetThreshold()));
-  in.RayCast->SetUniformf("stepScale", static_cast<float>(this->StepScale));
-  in.RayCast->SetUniformi("bisections", this->Bisections);
-  in.RayCast->SetUniformi("useStrengths", in.HasStrengths ? 1 : 0);
-  in.Balls->BindBase(0);
-  in.Colors->BindBase(1);
-  in.Strengths->BindBase(2);
-  in.Grid->GetVoxelOffsets()->BindBase(3);
-  in.Grid->GetVoxelBalls()->BindBase(4);
+  const bool cpu = this->RayCaster == CPU || (this->RayCaster == AUTOMATIC && IsSoftwareRenderer());
+  this->RayCasterInUse = cpu ? CPU : GPU;
   // This frame's counters: a ring slot whose last use the GPU has passed
   // (read first; waited for only when the GPU is a whole ring behind).
   unsigned int counters[3] = { 0, 0, 0 };
@@ -526,22 +475,18 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
       this->ReportCounters(counters);
     }
   }
+  unsigned int inside = 0;
+  const bool cast = cpu
+    ? this->CastOnCPU(worldToView, viewToClip, clipToView, parallel, width, height, inside)
+    : this->CastOnGPU(renWin, worldToView, viewToClip, clipToView, parallel, width, height);
+  // The CPU's count of rays starting inside goes through the ring like the
+  // shaders' counts (the shadow rays add to it).
   vtkShaderStorageBuffer* frameCounters = in.Counters[in.Next];
-  const unsigned int zeros[3] = { 0, 0, 0 };
-  frameCounters->Upload(zeros, sizeof(zeros));
-  frameCounters->BindBase(5);
-
-  glBindImageTexture(0, in.ColorImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
-  glBindImageTexture(1, in.NormalImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-  glBindImageTexture(2, in.DepthImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-  in.CastTimer.ReusableStart();
-  const bool cast = in.RayCast->Dispatch(in.Grid->GetTilesX(),
-    in.Grid->GetTilesY(),
-    1,
-    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
-      GL_SHADER_STORAGE_BARRIER_BIT);
-  in.RayCast->Unbind();
-  in.CastTimer.ReusableStop();
+  if (cpu)
+  {
+    const unsigned int initial[3] = { inside, 0, 0 };
+    frameCounters->Upload(initial, sizeof(initial));
+  }
   // Shadows: secondary rays toward the lights.
   int shadowLights = 0;
   if (cast && this->Shadows)
@@ -569,7 +514,7 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   }
   in.Next = (in.Next + 1) % Internals::Ring;
   // GPU times of the last frame whose queries completed.
-  const double castSeconds = in.CastTimer.GetReusableElapsedSeconds();
+  const double castSeconds = cpu ? 0.0 : in.CastTimer.GetReusableElapsedSeconds();
   this->RayCastTime = castSeconds > 0.0 ? 1000.0 * castSeconds : this->RayCastTime;
   if (shadowLights > 0)
   {
@@ -577,7 +522,10 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
     const double shadowSeconds = in.ShadowTimer.GetReusableElapsedSeconds();
     this->ShadowTime = shadowSeconds > 0.0 ? 1000.0 * shadowSeconds : this->ShadowTime;
   }
-  this->GridBuildTime = in.Grid->GetBuildTime();
+  if (!cpu)
+  {
+    this->GridBuildTime = in.Grid->GetBuildTime();
+  }
   if (!cast)
   {
     return;
@@ -670,6 +618,188 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   }
   ostate->Pop();
   this->InvokeEvent(vtkCommand::EndEvent, nullptr);
+}
+
+//------------------------------------------------------------------------------
+bool vtkMetaballMapper::IsSoftwareRenderer()
+{
+  const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  std::string renderer = name ? name : "";
+  std::transform(renderer.begin(),
+    renderer.end(),
+    renderer.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  for (const char* software : { "llvmpipe", "softpipe", "swr", "software", "swiftshader" })
+  {
+    if (renderer.find(software) != std::string::npos)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMetaballMapper::CastOnGPU(vtkOpenGLRenderWindow* renWin,
+  vtkMatrix4x4* worldToView,
+  vtkMatrix4x4* viewToClip,
+  vtkMatrix4x4* clipToView,
+  bool parallel,
+  int width,
+  int height)
+{
+  Internals& in = *this->Impl;
+  this->NumberOfRays = this->NumberOfHits = this->NumberOfVoxelVisits = 0;
+  this->NumberOfEmptyVoxelVisits = this->NumberOfSupportTests = this->NumberOfSamples = 0;
+  this->NumberOfBisectionSamples = this->NumberOfKernelTerms = 0;
+  // [Bolla 2010] Algorithm 2: the perspective grid.
+  in.Grid->SetTileSize(this->TileSize);
+  in.Grid->SetCollectStatistics(this->CollectStatistics);
+  in.Grid->SetSlabs(this->Slabs);
+  if (!in.Grid->Build(renWin,
+        in.Balls,
+        in.Count,
+        worldToView->GetData(),
+        viewToClip->GetData(),
+        parallel,
+        width,
+        height))
+  {
+    return false;
+  }
+  this->NumberOfPairs = in.Grid->GetNumberOfPairs();
+  this->MaximumBallsPerVoxel = in.Grid->GetMaximumBallsPerVoxel();
+  this->NumberOfCulledBalls = in.Grid->GetNumberOfCulledBalls();
+
+  // [Bolla 2010] Algorithm 3: coherent ray casting, into colour, normal and depth images.
+  const std::string defines = "#define TILE_SIZE " + std::to_string(this->TileSize) +
+    "\n#define MAX_SHARED " + std::to_string(MaxShared) + "\n#define KERNEL " +
+    std::to_string(this->Field->GetKernel()) + "\n";
+  if (defines != in.RayCastDefines)
+  {
+    std::string source = vtkMetaballRayCastCS;
+    if (!pointsurfaces::ReplaceHook(source, "//VTK::Defines::Dec", defines))
+    {
+      vtkErrorMacro(
+        << "vtkMetaballRayCastCS lacks its //VTK::Defines::Dec hook: nothing is drawn.");
+      return false;
+    }
+    in.RayCast->ReleaseGraphicsResources(renWin);
+    in.RayCast->SetName("vtkMetaballRayCastCS");
+    in.RayCast->SetSource(source);
+    in.RayCastDefines = defines;
+  }
+  if (!in.RayCast->IsCompiled() && !in.RayCast->Compile(renWin))
+  {
+    return false;
+  }
+  in.RayCast->Bind(renWin);
+  float m[16];
+  ToFloat(worldToView, m);
+  in.RayCast->SetUniformMatrix4x4("worldToView", m);
+  ToFloat(viewToClip, m);
+  in.RayCast->SetUniformMatrix4x4("viewToClip", m);
+  ToFloat(clipToView, m);
+  in.RayCast->SetUniformMatrix4x4("clipToView", m);
+  in.RayCast->SetUniformi("parallelProjection", parallel ? 1 : 0);
+  in.RayCast->SetUniform2i("viewport", width, height);
+  in.RayCast->SetUniform2i("tiles", in.Grid->GetTilesX(), in.Grid->GetTilesY());
+  in.RayCast->SetUniformi("slabs", this->Slabs);
+  in.RayCast->SetUniformf("slabNear", static_cast<float>(in.Grid->GetSlabPlane(0)));
+  in.RayCast->SetUniformf("slabFar", static_cast<float>(in.Grid->GetSlabPlane(this->Slabs)));
+  in.RayCast->SetUniformf("threshold", static_cast<float>(this->Field->GetThreshold()));
+  in.RayCast->SetUniformf("stepScale", static_cast<float>(this->StepScale));
+  in.RayCast->SetUniformi("bisections", this->Bisections);
+  in.RayCast->SetUniformi("useStrengths", in.HasStrengths ? 1 : 0);
+  in.Balls->BindBase(0);
+  in.Colors->BindBase(1);
+  in.Strengths->BindBase(2);
+  in.Grid->GetVoxelOffsets()->BindBase(3);
+  in.Grid->GetVoxelBalls()->BindBase(4);
+  vtkShaderStorageBuffer* frameCounters = in.Counters[in.Next];
+  const unsigned int zeros[3] = { 0, 0, 0 };
+  frameCounters->Upload(zeros, sizeof(zeros));
+  frameCounters->BindBase(5);
+
+  glBindImageTexture(0, in.ColorImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+  glBindImageTexture(1, in.NormalImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(2, in.DepthImage->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  in.CastTimer.ReusableStart();
+  const bool cast = in.RayCast->Dispatch(in.Grid->GetTilesX(),
+    in.Grid->GetTilesY(),
+    1,
+    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+      GL_SHADER_STORAGE_BARRIER_BIT);
+  in.RayCast->Unbind();
+  in.CastTimer.ReusableStop();
+  return cast;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMetaballMapper::CastOnCPU(vtkMatrix4x4* worldToView,
+  vtkMatrix4x4* viewToClip,
+  vtkMatrix4x4* clipToView,
+  bool parallel,
+  int width,
+  int height,
+  unsigned int& inside)
+{
+  Internals& in = *this->Impl;
+  pointsurfaces::MetaballCastInput input;
+  input.Balls = in.HostBalls.data();
+  input.Strengths = in.HasStrengths ? in.HostStrengths.data() : nullptr;
+  input.Colors = in.HostColors.data();
+  input.Count = in.Count;
+  input.Kernel = static_cast<pointsurfaces::MetaballKernel>(this->Field->GetKernel());
+  input.Threshold = this->Field->GetThreshold();
+  pointsurfaces::MetaballCastSettings settings;
+  std::copy_n(worldToView->GetData(), 16, settings.WorldToView);
+  std::copy_n(viewToClip->GetData(), 16, settings.ViewToClip);
+  std::copy_n(clipToView->GetData(), 16, settings.ClipToView);
+  settings.Parallel = parallel;
+  settings.Width = width;
+  settings.Height = height;
+  settings.TileSize = this->TileSize;
+  settings.Slabs = this->Slabs;
+  settings.StepScale = this->StepScale;
+  settings.Bisections = this->Bisections;
+  pointsurfaces::MetaballCastStatistics stats;
+  pointsurfaces::MetaballCastImages& images = in.CastImages;
+  pointsurfaces::CastMetaballs(input, settings, images, &stats);
+  this->NumberOfPairs = stats.Pairs;
+  this->MaximumBallsPerVoxel = stats.MaxPerVoxel;
+  this->NumberOfCulledBalls = stats.Culled;
+  this->NumberOfRays = stats.Rays;
+  this->NumberOfHits = stats.Hits;
+  this->NumberOfVoxelVisits = stats.VoxelVisits;
+  this->NumberOfEmptyVoxelVisits = stats.EmptyVoxelVisits;
+  this->NumberOfSupportTests = stats.SupportTests;
+  this->NumberOfSamples = stats.Samples;
+  this->NumberOfBisectionSamples = stats.BisectionSamples;
+  this->NumberOfKernelTerms = stats.KernelTerms;
+  this->GridBuildTime = 1000.0 * stats.GridSeconds;
+  this->RayCastTime = 1000.0 * stats.CastSeconds;
+  inside = static_cast<unsigned int>(std::min<long long>(stats.StartingInside, 0xffffffffLL));
+  // Into the textures that the shading pass and the shadow rays read.
+  const auto upload = [width, height](
+                        vtkTextureObject* texture, GLenum format, GLenum type, const void* data)
+  {
+    texture->Bind();
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, format, type, data);
+    texture->Deactivate();
+  };
+  upload(in.ColorImage, GL_RGBA, GL_UNSIGNED_BYTE, images.Color.data());
+  upload(in.NormalImage, GL_RGBA, GL_FLOAT, images.NormalDistance.data());
+  upload(in.DepthImage, GL_RED, GL_FLOAT, images.Depth.data());
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+  {
+    vtkErrorMacro(<< "The CPU ray caster's images did not reach the GPU (GL error " << error
+                  << "): nothing is drawn.");
+    return false;
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------

@@ -48,6 +48,7 @@
 
 class vtkFloatArray;
 class vtkMatrix4x4;
+class vtkOpenGLRenderWindow;
 class vtkPointSet;
 
 class POINTSURFACESRENDERING_EXPORT vtkMetaballMapper : public vtkMapper
@@ -98,6 +99,50 @@ public:
   /** Bisections of a crossing ([Bolla 2010]: 10). Default 10. */
   vtkSetClampMacro(Bisections, int, 0, 60);
   vtkGetMacro(Bisections, int);
+  ///@}
+
+  /** Where the rays are cast. */
+  enum RayCasterType
+  {
+    AUTOMATIC = 0, ///< CPU on a software OpenGL (llvmpipe, softpipe, SWR), GPU otherwise
+    GPU = 1,       ///< the compute shaders of [Bolla 2010] Algorithms 2 and 3
+    CPU = 2,       ///< the native ray caster (pointsurfaces::CastMetaballs, vtkSMPTools)
+  };
+
+  ///@{
+  /**
+   * The ray caster: AUTOMATIC (the default) takes the CPU one where the
+   * OpenGL renderer is a software one, where compute shaders are emulated
+   * and run far slower than native code, and the GPU one elsewhere. Both
+   * build the same perspective grid and march the same way, and write the
+   * same images; shading, compositing and shadows are shared (shadows run
+   * on the GPU path's shaders).
+   */
+  vtkSetClampMacro(RayCaster, int, AUTOMATIC, CPU);
+  vtkGetMacro(RayCaster, int);
+  void SetRayCasterToAutomatic() { this->SetRayCaster(AUTOMATIC); }
+  void SetRayCasterToGPU() { this->SetRayCaster(GPU); }
+  void SetRayCasterToCPU() { this->SetRayCaster(CPU); }
+  ///@}
+
+  /** The ray caster the last render used: GPU or CPU (AUTOMATIC before any). */
+  vtkGetMacro(RayCasterInUse, int);
+
+  ///@{
+  /**
+   * Where the CPU ray caster's time went in the last render (zero after a
+   * GPU render): rays cast, rays that hit, (ray, voxel) visits and those
+   * with no ball's support on the ray, ray/support tests, field samples of
+   * the march and of the bisections, and kernel terms summed in them.
+   */
+  vtkGetMacro(NumberOfRays, vtkIdType);
+  vtkGetMacro(NumberOfHits, vtkIdType);
+  vtkGetMacro(NumberOfVoxelVisits, vtkIdType);
+  vtkGetMacro(NumberOfEmptyVoxelVisits, vtkIdType);
+  vtkGetMacro(NumberOfSupportTests, vtkIdType);
+  vtkGetMacro(NumberOfSamples, vtkIdType);
+  vtkGetMacro(NumberOfBisectionSamples, vtkIdType);
+  vtkGetMacro(NumberOfKernelTerms, vtkIdType);
   ///@}
 
   ///@{
@@ -209,6 +254,24 @@ protected:
   bool ReadHitBuffer(vtkFloatArray* hits);
 
   bool Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* input);
+  /** Is the context's OpenGL a software one (Mesa llvmpipe, softpipe, SWR)? */
+  static bool IsSoftwareRenderer();
+  /** The grid and the primary rays on the GPU, into the images. */
+  bool CastOnGPU(vtkOpenGLRenderWindow* renWin,
+    vtkMatrix4x4* worldToView,
+    vtkMatrix4x4* viewToClip,
+    vtkMatrix4x4* clipToView,
+    bool parallel,
+    int width,
+    int height);
+  /** The grid and the primary rays on the CPU, uploaded into the images; `inside` counts rays. */
+  bool CastOnCPU(vtkMatrix4x4* worldToView,
+    vtkMatrix4x4* viewToClip,
+    vtkMatrix4x4* clipToView,
+    bool parallel,
+    int width,
+    int height,
+    unsigned int& inside);
   int CastShadows(vtkRenderer* ren,
     vtkActor* act,
     vtkMatrix4x4* model,
@@ -233,6 +296,16 @@ protected:
   vtkIdType NumberOfIncompleteRays = 0;
   bool Shadows = false;
   bool CollectStatistics = false;
+  int RayCaster = AUTOMATIC;
+  int RayCasterInUse = AUTOMATIC;
+  vtkIdType NumberOfRays = 0;
+  vtkIdType NumberOfHits = 0;
+  vtkIdType NumberOfVoxelVisits = 0;
+  vtkIdType NumberOfEmptyVoxelVisits = 0;
+  vtkIdType NumberOfSupportTests = 0;
+  vtkIdType NumberOfSamples = 0;
+  vtkIdType NumberOfBisectionSamples = 0;
+  vtkIdType NumberOfKernelTerms = 0;
   double ShadowTime = 0.0;
 
 private:

@@ -1,0 +1,773 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "psMetaballCast.h"
+
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace pointsurfaces
+{
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+// The kernels of psMetaball in float, as functions of x = r^2 / R^2: value
+// and d/dx; SlopeBound is the largest |df/dr| of a kernel of unit support.
+struct WyvillKernel
+{
+  static constexpr float SlopeBound = 1.5835f;
+  static float Value(float x, float& slope)
+  {
+    slope = (-4.0f / 3.0f * x + 34.0f / 9.0f) * x - 22.0f / 9.0f;
+    return ((-4.0f / 9.0f * x + 17.0f / 9.0f) * x - 22.0f / 9.0f) * x + 1.0f;
+  }
+};
+struct QuarticKernel
+{
+  static constexpr float SlopeBound = 1.5397f;
+  static float Value(float x, float& slope)
+  {
+    slope = -2.0f * (1.0f - x);
+    return (1.0f - x) * (1.0f - x);
+  }
+};
+struct GaussianKernel
+{
+  static constexpr float SlopeBound = 1.7476f;
+  static float Value(float x, float& slope)
+  {
+    const float floorValue = 0.018315639f; // exp(-4)
+    const float e = std::exp(-4.0f * x);
+    slope = -4.0f * e / (1.0f - floorValue);
+    return (e - floorValue) / (1.0f - floorValue);
+  }
+};
+
+// y = M (x, w) for a row-major 4x4 matrix.
+void Apply(const double m[16], const double x[3], double w, double y[4])
+{
+  for (int r = 0; r < 4; ++r)
+  {
+    y[r] = m[4 * r] * x[0] + m[4 * r + 1] * x[1] + m[4 * r + 2] * x[2] + m[4 * r + 3] * w;
+  }
+}
+
+bool Finite(float v)
+{
+  return std::isfinite(v);
+}
+
+// The balls in view space, and their grid ranges.
+struct ViewBalls
+{
+  std::vector<float> X, Y, Z, R, Q; // view-space centre, radius, strength
+  std::vector<unsigned int> Color;
+  std::vector<int> Range; // 6 per ball: tiles x, tiles y, slabs; x0 > x1: not in the grid
+};
+
+// One stretch of a ray inside one ball's support.
+struct Crossing
+{
+  float Enter, Exit;
+  int Ball; // index into the voxel's scratch
+};
+
+// Per thread: the voxel's balls as structure of arrays, a ray's crossings and
+// its active balls, and the counters.
+struct Scratch
+{
+  std::vector<float> X, Y, Z, R2, InvR2, R, Q, QOverR, Perp;
+  std::vector<unsigned int> Color;
+  std::vector<Crossing> Crossings;
+  std::vector<int> Active;
+  MetaballCastStatistics Stats;
+};
+
+// A ray of the tile: its geometry and where its search stands.
+struct Ray
+{
+  float Origin[3], Dir[3];
+  float PerDistance; // d(view distance) / dt
+  bool Searching = false, HaveA = false;
+  float TA = 0.0f, FA = 0.0f;
+};
+
+template<class K>
+class TileCaster
+{
+public:
+  const MetaballCastInput& In;
+  const MetaballCastSettings& S;
+  const ViewBalls& Balls;
+  const std::vector<unsigned int>& Offsets; // tile-major: (tile * slabs + slab)
+  const std::vector<unsigned int>& Lists;
+  const std::vector<double>& Planes;
+  MetaballCastImages& Out;
+  int TilesX;
+  float Threshold;
+  vtkSMPThreadLocal<Scratch>& Local;
+
+  // f at t over the active crossings, with the gradient and colour when asked.
+  float Field(const Scratch& s,
+    const Ray& ray,
+    float t,
+    long long& terms,
+    float* grad = nullptr,
+    float* color = nullptr) const
+  {
+    const float p[3] = {
+      ray.Origin[0] + t * ray.Dir[0], ray.Origin[1] + t * ray.Dir[1], ray.Origin[2] + t * ray.Dir[2]
+    };
+    float f = -this->Threshold;
+    for (int a : s.Active)
+    {
+      const int j = s.Crossings[a].Ball;
+      const float d[3] = { p[0] - s.X[j], p[1] - s.Y[j], p[2] - s.Z[j] };
+      const float x = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * s.InvR2[j];
+      ++terms;
+      if (!(x < 1.0f))
+      {
+        continue;
+      }
+      float slope;
+      const float value = s.Q[j] * K::Value(std::max(x, 0.0f), slope);
+      f += value;
+      if (grad)
+      {
+        const float g = s.Q[j] * slope * 2.0f * s.InvR2[j];
+        grad[0] += g * d[0];
+        grad[1] += g * d[1];
+        grad[2] += g * d[2];
+      }
+      if (color)
+      {
+        const float w = std::max(value, 0.0f);
+        const unsigned int c = s.Color[j];
+        color[0] += w * static_cast<float>(c & 255u) / 255.0f;
+        color[1] += w * static_cast<float>((c >> 8) & 255u) / 255.0f;
+        color[2] += w * static_cast<float>((c >> 16) & 255u) / 255.0f;
+        color[3] += w * static_cast<float>((c >> 24) & 255u) / 255.0f;
+      }
+    }
+    return f;
+  }
+
+  // Writes the hit at t of the ray through `pixel`.
+  void Shade(Scratch& s, const Ray& ray, float t, int pixel) const
+  {
+    float grad[3] = { 0, 0, 0 }, color[4] = { 0, 0, 0, 0 };
+    this->Field(s, ray, t, s.Stats.KernelTerms, grad, color);
+    float n[3] = { -grad[0], -grad[1], -grad[2] };
+    const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; ++k)
+    {
+      n[k] = len > 0.0f ? n[k] / len : -ray.Dir[k];
+    }
+    if (n[0] * ray.Dir[0] + n[1] * ray.Dir[1] + n[2] * ray.Dir[2] > 0.0f)
+    {
+      for (float& v : n)
+      {
+        v = -v; // seen from inside the surface: face the eye
+      }
+    }
+    const double p[3] = {
+      ray.Origin[0] + t * ray.Dir[0], ray.Origin[1] + t * ray.Dir[1], ray.Origin[2] + t * ray.Dir[2]
+    };
+    double clip[4];
+    Apply(this->S.ViewToClip, p, 1.0, clip);
+    const double depth = 0.5 * clip[2] / clip[3] + 0.5;
+    float rgba[4] = { 1.0f, 1.0f, 1.0f, 1.0f };
+    if (color[3] > 0.0f)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        rgba[k] = std::min(std::max(color[k] / color[3], 0.0f), 1.0f);
+      }
+    }
+    unsigned int packed = 0;
+    for (int k = 0; k < 4; ++k)
+    {
+      packed |= static_cast<unsigned int>(std::lround(rgba[k] * 255.0f)) << (8 * k);
+    }
+    this->Out.Color[pixel] = packed;
+    float* nd = &this->Out.NormalDistance[4 * static_cast<size_t>(pixel)];
+    nd[0] = n[0];
+    nd[1] = n[1];
+    nd[2] = n[2];
+    nd[3] = static_cast<float>(-p[2]);
+    this->Out.Depth[pixel] = static_cast<float>(std::min(std::max(depth, 0.0), 1.0));
+    ++s.Stats.Hits;
+  }
+
+  // The ray's march through one voxel's balls (loaded into s) over [t0, t1].
+  // True when it hit (and the pixel is written).
+  bool MarchVoxel(Scratch& s, Ray& ray, int count, float t0, float t1, bool nearSlab, int pixel)
+    const
+  {
+    ++s.Stats.VoxelVisits;
+    s.Stats.SupportTests += count;
+    // The supports the ray crosses: the distance from the centre to the ray,
+    // formed directly (no cancellation far from the eye).
+    const float ox = ray.Origin[0], oy = ray.Origin[1], oz = ray.Origin[2];
+    const float dx = ray.Dir[0], dy = ray.Dir[1], dz = ray.Dir[2];
+    float* perp = s.Perp.data();
+    const float* X = s.X.data();
+    const float* Y = s.Y.data();
+    const float* Z = s.Z.data();
+    const float* R2 = s.R2.data();
+    for (int j = 0; j < count; ++j)
+    {
+      const float cx = X[j] - ox, cy = Y[j] - oy, cz = Z[j] - oz;
+      const float b = cx * dx + cy * dy + cz * dz;
+      const float px = cx - b * dx, py = cy - b * dy, pz = cz - b * dz;
+      perp[j] = R2[j] - (px * px + py * py + pz * pz);
+    }
+    s.Crossings.clear();
+    for (int j = 0; j < count; ++j)
+    {
+      if (perp[j] > 0.0f)
+      {
+        const float b = (X[j] - ox) * dx + (Y[j] - oy) * dy + (Z[j] - oz) * dz;
+        const float h = std::sqrt(perp[j]);
+        const float enter = std::max(b - h, t0), exit = std::min(b + h, t1);
+        if (enter < exit)
+        {
+          s.Crossings.push_back({ enter, exit, j });
+        }
+      }
+    }
+    if (s.Crossings.empty())
+    {
+      ++s.Stats.EmptyVoxelVisits;
+      ray.TA = t1;
+      ray.FA = -this->Threshold;
+      ray.HaveA = true;
+      return false;
+    }
+    std::sort(s.Crossings.begin(),
+      s.Crossings.end(),
+      [](const Crossing& a, const Crossing& b) { return a.Enter < b.Enter; });
+    const int n = static_cast<int>(s.Crossings.size());
+    s.Active.clear();
+    int next = 0;
+    float t = s.Crossings[0].Enter;
+    while (true)
+    {
+      while (next < n && s.Crossings[next].Enter <= t)
+      {
+        s.Active.push_back(next++);
+      }
+      const float f = this->Field(s, ray, t, s.Stats.KernelTerms);
+      ++s.Stats.Samples;
+      if (ray.HaveA && (ray.FA < 0.0f) != (f < 0.0f))
+      {
+        // The first sign change: bisect [TA, t] over the balls in reach there
+        // (the active ones: none left before TA, none enters after t).
+        float a = ray.TA, b = t, fa = ray.FA;
+        for (int k = 0; k < this->S.Bisections; ++k)
+        {
+          const float m = 0.5f * (a + b);
+          const float fm = this->Field(s, ray, m, s.Stats.KernelTerms);
+          ++s.Stats.BisectionSamples;
+          if ((fa < 0.0f) == (fm < 0.0f))
+          {
+            a = m;
+            fa = fm;
+          }
+          else
+          {
+            b = m;
+          }
+        }
+        this->Shade(s, ray, 0.5f * (a + b), pixel);
+        ray.Searching = false;
+        return true;
+      }
+      if (!ray.HaveA && nearSlab && t <= t0 && f >= 0.0f)
+      {
+        ++s.Stats.StartingInside;
+      }
+      ray.TA = t;
+      ray.FA = f;
+      ray.HaveA = true;
+      if (t >= t1)
+      {
+        return false;
+      }
+      // Drop the supports the ray has left; the step bounds over the rest.
+      float lipschitz = 0.0f, smallest = std::numeric_limits<float>::max(), reach = t;
+      for (size_t k = 0; k < s.Active.size();)
+      {
+        const Crossing& c = s.Crossings[s.Active[k]];
+        if (c.Exit <= t)
+        {
+          s.Active[k] = s.Active.back();
+          s.Active.pop_back();
+          continue;
+        }
+        lipschitz += s.QOverR[c.Ball];
+        smallest = std::min(smallest, s.R[c.Ball]);
+        reach = std::max(reach, c.Exit);
+        ++k;
+      }
+      float tNext;
+      if (s.Active.empty())
+      {
+        if (next >= n)
+        {
+          // No support ahead in this voxel: f = -T to its end.
+          ray.TA = t1;
+          ray.FA = -this->Threshold;
+          return false;
+        }
+        tNext = s.Crossings[next].Enter; // f = -T across the gap
+      }
+      else
+      {
+        const float base = static_cast<float>(this->S.StepScale) * smallest;
+        const float step = std::max(base, std::abs(f) / (lipschitz * K::SlopeBound));
+        tNext = std::min(t + step, reach);
+        if (next < n)
+        {
+          tNext = std::min(tNext, s.Crossings[next].Enter);
+        }
+      }
+      tNext = std::min(tNext, t1);
+      // Float may not move: take the next representable value.
+      t = tNext > t ? tNext : std::nextafter(t, std::numeric_limits<float>::max());
+    }
+  }
+
+  void CastTile(int tile) const
+  {
+    Scratch& s = this->Local.Local();
+    const int tx = tile % this->TilesX, ty = tile / this->TilesX;
+    const int ts = this->S.TileSize;
+    const int x0 = tx * ts, y0 = ty * ts;
+    const int x1 = std::min(x0 + ts, this->S.Width), y1 = std::min(y0 + ts, this->S.Height);
+    std::vector<Ray> rays;
+    rays.reserve(static_cast<size_t>(ts) * ts);
+    std::vector<int> pixels;
+    for (int y = y0; y < y1; ++y)
+    {
+      for (int x = x0; x < x1; ++x)
+      {
+        Ray ray;
+        const double ndc[2] = { (x + 0.5) / this->S.Width * 2.0 - 1.0,
+          (y + 0.5) / this->S.Height * 2.0 - 1.0 };
+        double nearPoint[4], farPoint[4];
+        const double nearClip[3] = { ndc[0], ndc[1], -1.0 }, farClip[3] = { ndc[0], ndc[1], 1.0 };
+        Apply(this->S.ClipToView, nearClip, 1.0, nearPoint);
+        Apply(this->S.ClipToView, farClip, 1.0, farPoint);
+        double dir[3], norm = 0.0;
+        for (int k = 0; k < 3; ++k)
+        {
+          nearPoint[k] /= nearPoint[3];
+          farPoint[k] /= farPoint[3];
+          dir[k] = farPoint[k] - nearPoint[k];
+          norm += dir[k] * dir[k];
+        }
+        norm = std::sqrt(norm);
+        for (int k = 0; k < 3; ++k)
+        {
+          ray.Dir[k] = static_cast<float>(dir[k] / norm);
+        }
+        ray.Origin[0] = this->S.Parallel ? static_cast<float>(nearPoint[0]) : 0.0f;
+        ray.Origin[1] = this->S.Parallel ? static_cast<float>(nearPoint[1]) : 0.0f;
+        ray.Origin[2] = 0.0f;
+        ray.PerDistance = -ray.Dir[2];
+        ray.Searching = ray.PerDistance > 0.0f;
+        rays.push_back(ray);
+        pixels.push_back(y * this->S.Width + x);
+      }
+    }
+    s.Stats.Rays += static_cast<long long>(rays.size());
+    const int slabs = this->S.Slabs;
+    for (int slab = 0; slab < slabs; ++slab)
+    {
+      bool any = false;
+      for (const Ray& ray : rays)
+      {
+        any = any || ray.Searching;
+      }
+      if (!any)
+      {
+        break;
+      }
+      const size_t voxel = static_cast<size_t>(tile) * slabs + slab;
+      const unsigned int first = this->Offsets[voxel];
+      const int count = static_cast<int>(this->Offsets[voxel + 1] - first);
+      const float d0 = static_cast<float>(this->Planes[slab]);
+      const float d1 = static_cast<float>(this->Planes[slab + 1]);
+      if (count == 0)
+      {
+        for (Ray& ray : rays)
+        {
+          if (ray.Searching)
+          {
+            ++s.Stats.VoxelVisits;
+            ++s.Stats.EmptyVoxelVisits;
+            ray.TA = d1 / ray.PerDistance;
+            ray.FA = -this->Threshold;
+            ray.HaveA = true;
+          }
+        }
+        continue;
+      }
+      this->Load(s, first, count);
+      for (size_t r = 0; r < rays.size(); ++r)
+      {
+        Ray& ray = rays[r];
+        if (ray.Searching)
+        {
+          this->MarchVoxel(
+            s, ray, count, d0 / ray.PerDistance, d1 / ray.PerDistance, slab == 0, pixels[r]);
+        }
+      }
+    }
+  }
+
+  // The voxel's balls into the thread's structure of arrays.
+  void Load(Scratch& s, unsigned int first, int count) const
+  {
+    if (s.X.size() < static_cast<size_t>(count))
+    {
+      for (auto* v : { &s.X, &s.Y, &s.Z, &s.R2, &s.InvR2, &s.R, &s.Q, &s.QOverR, &s.Perp })
+      {
+        v->resize(count);
+      }
+      s.Color.resize(count);
+    }
+    for (int j = 0; j < count; ++j)
+    {
+      const unsigned int id = this->Lists[first + j];
+      const float r = this->Balls.R[id];
+      s.X[j] = this->Balls.X[id];
+      s.Y[j] = this->Balls.Y[id];
+      s.Z[j] = this->Balls.Z[id];
+      s.R[j] = r;
+      s.R2[j] = r * r;
+      s.InvR2[j] = 1.0f / (r * r);
+      s.Q[j] = this->Balls.Q[id];
+      s.QOverR[j] = std::abs(this->Balls.Q[id]) / r;
+      s.Color[j] = this->Balls.Color[id];
+    }
+  }
+};
+
+// The perspective grid in tile-major order: Offsets[(tile * slabs + slab)].
+void BuildGrid(const MetaballCastInput& in,
+  const MetaballCastSettings& S,
+  int tilesX,
+  int tilesY,
+  ViewBalls& balls,
+  std::vector<double>& planes,
+  std::vector<unsigned int>& offsets,
+  std::vector<unsigned int>& lists,
+  MetaballCastStatistics& stats)
+{
+  const long long n = in.Count;
+  balls.X.assign(n, 0.0f);
+  balls.Y.assign(n, 0.0f);
+  balls.Z.assign(n, 0.0f);
+  balls.R.assign(n, 0.0f);
+  balls.Q.assign(n, 1.0f);
+  balls.Color.assign(n, 0xffffffffu);
+  balls.Range.assign(6 * n, 0);
+  double frustum[24];
+  FrustumPlanes(S.ViewToClip, frustum);
+  double projectionNear, projectionFar;
+  ProjectionRange(S.ViewToClip, S.Parallel, projectionNear, projectionFar);
+  struct Extent
+  {
+    double Near = std::numeric_limits<double>::max();
+    double Far = 0.0;
+    long long Invalid = 0, Culled = 0;
+  };
+  vtkSMPThreadLocal<Extent> extents;
+  std::vector<unsigned char> visible(n, 0);
+  // View space, frustum culling and the depth range of what is visible.
+  vtkSMPTools::For(0,
+    n,
+    [&](long long begin, long long end)
+    {
+      Extent& e = extents.Local();
+      for (long long i = begin; i < end; ++i)
+      {
+        const float* b = in.Balls + 4 * i;
+        const float q = in.Strengths ? in.Strengths[i] : 1.0f;
+        if (!Finite(b[0]) || !Finite(b[1]) || !Finite(b[2]) || !Finite(b[3]) || !(b[3] > 0.0f) ||
+          !Finite(q))
+        {
+          ++e.Invalid;
+          continue;
+        }
+        const double x[3] = { b[0], b[1], b[2] };
+        double c[4];
+        Apply(S.WorldToView, x, 1.0, c);
+        const double r = b[3];
+        bool outside = false;
+        for (int k = 0; k < 6 && !outside; ++k)
+        {
+          const double* p = frustum + 4 * k;
+          outside = p[0] * c[0] + p[1] * c[1] + p[2] * c[2] + p[3] < -r;
+        }
+        if (outside)
+        {
+          ++e.Culled;
+          continue;
+        }
+        balls.X[i] = static_cast<float>(c[0]);
+        balls.Y[i] = static_cast<float>(c[1]);
+        balls.Z[i] = static_cast<float>(c[2]);
+        balls.R[i] = b[3];
+        balls.Q[i] = q;
+        balls.Color[i] = in.Colors ? in.Colors[i] : 0xffffffffu;
+        visible[i] = 1;
+        const double lo = std::min(std::max(-c[2] - r, projectionNear), projectionFar);
+        const double hi = std::min(std::max(-c[2] + r, projectionNear), projectionFar);
+        e.Near = std::min(e.Near, std::max(lo, 0.0));
+        e.Far = std::max(e.Far, std::max(hi, 0.0));
+      }
+    });
+  double slabNear = std::numeric_limits<double>::max(), slabFar = 0.0;
+  for (const Extent& e : extents)
+  {
+    slabNear = std::min(slabNear, e.Near);
+    slabFar = std::max(slabFar, e.Far);
+    stats.Invalid += e.Invalid;
+    stats.Culled += e.Culled;
+  }
+  if (!(slabFar > slabNear))
+  {
+    slabNear = projectionNear;
+    slabFar = std::min(projectionFar, projectionNear + 1.0);
+  }
+  const int slabs = S.Slabs;
+  planes.resize(slabs + 1);
+  for (int k = 0; k <= slabs; ++k)
+  {
+    planes[k] = slabNear + (slabFar - slabNear) * k / slabs;
+  }
+  stats.SlabNear = slabNear;
+  stats.SlabFar = slabFar;
+  auto slabOf = [&](double d)
+  {
+    const int k = static_cast<int>(std::floor((d - slabNear) / (slabFar - slabNear) * slabs));
+    return std::min(std::max(k, 0), slabs - 1);
+  };
+  // Each visible ball's voxel range, from its view-space box's projection.
+  std::atomic<long long> culled(0);
+  vtkSMPTools::For(0,
+    n,
+    [&](long long begin, long long end)
+    {
+      long long out = 0;
+      for (long long i = begin; i < end; ++i)
+      {
+        int* range = &balls.Range[6 * i];
+        range[0] = 1; // empty until placed
+        range[1] = 0;
+        if (!visible[i])
+        {
+          continue;
+        }
+        const double c[3] = { balls.X[i], balls.Y[i], balls.Z[i] };
+        const double r = balls.R[i], d = -c[2];
+        if (d + r < slabNear || d - r > slabFar)
+        {
+          ++out;
+          continue;
+        }
+        double lo[2] = { 1e300, 1e300 }, hi[2] = { -1e300, -1e300 };
+        bool everywhere = !S.Parallel && d - r <= 0.0;
+        for (int k = 0; k < 8 && !everywhere; ++k)
+        {
+          const double corner[3] = {
+            c[0] + ((k & 1) ? r : -r), c[1] + ((k & 2) ? r : -r), c[2] + ((k & 4) ? r : -r)
+          };
+          double clip[4];
+          Apply(S.ViewToClip, corner, 1.0, clip);
+          if (!(clip[3] > 0.0))
+          {
+            everywhere = true;
+            break;
+          }
+          const double px = (0.5 * clip[0] / clip[3] + 0.5) * S.Width;
+          const double py = (0.5 * clip[1] / clip[3] + 0.5) * S.Height;
+          lo[0] = std::min(lo[0], px);
+          lo[1] = std::min(lo[1], py);
+          hi[0] = std::max(hi[0], px);
+          hi[1] = std::max(hi[1], py);
+        }
+        if (everywhere)
+        {
+          range[0] = 0;
+          range[1] = tilesX - 1;
+          range[2] = 0;
+          range[3] = tilesY - 1;
+        }
+        else
+        {
+          if (hi[0] < 0.0 || hi[1] < 0.0 || lo[0] >= S.Width || lo[1] >= S.Height)
+          {
+            ++out;
+            continue;
+          }
+          range[0] = std::max(0, static_cast<int>(std::floor(lo[0] / S.TileSize)));
+          range[1] = std::min(tilesX - 1, static_cast<int>(std::floor(hi[0] / S.TileSize)));
+          range[2] = std::max(0, static_cast<int>(std::floor(lo[1] / S.TileSize)));
+          range[3] = std::min(tilesY - 1, static_cast<int>(std::floor(hi[1] / S.TileSize)));
+        }
+        range[4] = slabOf(d - r);
+        range[5] = slabOf(d + r);
+      }
+      culled += out;
+    });
+  stats.Culled += culled;
+  // Counting sort by voxel, in ball order: each voxel's list ascends.
+  const size_t voxels = static_cast<size_t>(tilesX) * tilesY * slabs;
+  offsets.assign(voxels + 1, 0);
+  for (long long i = 0; i < n; ++i)
+  {
+    const int* r = &balls.Range[6 * i];
+    for (int y = r[2]; y <= r[3] && r[0] <= r[1]; ++y)
+    {
+      for (int x = r[0]; x <= r[1]; ++x)
+      {
+        const size_t base = (static_cast<size_t>(y) * tilesX + x) * slabs + 1;
+        for (int z = r[4]; z <= r[5]; ++z)
+        {
+          ++offsets[base + z];
+        }
+      }
+    }
+  }
+  for (size_t v = 0; v < voxels; ++v)
+  {
+    stats.MaxPerVoxel = std::max<long long>(stats.MaxPerVoxel, offsets[v + 1]);
+    offsets[v + 1] += offsets[v];
+  }
+  stats.Pairs = offsets[voxels];
+  lists.resize(offsets[voxels]);
+  std::vector<unsigned int> cursor(offsets.begin(), offsets.end() - 1);
+  for (long long i = 0; i < n; ++i)
+  {
+    const int* r = &balls.Range[6 * i];
+    for (int y = r[2]; y <= r[3] && r[0] <= r[1]; ++y)
+    {
+      for (int x = r[0]; x <= r[1]; ++x)
+      {
+        const size_t base = (static_cast<size_t>(y) * tilesX + x) * slabs;
+        for (int z = r[4]; z <= r[5]; ++z)
+        {
+          lists[cursor[base + z]++] = static_cast<unsigned int>(i);
+        }
+      }
+    }
+  }
+}
+
+template<class K>
+void CastTiles(const MetaballCastInput& in,
+  const MetaballCastSettings& S,
+  const ViewBalls& balls,
+  const std::vector<unsigned int>& offsets,
+  const std::vector<unsigned int>& lists,
+  const std::vector<double>& planes,
+  int tilesX,
+  int tilesY,
+  MetaballCastImages& out,
+  MetaballCastStatistics& stats)
+{
+  vtkSMPThreadLocal<Scratch> local;
+  const TileCaster<K> caster{
+    in, S, balls, offsets, lists, planes, out, tilesX, static_cast<float>(in.Threshold), local
+  };
+  vtkSMPTools::For(0,
+    tilesX * tilesY,
+    1,
+    [&](int begin, int end)
+    {
+      for (int tile = begin; tile < end; ++tile)
+      {
+        caster.CastTile(tile);
+      }
+    });
+  for (const Scratch& s : local)
+  {
+    stats.Rays += s.Stats.Rays;
+    stats.Hits += s.Stats.Hits;
+    stats.StartingInside += s.Stats.StartingInside;
+    stats.VoxelVisits += s.Stats.VoxelVisits;
+    stats.EmptyVoxelVisits += s.Stats.EmptyVoxelVisits;
+    stats.SupportTests += s.Stats.SupportTests;
+    stats.Samples += s.Stats.Samples;
+    stats.BisectionSamples += s.Stats.BisectionSamples;
+    stats.KernelTerms += s.Stats.KernelTerms;
+  }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+void CastMetaballs(const MetaballCastInput& input,
+  const MetaballCastSettings& settings,
+  MetaballCastImages& images,
+  MetaballCastStatistics* statistics)
+{
+  MetaballCastStatistics stats;
+  const int width = std::max(settings.Width, 0), height = std::max(settings.Height, 0);
+  const size_t pixels = static_cast<size_t>(width) * height;
+  images.Width = width;
+  images.Height = height;
+  images.Color.assign(pixels, 0u);
+  images.NormalDistance.assign(4 * pixels, 0.0f);
+  images.Depth.assign(pixels, 1.0f);
+  if (pixels == 0 || settings.TileSize <= 0 || settings.Slabs <= 0 || input.Count <= 0 ||
+    !input.Balls)
+  {
+    if (statistics)
+    {
+      *statistics = stats;
+    }
+    return;
+  }
+  const auto start = Clock::now();
+  const int tilesX = (width + settings.TileSize - 1) / settings.TileSize;
+  const int tilesY = (height + settings.TileSize - 1) / settings.TileSize;
+  ViewBalls balls;
+  std::vector<double> planes;
+  std::vector<unsigned int> offsets, lists;
+  BuildGrid(input, settings, tilesX, tilesY, balls, planes, offsets, lists, stats);
+  const auto built = Clock::now();
+  switch (input.Kernel)
+  {
+    case MetaballKernel::Quartic:
+      CastTiles<QuarticKernel>(
+        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+      break;
+    case MetaballKernel::Gaussian:
+      CastTiles<GaussianKernel>(
+        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+      break;
+    case MetaballKernel::Wyvill:
+    default:
+      CastTiles<WyvillKernel>(
+        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+      break;
+  }
+  const auto done = Clock::now();
+  stats.GridSeconds = std::chrono::duration<double>(built - start).count();
+  stats.CastSeconds = std::chrono::duration<double>(done - built).count();
+  if (statistics)
+  {
+    *statistics = stats;
+  }
+}
+} // namespace pointsurfaces
