@@ -20,6 +20,7 @@ void vtkMetaballField::DeepCopy(vtkMetaballField* other)
   this->SetRadius(other->Radius);
   this->SetRadiusScale(other->RadiusScale);
   this->SetStrengthArrayName(other->StrengthArrayName.c_str());
+  this->SetDensityArrayName(other->DensityArrayName.c_str());
 }
 
 //------------------------------------------------------------------------------
@@ -49,6 +50,7 @@ pointsurfaces::BallRule vtkMetaballField::GetRule() const
   rule.Radius = this->Radius;
   rule.RadiusScale = this->RadiusScale;
   rule.StrengthArrayName = this->StrengthArrayName;
+  rule.DensityArrayName = this->DensityArrayName;
   return rule;
 }
 
@@ -74,4 +76,5 @@ void vtkMetaballField::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Radius: " << this->Radius << "\n";
   os << indent << "RadiusScale: " << this->RadiusScale << "\n";
   os << indent << "StrengthArrayName: " << this->StrengthArrayName << "\n";
+  os << indent << "DensityArrayName: " << this->DensityArrayName << "\n";
 }

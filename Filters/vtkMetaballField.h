@@ -46,12 +46,25 @@ public:
   {
     Wyvill = 0,
     Quartic = 1,
-    Gaussian = 2
+    Gaussian = 2,
+    CubicSpline = 3, ///< SPH M4 spline, Gadget's convention (support radius = h)
+    WendlandC2 = 4,  ///< SPH Wendland C2
+    WendlandC4 = 5   ///< SPH Wendland C4
   };
 
   ///@{
-  /** The field's kernel. Default Wyvill. */
-  vtkSetClampMacro(Kernel, int, Wyvill, Gaussian);
+  /**
+   * The field's kernel. Default Wyvill. The SPH kernels (CubicSpline,
+   * WendlandC2, WendlandC4) are normalised by each ball's support radius
+   * (pointsurfaces::KernelNormalization): with masses as strengths the field
+   * is the SPH density, and the threshold is in density units; with
+   * masses as strengths and densities as DensityArrayName, it is the SPH
+   * interpolant of 1 (about 1 inside the fluid: T = 0.5 is its surface).
+   * Gadget's smoothing length is the support radius (RadiusScale 1);
+   * SWIFT's is not: set RadiusScale to
+   * pointsurfaces::SWIFTSupportFactor(kernel) (1.825742 for the cubic spline).
+   */
+  vtkSetClampMacro(Kernel, int, Wyvill, WendlandC4);
   vtkGetMacro(Kernel, int);
   ///@}
 
@@ -87,6 +100,16 @@ public:
   /** Point array of strengths q_i; empty (the default): all 1. */
   vtkSetStdStringFromCharMacro(StrengthArrayName);
   vtkGetCharFromStdStringMacro(StrengthArrayName);
+  ///@}
+
+  ///@{
+  /**
+   * Point array that divides the strengths (SPH's rho_i, for weights
+   * m_i / rho_i); empty (the default): none. A zero density makes the ball
+   * invalid (skipped and counted).
+   */
+  vtkSetStdStringFromCharMacro(DensityArrayName);
+  vtkGetCharFromStdStringMacro(DensityArrayName);
   ///@}
 
   /** Copy every setting of `other` (none when it is null). */
@@ -125,6 +148,7 @@ protected:
   double Radius = 1.0;
   double RadiusScale = 1.0;
   std::string StrengthArrayName;
+  std::string DensityArrayName;
 
 private:
   vtkMetaballField(const vtkMetaballField&) = delete;

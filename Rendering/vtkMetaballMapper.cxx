@@ -20,6 +20,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkMetaballCompositeFS.h"
 #include "vtkMetaballGridBuilder.h"
+#include "vtkMetaballKernel.h"
 #include "vtkMetaballRayCastCS.h"
 #include "vtkMetaballShadowCS.h"
 #include "vtkNew.h"
@@ -678,10 +679,11 @@ bool vtkMetaballMapper::CastOnGPU(vtkOpenGLRenderWindow* renWin,
   if (defines != in.RayCastDefines)
   {
     std::string source = vtkMetaballRayCastCS;
-    if (!pointsurfaces::ReplaceHook(source, "//VTK::Defines::Dec", defines))
+    if (!pointsurfaces::ReplaceHook(source, "//VTK::Defines::Dec", defines) ||
+      !pointsurfaces::ReplaceHook(source, "//VTK::Kernel::Dec", vtkMetaballKernel))
     {
-      vtkErrorMacro(
-        << "vtkMetaballRayCastCS lacks its //VTK::Defines::Dec hook: nothing is drawn.");
+      vtkErrorMacro(<< "vtkMetaballRayCastCS lacks its //VTK::Defines::Dec or //VTK::Kernel::Dec "
+                       "hook: nothing is drawn.");
       return false;
     }
     in.RayCast->ReleaseGraphicsResources(renWin);
@@ -833,9 +835,11 @@ int vtkMetaballMapper::CastShadows(vtkRenderer* ren,
   if (defines != in.ShadowDefines)
   {
     std::string source = vtkMetaballShadowCS;
-    if (!pointsurfaces::ReplaceHook(source, "//VTK::Defines::Dec", defines))
+    if (!pointsurfaces::ReplaceHook(source, "//VTK::Defines::Dec", defines) ||
+      !pointsurfaces::ReplaceHook(source, "//VTK::Kernel::Dec", vtkMetaballKernel))
     {
-      vtkErrorMacro(<< "vtkMetaballShadowCS lacks its //VTK::Defines::Dec hook: nothing is drawn.");
+      vtkErrorMacro(<< "vtkMetaballShadowCS lacks its //VTK::Defines::Dec or //VTK::Kernel::Dec "
+                       "hook: nothing is drawn.");
       return 0;
     }
     in.Shadow->ReleaseGraphicsResources(renWin);

@@ -53,11 +53,20 @@ BallArrays ExtractBalls(vtkPointSet* input, const BallRule& rule, double scale)
   const vtkIdType n = input && input->GetPoints() ? input->GetNumberOfPoints() : 0;
   vtkDataArray* radii = RadiusArray(input, rule);
   vtkDataArray* strengths = StrengthArray(input, rule);
+  vtkPointData* pd = input ? input->GetPointData() : nullptr;
+  vtkDataArray* densities =
+    pd && !rule.DensityArrayName.empty() ? pd->GetArray(rule.DensityArrayName.c_str()) : nullptr;
+  if (!rule.DensityArrayName.empty() && !densities && n > 0)
+  {
+    b.MissingDensityName = rule.DensityArrayName;
+  }
+  const double normalization = KernelNormalization(rule.Kernel);
+  const bool weighted = strengths || densities || normalization > 0.0;
   b.MissingRadii = !rule.RadiusArrayName.empty() && !radii && n > 0;
   b.MissingStrengths = !rule.StrengthArrayName.empty() && !strengths;
   b.Centres.resize(3 * static_cast<size_t>(n));
   b.Radii.resize(static_cast<size_t>(n));
-  if (strengths)
+  if (weighted)
   {
     b.Strengths.resize(static_cast<size_t>(n));
   }
@@ -70,15 +79,27 @@ BallArrays ExtractBalls(vtkPointSet* input, const BallRule& rule, double scale)
       {
         points->GetTuple(i, &b.Centres[3 * i]);
         b.Radii[i] = scale * SupportRadius(radii, i, rule);
-        if (strengths)
+        if (weighted)
         {
-          b.Strengths[i] = strengths->GetComponent(i, 0);
+          // A zero or negative density or radius gives a non-finite strength
+          // or radius: the ball is invalid, skipped and counted.
+          double q = strengths ? strengths->GetComponent(i, 0) : 1.0;
+          if (densities)
+          {
+            q /= densities->GetComponent(i, 0);
+          }
+          if (normalization > 0.0)
+          {
+            const double r = b.Radii[i];
+            q *= normalization / (r * r * r);
+          }
+          b.Strengths[i] = q;
         }
       }
     });
   b.Set.Centers = b.Centres.data();
   b.Set.Radii = b.Radii.data();
-  b.Set.Strengths = strengths ? b.Strengths.data() : nullptr;
+  b.Set.Strengths = weighted ? b.Strengths.data() : nullptr;
   b.Set.Count = n;
   b.Set.Kernel = rule.Kernel;
   b.Set.Threshold = rule.Threshold;
@@ -87,9 +108,15 @@ BallArrays ExtractBalls(vtkPointSet* input, const BallRule& rule, double scale)
 //------------------------------------------------------------------------------
 std::string MissingStrengthsWarning(const BallArrays& balls, const std::string& strengthName)
 {
-  return balls.MissingStrengths
+  std::string warning = balls.MissingStrengths
     ? "No point array \"" + strengthName + "\" for the strengths: all balls have strength 1."
     : std::string();
+  if (!balls.MissingDensityName.empty())
+  {
+    warning += std::string(warning.empty() ? "" : " ") + "No point array \"" +
+      balls.MissingDensityName + "\" for the densities: the strengths are not divided by one.";
+  }
+  return warning;
 }
 
 //------------------------------------------------------------------------------

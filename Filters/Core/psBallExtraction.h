@@ -13,8 +13,12 @@
  *   the input has an array of that name, else RadiusScale times the constant
  *   Radius;
  * - the strength is the strength array's first component, or 1 when no
- *   strength array is named; a named array that is missing counts as none
- *   (MissingStrengths tells the caller, who warns);
+ *   strength array is named, divided by the density array's first component
+ *   when one is named (SPH weights m_i / rho_i); a named array that is
+ *   missing counts as none (MissingStrengths tells the caller, who warns);
+ * - with an SPH kernel the strength is also multiplied by the kernel's
+ *   normalisation N / R_i^3 (KernelNormalization), so that the field is the
+ *   SPH sum: the density with masses as strengths, in density units;
  * - a ball is usable when its centre, radius and strength are finite and its
  *   radius is positive (ValidBall).
  *
@@ -43,6 +47,7 @@ struct BallRule
   double Radius = 1.0;
   double RadiusScale = 1.0;
   std::string StrengthArrayName;
+  std::string DensityArrayName; ///< when named, strengths are divided by it (m / rho)
 };
 
 /** The radius array of `input` under `rule`, or null (the constant radius applies). */
@@ -74,8 +79,9 @@ struct BallArrays
 
   std::vector<double> Centres, Radii, Strengths;
   MetaballSet Set;
-  bool MissingStrengths = false; ///< a strength array was named but not found
-  bool MissingRadii = false;     ///< a radius array was named but not found
+  bool MissingStrengths = false;  ///< a strength array was named but not found
+  std::string MissingDensityName; ///< a density array named but not found
+  bool MissingRadii = false;      ///< a radius array was named but not found
 };
 
 /**

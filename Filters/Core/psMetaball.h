@@ -29,18 +29,61 @@
 
 namespace pointsurfaces
 {
-/** Kernels, as functions of x = r^2 / R^2 in [0, 1]; zero for x >= 1. */
+/**
+ * Kernels, as functions of x = r^2 / R^2 in [0, 1] with R the support radius;
+ * zero for x >= 1, 1 at x = 0. With q = r / R = sqrt(x), the SPH kernels
+ * (simulation codes' smoothing kernels, in 3-D) are:
+ *
+ * - CubicSpline, the M4 B-spline of Monaghan and Lattanzio (1985) as Gadget-2
+ *   and Gadget-4 write it (V. Springel 2005, eq. 4), whose smoothing length h
+ *   is the support radius R: 1 - 6 q^2 + 6 q^3 for q < 1/2, 2 (1 - q)^3 for
+ *   1/2 <= q < 1, times 8 / (pi R^3);
+ * - WendlandC2: (1 - q)^4 (1 + 4 q), times 21 / (2 pi R^3);
+ * - WendlandC4: (1 - q)^6 (1 + 6 q + 35/3 q^2), times 495 / (32 pi R^3)
+ *   (Dehnen and Aly 2012).
+ *
+ * KernelValue gives the shapes with a peak of 1; KernelNormalization the
+ * factor that makes an SPH kernel integrate to 1 over space, so that
+ * sum_i m_i N / R_i^3 K(x_i) is the SPH density. SWIFT's smoothing length h
+ * is not the support radius: R = gamma h, with gamma = SWIFTSupportFactor().
+ */
 enum class MetaballKernel
 {
-  Wyvill = 0,   ///< -4/9 x^3 + 17/9 x^2 - 22/9 x + 1 (eq. 1.4)
-  Quartic = 1,  ///< (1 - x)^2 (eq. 1.3)
-  Gaussian = 2, ///< (exp(-4 x) - exp(-4)) / (1 - exp(-4)): a Gaussian cut to zero at R
+  Wyvill = 0,      ///< -4/9 x^3 + 17/9 x^2 - 22/9 x + 1 (eq. 1.4)
+  Quartic = 1,     ///< (1 - x)^2 (eq. 1.3)
+  Gaussian = 2,    ///< (exp(-4 x) - exp(-4)) / (1 - exp(-4)): a Gaussian cut to zero at R
+  CubicSpline = 3, ///< SPH M4 cubic spline (Gadget's convention: support R = h)
+  WendlandC2 = 4,  ///< SPH Wendland C2
+  WendlandC4 = 5,  ///< SPH Wendland C4
 };
 
 /** The kernel at x = r^2 / R^2, and its derivative d/dx in `derivative` when given. */
 POINTSURFACESFILTERS_EXPORT double KernelValue(MetaballKernel kernel,
   double x,
   double* derivative = nullptr);
+
+/** Is it one of the SPH kernels (normalised by the support radius)? */
+POINTSURFACESFILTERS_EXPORT bool IsSPHKernel(MetaballKernel kernel);
+
+/**
+ * N with integral over space of N / R^3 K(|x|^2 / R^2) = 1 for an SPH kernel
+ * (8/pi, 21/(2 pi), 495/(32 pi)); 0 for the others, which are not normalised.
+ */
+POINTSURFACESFILTERS_EXPORT double KernelNormalization(MetaballKernel kernel);
+
+/**
+ * SWIFT's ratio of support radius to smoothing length for the kernel
+ * (kernel_gamma of SWIFT's kernel_hydro.h: 1.825742 for the cubic spline,
+ * 1.936492 for Wendland C2, 2.207940 for Wendland C4); 1 for the others.
+ * Use it as vtkMetaballField's RadiusScale for SWIFT's SmoothingLengths.
+ */
+POINTSURFACESFILTERS_EXPORT double SWIFTSupportFactor(MetaballKernel kernel);
+
+/**
+ * The largest |dK/dq| over q = r / R in [0, 1]: |grad f| <= sum |q_i| times
+ * this over R_i, the bound the ray marchers step by.
+ */
+POINTSURFACESFILTERS_EXPORT double KernelSlopeBound(MetaballKernel kernel);
 
 /**
  * The radius, in units of R, at which a lone ball of strength 1 reaches
@@ -55,7 +98,7 @@ struct MetaballSet
 {
   const double* Centers = nullptr;   ///< 3 per ball
   const double* Radii = nullptr;     ///< R_i, the support radius
-  const double* Strengths = nullptr; ///< q_i; null: all 1
+  const double* Strengths = nullptr; ///< q_i (with the SPH kernels' N / R_i^3); null: all 1
   long long Count = 0;
   MetaballKernel Kernel = MetaballKernel::Wyvill;
   double Threshold = 0.5; ///< T

@@ -49,6 +49,43 @@ struct GaussianKernel
   }
 };
 
+struct CubicSplineKernel
+{
+  static constexpr float SlopeBound = 2.0f;
+  static float Value(float x, float& slope)
+  {
+    const float q = std::sqrt(x);
+    if (q < 0.5f)
+    {
+      slope = -6.0f + 9.0f * q;
+      return 1.0f - 6.0f * x + 6.0f * x * q;
+    }
+    const float u = 1.0f - q;
+    slope = -3.0f * u * u / q;
+    return 2.0f * u * u * u;
+  }
+};
+struct WendlandC2Kernel
+{
+  static constexpr float SlopeBound = 2.109375f;
+  static float Value(float x, float& slope)
+  {
+    const float q = std::sqrt(x), u = 1.0f - q;
+    slope = -10.0f * u * u * u;
+    return u * u * u * u * (1.0f + 4.0f * q);
+  }
+};
+struct WendlandC4Kernel
+{
+  static constexpr float SlopeBound = 2.5f;
+  static float Value(float x, float& slope)
+  {
+    const float q = std::sqrt(x), u = 1.0f - q, u5 = u * u * u * u * u;
+    slope = -28.0f / 3.0f * (1.0f + 5.0f * q) * u5;
+    return u5 * u * (1.0f + 6.0f * q + 35.0f / 3.0f * x);
+  }
+};
+
 // y = M (x, w) for a row-major 4x4 matrix.
 void Apply(const double m[16], const double x[3], double w, double y[4])
 {
@@ -754,6 +791,18 @@ void CastMetaballs(const MetaballCastInput& input,
       break;
     case MetaballKernel::Gaussian:
       CastTiles<GaussianKernel>(
+        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+      break;
+    case MetaballKernel::CubicSpline:
+      CastTiles<CubicSplineKernel>(
+        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+      break;
+    case MetaballKernel::WendlandC2:
+      CastTiles<WendlandC2Kernel>(
+        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+      break;
+    case MetaballKernel::WendlandC4:
+      CastTiles<WendlandC4Kernel>(
         input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
       break;
     case MetaballKernel::Wyvill:

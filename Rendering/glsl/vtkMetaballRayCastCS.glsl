@@ -65,41 +65,7 @@ shared float sharedReduce[TILE_SIZE * TILE_SIZE];
 shared uint sharedMinRadius;
 shared uint sharedActive;
 
-// Kernel f(x), x = r^2 / R^2, and df/dx.
-float psKernel(float x, out float slope)
-{
-  slope = 0.0;
-  if (x >= 1.0)
-  {
-    return 0.0;
-  }
-  x = max(x, 0.0);
-#if KERNEL == 1
-  slope = -2.0 * (1.0 - x);
-  return (1.0 - x) * (1.0 - x);
-#elif KERNEL == 2
-  const float floorValue = 0.018315639; // exp(-4)
-  float e = exp(-4.0 * x);
-  slope = -4.0 * e / (1.0 - floorValue);
-  return (e - floorValue) / (1.0 - floorValue);
-#else
-  slope = (-4.0 / 3.0 * x + 34.0 / 9.0) * x - 22.0 / 9.0;
-  return ((-4.0 / 9.0 * x + 17.0 / 9.0) * x - 22.0 / 9.0) * x + 1.0;
-#endif
-}
-
-// The largest |df/dr| of a kernel of unit support: bounds |grad f| by
-// sum q_i times this over R_i.
-float psKernelSlopeBound()
-{
-#if KERNEL == 1
-  return 1.5397; // max of 4 s (1 - s^2), s = r / R
-#elif KERNEL == 2
-  return 1.7476; // max of 8 s exp(-4 s^2) / (1 - exp(-4))
-#else
-  return 1.5835; // max of |2 s f'(s^2)| for Wyvill's polynomial
-#endif
-}
+//VTK::Kernel::Dec
 
 // One ball's contribution at p: field, gradient, colour weight.
 void psAddBall(vec3 p, vec4 b, float q, uint rgba, inout float f, inout vec3 grad,

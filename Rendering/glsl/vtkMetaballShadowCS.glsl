@@ -51,33 +51,7 @@ uniform float selfOffset; // model units kept clear around the surface point
 uniform int lightIndex;
 uniform int useStrengths;
 
-float psKernel(float x)
-{
-  if (x >= 1.0)
-  {
-    return 0.0;
-  }
-  x = max(x, 0.0);
-#if KERNEL == 1
-  return (1.0 - x) * (1.0 - x);
-#elif KERNEL == 2
-  const float floorValue = 0.018315639; // exp(-4)
-  return (exp(-4.0 * x) - floorValue) / (1.0 - floorValue);
-#else
-  return ((-4.0 / 9.0 * x + 17.0 / 9.0) * x - 22.0 / 9.0) * x + 1.0;
-#endif
-}
-
-float psKernelSlopeBound()
-{
-#if KERNEL == 1
-  return 1.5397;
-#elif KERNEL == 2
-  return 1.7476;
-#else
-  return 1.5835;
-#endif
-}
+//VTK::Kernel::Dec
 
 float psAddBall(vec3 p, uint id)
 {
@@ -85,7 +59,8 @@ float psAddBall(vec3 p, uint id)
   vec3 c = (modelToLight * vec4(b.xyz, 1.0)).xyz;
   vec3 d = p - c;
   float q = useStrengths != 0 ? strengths[id] : 1.0;
-  return q * psKernel(dot(d, d) / (b.w * b.w));
+  float slope;
+  return q * psKernel(dot(d, d) / (b.w * b.w), slope);
 }
 
 // f at p (light view) over a voxel's list; `complete` is false when the

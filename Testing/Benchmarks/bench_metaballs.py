@@ -4,11 +4,19 @@
 """Per-frame cost and image error of vtkMetaballMapper against a sample-and-contour pipeline.
 
 For each input (scattered balls at N = 10K, 100K and 1M; the halo, HYG-star
-and solvated-protein sets of ../shared/data) the same window draws:
+and solvated-protein sets of ../shared/data; the halo as SPH gas, each
+particle's radius its smoothing length from its 32 nearest neighbours, spread
+over 30x; a sparse liquid, SPC water from a GROMACS run, and a Lennard-Jones
+melt from a LAMMPS run, both committed under IO/Testing/Data) the same window
+draws:
 
-- vtkMetaballMapper at its defaults (step scale 0.1, 10 bisections) and at a
-  coarser and a finer setting: grid build and ray cast times (the mapper's
-  statistics), frame time, pairs;
+- vtkMetaballMapper's CPU ray caster at its defaults (step scale 0.1, 10
+  bisections) and at a coarser and a finer setting, and its GPU ray caster
+  (compute shaders) at the defaults: grid build and ray cast times (the
+  mapper's statistics), frame time, pairs; on the CPU path also the samples
+  per ray and the share of empty (ray, voxel) visits;
+- sphere imposters (vtkOpenGLSphereMapper) of the same balls at their lone
+  iso-radius, the cheapest particle drawing there is: the frame-time yardstick;
 - the reference: vtkMetaballMapper at step scale 0.02 and 20 bisections, or
   the next coarser step (0.05, 0.1) where a GL implementation cuts rays at
   0.02 (llvmpipe's loop limit; the mapper counts them): the CSV's
@@ -39,15 +47,15 @@ import numpy as np
 
 import pointsurfaces  # noqa: F401  (the EGL window factory)
 from pointsurfaces import vtkMetaballMapper, vtkOpenVDBParticleMesher
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkFloatArray, vtkPoints, vtkUnsignedCharArray
-from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
 from vtkmodules.vtkIOChemistry import vtkPDBReader
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderWindow,
                                          vtkRenderer, vtkVolume)
-from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLFluidMapper
+from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLFluidMapper, vtkOpenGLSphereMapper
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SHARED = os.path.join(HERE, "..", "..", "..", "shared", "data")
@@ -57,7 +65,9 @@ TEST_DATA = os.path.join(HERE, "..", "Data")
 
 
 FIELDS = ["input", "balls", "size", "method", "setting", "frame_ms", "build_ms", "render_ms",
-          "pairs", "incomplete", "rmse", "reference"]
+          "pairs", "incomplete", "rmse", "reference", "samples_per_ray", "empty_visits",
+          "vs_imposters"]
+IO_DATA = os.path.join(HERE, "..", "..", "IO", "Testing", "Data")
 
 
 def wyvill(x):
@@ -107,6 +117,34 @@ def load(name, smoke):
         if smoke:
             xyz, radius = xyz[:2000], radius[:2000]
         return xyz, radius
+    if name == "halo-sph":
+        # SPH gas: the smoothing length from the 32 nearest neighbours
+        # (Gadget's and SWIFT's neighbour counts are 32 to 64), as the radius.
+        from scipy.spatial import cKDTree
+        xyz = np.loadtxt(os.path.join(TEST_DATA, "halo_2k.xyz") if smoke
+                         else os.path.join(SHARED, "particles", "halo_32k.xyz"))
+        distances, _ = cKDTree(xyz).query(xyz, k=33)
+        return xyz, distances[:, 32]
+    if name == "water-gro":
+        # A sparse liquid: SPC water from a short GROMACS run (its first frame),
+        # radii twice the reader's van der Waals radii (nm), as for the proteins.
+        from pointsurfaces import vtkGromacsGroReader
+        reader = vtkGromacsGroReader()
+        reader.SetFileName(os.path.join(IO_DATA, "gromacs", "water_traj.gro"))
+        reader.Update()
+        out = reader.GetOutput()
+        xyz = vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64)
+        radius = vtk_to_numpy(out.GetPointData().GetArray("radius")).astype(np.float64)
+        return xyz, 2.0 * radius
+    if name == "lammps-melt":
+        # A Lennard-Jones melt from a short LAMMPS run (its first frame): atoms
+        # of diameter sigma, support radius sigma.
+        from pointsurfaces import vtkLAMMPSDumpReader
+        reader = vtkLAMMPSDumpReader()
+        reader.SetFileName(os.path.join(IO_DATA, "lammps", "melt.lammpstrj"))
+        reader.Update()
+        xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)
+        return xyz, np.ones(len(xyz))
     raise ValueError(name)
 
 
@@ -128,23 +166,28 @@ def sample_field(centres, radii, n, threshold):
     h = (hi - lo).max() / (n - 1)
     dims = np.minimum(np.ceil((hi - lo) / h).astype(int) + 1, n)
     field = np.zeros(dims[::-1], dtype=np.float32)  # z, y, x
-    reach = int(np.ceil(radii.max() / h))
     base = np.floor((centres - lo) / h).astype(int)
-    offsets = range(-reach, reach + 1)
-    for dz in offsets:
-        for dy in offsets:
-            for dx in offsets:
-                idx = base + np.array([dx, dy, dz])
-                inside = ((idx >= 0) & (idx < dims)).all(axis=1)
-                if not inside.any():
-                    continue
-                i = idx[inside]
-                p = lo + i * h
-                d2 = ((p - centres[inside]) ** 2).sum(axis=1)
-                x = d2 / radii[inside] ** 2
-                value = wyvill(x).astype(np.float32)
-                keep = value > 0
-                np.add.at(field, (i[keep, 2], i[keep, 1], i[keep, 0]), value[keep])
+    # Balls grouped by their reach in samples, so that small balls do not pay
+    # for the largest (SPH radii spread over 30x).
+    reaches = np.ceil(radii / h).astype(int)
+    for reach in np.unique(reaches):
+        group = reaches == reach
+        offsets = range(-reach, reach + 1)
+        for dz in offsets:
+            for dy in offsets:
+                for dx in offsets:
+                    idx = base[group] + np.array([dx, dy, dz])
+                    inside = ((idx >= 0) & (idx < dims)).all(axis=1)
+                    if not inside.any():
+                        continue
+                    i = idx[inside]
+                    c = centres[group][inside]
+                    p = lo + i * h
+                    d2 = ((p - c) ** 2).sum(axis=1)
+                    x = d2 / radii[group][inside] ** 2
+                    value = wyvill(x).astype(np.float32)
+                    keep = value > 0
+                    np.add.at(field, (i[keep, 2], i[keep, 1], i[keep, 0]), value[keep])
     image = vtkImageData()
     image.SetDimensions(*dims)
     image.SetOrigin(*lo)
@@ -188,6 +231,34 @@ class Scene:
         return statistics.median(times)
 
 
+def imposters(scene, poly, radii, bounds, frames):
+    """Median dynamic frame of vtkOpenGLSphereMapper drawing every ball as a sphere of
+    its lone iso-radius (Wyvill, T = 0.5)."""
+    iso = numpy_to_vtk((LONE_ISO * radii).astype(np.float32), deep=True)
+    iso.SetName("IsoRadius")
+    spheres = vtkPolyData()
+    spheres.SetPoints(poly.GetPoints())
+    verts = vtkCellArray()  # the sphere mapper draws the vertices
+    count = poly.GetNumberOfPoints()
+    verts.SetData(numpy_to_vtkIdTypeArray(np.arange(count + 1, dtype=np.int64), deep=True),
+                  numpy_to_vtkIdTypeArray(np.arange(count, dtype=np.int64), deep=True))
+    spheres.SetVerts(verts)
+    spheres.GetPointData().AddArray(iso)
+    mapper = vtkOpenGLSphereMapper()
+    mapper.SetInputData(spheres)
+    mapper.SetScaleArray("IsoRadius")
+    mapper.ScalarVisibilityOff()
+    actor = material(vtkActor())
+    actor.SetMapper(mapper)
+    scene.show(actor, bounds)
+    scene.image()
+    return scene.frame_ms(frames, before=poly.GetPoints().Modified)
+
+
+# The radius, in units of R, at which a lone ball reaches T = 0.5 (Wyvill).
+LONE_ISO = 0.4737
+
+
 def material(actor):
     p = actor.GetProperty()
     p.SetColor(0.85, 0.75, 0.6)
@@ -198,7 +269,8 @@ def material(actor):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("inputs", nargs="*", default=[
-        "scattered-10K", "scattered-100K", "scattered-1M", "halo", "hyg-stars", "adk-solvated"])
+        "scattered-10K", "scattered-100K", "scattered-1M", "halo", "hyg-stars", "adk-solvated",
+        "halo-sph", "water-gro", "lammps-melt"])
     parser.add_argument("--out", default="bench-results")
     parser.add_argument("--frames", type=int, default=3)
     parser.add_argument("--smoke", action="store_true")
@@ -220,8 +292,9 @@ def main():
             scene = Scene(size)
             label = "%dx%d" % size
 
-            def metaballs(step, bisections):
+            def metaballs(step, bisections, caster=vtkMetaballMapper.CPU):
                 mapper = vtkMetaballMapper()
+                mapper.SetRayCaster(caster)
                 mapper.SetInputDataObject(poly)
                 mapper.SetStepScale(step)
                 mapper.SetBisections(bisections)
@@ -232,7 +305,7 @@ def main():
 
             # The finest step whose rays all run to their end.
             for reference_step in (0.02, 0.05, 0.1):
-                reference_mapper = metaballs(reference_step, 20)
+                reference_mapper = metaballs(reference_step, 20, vtkMetaballMapper.CPU)
                 reference_mapper.CollectStatisticsOn()  # this frame's cut rays, read at once
                 reference = scene.image()
                 if reference_mapper.GetNumberOfIncompleteRays() == 0:
@@ -241,19 +314,38 @@ def main():
                     name, label, reference_mapper.GetNumberOfIncompleteRays(), reference_step))
             reference_setting = "step %g, 20 bisections" % reference_step
 
-            for step, bisections in ((0.4, 4), (0.1, 10), (0.05, 10)):
-                mapper = metaballs(step, bisections)
+            # Sphere imposters at the lone iso-radius: the frame-time yardstick.
+            imposter_ms = imposters(scene, poly, radii, bounds, frames)
+            rows.append(dict(input=name, balls=n, size=label, method="sphere-imposters",
+                             setting="lone iso-radius", frame_ms="%.1f" % imposter_ms,
+                             build_ms="", render_ms="", pairs="", incomplete="", rmse=""))
+
+            settings = [(vtkMetaballMapper.CPU, step, bisections)
+                        for step, bisections in ((0.4, 4), (0.1, 10), (0.05, 10))]
+            settings.append((vtkMetaballMapper.GPU, 0.1, 10))
+            for caster, step, bisections in settings:
+                mapper = metaballs(step, bisections, caster)
                 image = scene.image()
                 # A dynamic frame: the particles move (Modified), so they are uploaded again.
                 ms = scene.frame_ms(frames, before=poly.GetPoints().Modified)
-                rows.append(dict(input=name, balls=n, size=label, method="metaballs",
+                cpu = caster == vtkMetaballMapper.CPU
+                rays = max(mapper.GetNumberOfRays(), 1)
+                visits = max(mapper.GetNumberOfVoxelVisits(), 1)
+                rows.append(dict(input=name, balls=n, size=label,
+                                 method="metaballs-cpu" if cpu else "metaballs-gpu",
                                  setting="step %g, %d bisections" % (step, bisections),
                                  frame_ms="%.1f" % ms,
                                  build_ms="%.2f" % mapper.GetGridBuildTime(),
                                  render_ms="%.1f" % mapper.GetRayCastTime(),
                                  pairs=mapper.GetNumberOfPairs(),
                                  incomplete=mapper.GetNumberOfIncompleteRays(),
-                                 rmse="%.4f" % np.sqrt(np.mean((image - reference) ** 2))))
+                                 rmse="%.4f" % np.sqrt(np.mean((image - reference) ** 2)),
+                                 samples_per_ray="%.2f" % ((mapper.GetNumberOfSamples() +
+                                                            mapper.GetNumberOfBisectionSamples())
+                                                           / rays) if cpu else "",
+                                 empty_visits="%.3f" % (mapper.GetNumberOfEmptyVoxelVisits()
+                                                        / visits) if cpu else "",
+                                 vs_imposters="%.1f" % (ms / imposter_ms)))
             def mesh_row(method, setting, mesh, build_ms):
                 """Draws a peer's mesh; its dynamic frame is building it plus drawing it."""
                 surface = vtkPolyData()
@@ -336,7 +428,8 @@ def main():
     import matplotlib.pyplot as plt
     for name in dict.fromkeys(r["input"] for r in rows):
         fig, ax = plt.subplots(figsize=(6.5, 4))
-        for method, marker in (("metaballs", "o"), ("sample+flying-edges", "s"),
+        for method, marker in (("metaballs-cpu", "o"), ("metaballs-gpu", "D"),
+                               ("sample+flying-edges", "s"),
                                ("openvdb-spheres", "^"), ("openvdb-field", "v")):
             sel = [r for r in rows if r["input"] == name and r["method"] == method]
             if sel:

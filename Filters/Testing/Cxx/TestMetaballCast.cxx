@@ -3,7 +3,8 @@
 // The native CPU ray caster of the metaball mapper (psMetaballCast.h) against
 // the double-precision reference ray caster (pointsurfaces::CastRay: dense
 // sampling at 1/300 of the smallest radius, 50 bisections):
-// - 60 balls of radii 0.3 to 0.6, strengths 0.6 to 1.4, for each kernel, in
+// - 60 balls of radii 0.3 to 0.6, strengths 0.6 to 1.4, for each kernel (the
+//   SPH ones too, as shapes: their normalisation is the strengths'), in
 //   perspective and in parallel projection, with a viewport that the tiles do
 //   not divide: fewer than 1 % of the covered pixels may disagree on hit or
 //   miss, and the 99th percentiles of the depth error (1e-3 of the smallest
@@ -243,11 +244,16 @@ int TestMetaballCast(int, char*[])
   {
     scene.Add(uni(gen), uni(gen), -5.0 + uni(gen), rad(gen), str(gen));
   }
-  const MetaballKernel kernels[3] = {
-    MetaballKernel::Wyvill, MetaballKernel::Quartic, MetaballKernel::Gaussian
+  const MetaballKernel kernels[6] = { MetaballKernel::Wyvill,
+    MetaballKernel::Quartic,
+    MetaballKernel::Gaussian,
+    MetaballKernel::CubicSpline,
+    MetaballKernel::WendlandC2,
+    MetaballKernel::WendlandC4 };
+  const char* names[6] = {
+    "Wyvill", "quartic", "Gaussian", "cubic spline", "Wendland C2", "Wendland C4"
   };
-  const char* names[3] = { "Wyvill", "quartic", "Gaussian" };
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < 6; ++k)
   {
     const std::string what = std::string(names[k]) + ", perspective";
     Check(Compare(scene, kernels[k], MakeSettings(100, 90, false), what.c_str()),

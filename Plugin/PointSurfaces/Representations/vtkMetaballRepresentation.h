@@ -55,6 +55,8 @@ public:
   void SetMetaballRadius(double radius);
   void SetMetaballRadiusScale(double scale);
   void SetMetaballStrengthArray(const char* name);
+  void SetMetaballDensityArray(const char* name);
+  void SetMetaballRayCaster(int caster);
   void SetMetaballStepScale(double scale);
   void SetMetaballBisections(int count);
   void SetMetaballTileSize(int pixels);

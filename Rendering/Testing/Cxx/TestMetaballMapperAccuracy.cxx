@@ -3,7 +3,8 @@
 // vtkMetaballMapper against the double-precision reference ray caster
 // (pointsurfaces::CastRay: dense sampling at 1/400 of the smallest radius,
 // then 50 bisections on the exact field). 60 balls of radii 0.3 to 0.6 with
-// strengths from 0.6 to 1.4 are rendered with each kernel; every pixel's
+// strengths from 0.6 to 1.4 are rendered with each kernel (the SPH ones
+// normalised by R^3, the threshold scaled to match); every pixel's
 // hit (view distance and normal, read back from the mapper) is compared with
 // the reference ray through the pixel centre. The error is reported as a
 // function of the step scale and the bisection count; at the defaults
@@ -105,17 +106,30 @@ int TestMetaballMapperAccuracy(int, char*[])
   const Setting settings[] = {
     { 0.4, 4, false }, { 0.1, 0, false }, { 0.1, 10, true }, { 0.02, 20, true }
   };
-  const char* names[3] = { "Wyvill", "quartic", "Gaussian" };
+  const char* names[6] = {
+    "Wyvill", "quartic", "Gaussian", "cubic spline", "Wendland C2", "Wendland C4"
+  };
   int failures = 0;
-  for (int kernel = 0; kernel < 3; ++kernel)
+  for (int kernel = 0; kernel < 6; ++kernel)
   {
+    // The SPH kernels carry N / R^3 in the strengths; the threshold keeps the
+    // blobs about the size of the others'.
+    const auto type = static_cast<pointsurfaces::MetaballKernel>(kernel);
+    const double normalization = pointsurfaces::KernelNormalization(type);
+    std::vector<double> weights(strengths);
+    for (int i = 0; i < n && normalization > 0.0; ++i)
+    {
+      weights[i] *= normalization / (radii[i] * radii[i] * radii[i]);
+    }
     mapper->GetField()->SetKernel(kernel);
+    mapper->GetField()->SetThreshold(
+      normalization > 0.0 ? 0.5 * normalization / (0.45 * 0.45 * 0.45) : 0.5);
     pointsurfaces::MetaballSet set;
     set.Centers = centres.data();
     set.Radii = radii.data();
-    set.Strengths = strengths.data();
+    set.Strengths = weights.data();
     set.Count = n;
-    set.Kernel = static_cast<pointsurfaces::MetaballKernel>(kernel);
+    set.Kernel = type;
     set.Threshold = mapper->GetField()->GetThreshold();
 
     // The reference, once per kernel: a ray through every pixel centre.
