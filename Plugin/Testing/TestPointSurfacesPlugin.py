@@ -87,7 +87,8 @@ if mpi:
 pxm = servermanager.ProxyManager()
 for proxy in ("AlgebraicSplatFitter", "MultiResolutionSplatBuilder", "SplatErrorMetric"):
     check(pxm.GetPrototypeProxy("filters", proxy) is not None, "filter " + proxy)
-for proxy in ("OpenMeshReader", "OpenVDBPointsReader", "LAMMPSDumpReader", "GromacsGroReader"):
+for proxy in ("OpenMeshReader", "OpenVDBPointsReader", "LAMMPSDumpReader", "GromacsGroReader",
+              "GadgetHDF5Reader"):
     check(pxm.GetPrototypeProxy("sources", proxy) is not None, "reader " + proxy)
 
 # A LAMMPS run's dump, animated over its snapshots.
@@ -106,6 +107,17 @@ gro.UpdatePipeline(0.02)
 check(len(gro.TimestepValues) == 4 and gro.GetDataInformation().GetNumberOfPoints() == 327,
       "the GROMACS trajectory's four frames of 327 atoms")
 Delete(gro)
+snapshot = GadgetHDF5SnapshotReader(FileNames=[os.path.join(
+    os.path.dirname(os.path.abspath(__file__)), "..", "..", "IO", "Testing", "Data", "gadget",
+    "lcdm_gas_z5_subset.hdf5")])
+snapshot.UpdatePipeline()
+times = snapshot.TimestepValues  # one time comes back as a number
+times = list(times) if hasattr(times, "__len__") else [times]
+check(snapshot.GetDataInformation().GetNumberOfPoints() == 2000 and
+      snapshot.PointData.GetArray("SmoothingLength") is not None and
+      len(times) == 1 and abs(times[0] - 0.16556) < 1e-4,
+      "the Gadget-4 subset's 2000 gas particles with smoothing lengths, at a = 0.166 (%s)" % times)
+Delete(snapshot)
 
 view = new_view()
 
