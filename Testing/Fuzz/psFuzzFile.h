@@ -39,7 +39,8 @@ inline std::string FuzzFile(const uint8_t* data, size_t size, const std::string&
   static const int cleanup = std::atexit(
     []
     {
-      for (const char* ext : { "pcd", "off", "obj", "om", "stl", "vdb", "lammpstrj", "gro", "0.hdf5" })
+      for (const char* ext :
+        { "pcd", "off", "obj", "om", "stl", "vdb", "lammpstrj", "gro", "0.hdf5" })
       {
         std::remove((base + ext).c_str());
       }
