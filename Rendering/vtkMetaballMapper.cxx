@@ -46,6 +46,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -57,7 +58,13 @@ namespace
 {
 // Reads the counters of ring slot `k` when its fence has passed (or at once
 // after waiting, with `wait`); true when read.
-bool ReadCounterSlot(vtkShaderStorageBuffer* buffer, GLsync& fence, bool wait, unsigned int out[3])
+// The counters of a frame, as vtkMetaballRayCastCS.glsl lists them.
+constexpr int CounterCount = 9;
+
+bool ReadCounterSlot(vtkShaderStorageBuffer* buffer,
+  GLsync& fence,
+  bool wait,
+  unsigned int out[CounterCount])
 {
   if (!fence)
   {
@@ -71,7 +78,7 @@ bool ReadCounterSlot(vtkShaderStorageBuffer* buffer, GLsync& fence, bool wait, u
   }
   glDeleteSync(fence);
   fence = nullptr;
-  return buffer->Download(out, 3 * sizeof(unsigned int));
+  return buffer->Download(out, CounterCount * sizeof(unsigned int));
 }
 
 const int MaxShared = 256; // balls per voxel batch in shared memory
@@ -154,9 +161,19 @@ struct vtkMetaballMapper::Internals
 };
 
 //------------------------------------------------------------------------------
-void vtkMetaballMapper::ReportCounters(const unsigned int counters[3])
+void vtkMetaballMapper::ReportCounters(const unsigned int counters[9])
 {
   Internals& in = *this->Impl;
+  if (this->RayCasterInUse == GPU)
+  {
+    // Where the shaders' time went (the CPU ray caster sets its own, in 64 bits).
+    this->NumberOfSamples = counters[3];
+    this->NumberOfBisectionSamples = counters[4];
+    this->NumberOfVoxelVisits = counters[5];
+    this->NumberOfEmptyVoxelVisits = counters[6];
+    this->NumberOfKernelTerms = counters[7];
+    this->NumberOfHits = counters[8];
+  }
   this->NumberOfPixelsStartingInside = counters[0];
   this->NumberOfIncompleteRays = counters[1];
   if (counters[1] > 0 && !in.WarnedBudget)
@@ -279,8 +296,21 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
   }
   if (in.UploadTime.GetMTime() > latest && in.Count == input->GetNumberOfPoints())
   {
+    this->UploadTime = 0.0;
     return true; // nothing changed: nothing is uploaded
   }
+  const auto start = std::chrono::steady_clock::now();
+  struct Stopwatch // the upload's wall time, on every way out
+  {
+    double& Milliseconds;
+    std::chrono::steady_clock::time_point Start;
+    ~Stopwatch()
+    {
+      this->Milliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - this->Start)
+          .count();
+    }
+  } stopwatch{ this->UploadTime, start };
   const vtkIdType n = input->GetNumberOfPoints();
   if (static_cast<size_t>(n) * 4 * sizeof(float) > vtkShaderStorageBuffer::GetMaximumSize())
   {
@@ -467,7 +497,7 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   this->RayCasterInUse = cpu ? CPU : GPU;
   // This frame's counters: a ring slot whose last use the GPU has passed
   // (read first; waited for only when the GPU is a whole ring behind).
-  unsigned int counters[3] = { 0, 0, 0 };
+  unsigned int counters[CounterCount] = {};
   for (int k = 0; k < Internals::Ring; ++k)
   {
     const int slot = (in.Next + k) % Internals::Ring; // oldest first: the one to reuse
@@ -485,7 +515,7 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   vtkShaderStorageBuffer* frameCounters = in.Counters[in.Next];
   if (cpu)
   {
-    const unsigned int initial[3] = { inside, 0, 0 };
+    const unsigned int initial[CounterCount] = { inside };
     frameCounters->Upload(initial, sizeof(initial));
   }
   // Shadows: secondary rays toward the lights.
@@ -650,9 +680,9 @@ bool vtkMetaballMapper::CastOnGPU(vtkOpenGLRenderWindow* renWin,
   int height)
 {
   Internals& in = *this->Impl;
-  this->NumberOfRays = this->NumberOfHits = this->NumberOfVoxelVisits = 0;
-  this->NumberOfEmptyVoxelVisits = this->NumberOfSupportTests = this->NumberOfSamples = 0;
-  this->NumberOfBisectionSamples = this->NumberOfKernelTerms = 0;
+  // The others come with the shaders' counters (ReportCounters).
+  this->NumberOfRays = static_cast<vtkIdType>(width) * height;
+  this->NumberOfSupportTests = 0;
   // [Bolla 2010] Algorithm 2: the perspective grid.
   in.Grid->SetTileSize(this->TileSize);
   in.Grid->SetCollectStatistics(this->CollectStatistics);
@@ -719,7 +749,7 @@ bool vtkMetaballMapper::CastOnGPU(vtkOpenGLRenderWindow* renWin,
   in.Grid->GetVoxelOffsets()->BindBase(3);
   in.Grid->GetVoxelBalls()->BindBase(4);
   vtkShaderStorageBuffer* frameCounters = in.Counters[in.Next];
-  const unsigned int zeros[3] = { 0, 0, 0 };
+  const unsigned int zeros[CounterCount] = {};
   frameCounters->Upload(zeros, sizeof(zeros));
   frameCounters->BindBase(5);
 

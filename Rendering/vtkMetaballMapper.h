@@ -130,10 +130,12 @@ public:
 
   ///@{
   /**
-   * Where the CPU ray caster's time went in the last render (zero after a
-   * GPU render): rays cast, rays that hit, (ray, voxel) visits and those
-   * with no ball's support on the ray, ray/support tests, field samples of
-   * the march and of the bisections, and kernel terms summed in them.
+   * Where the ray caster's time went: rays cast, rays that hit, (ray, voxel)
+   * visits and those with no ball's support on the ray (the GPU's: to voxels
+   * with no ball), ray/support tests (CPU only), field samples of the march
+   * and of the bisections, and kernel terms summed in them. The CPU ray
+   * caster's are the last render's; the GPU's come with the other counters
+   * (see CollectStatistics), in 32 bits, the kernel terms saturating.
    */
   vtkGetMacro(NumberOfRays, vtkIdType);
   vtkGetMacro(NumberOfHits, vtkIdType);
@@ -173,13 +175,16 @@ public:
 
   ///@{
   /**
-   * GPU times in ms, from timer queries read without waiting: those of the
-   * last frame whose queries have completed (usually the one before; 0
-   * until one has). The grid build, the primary rays, and the light grids
-   * with the shadow rays.
+   * Times in ms of the grid build, the primary rays, and the light grids
+   * with the shadow rays. On the GPU ray caster, GPU times from timer
+   * queries read without waiting: those of the last frame whose queries
+   * have completed (usually the one before; 0 until one has). On the CPU
+   * ray caster, the wall times of the last render's grid and rays.
    */
   vtkGetMacro(GridBuildTime, double);
   vtkGetMacro(RayCastTime, double);
+  /** Wall time in ms of the last render's upload of the balls (0 when nothing changed). */
+  vtkGetMacro(UploadTime, double);
   vtkGetMacro(ShadowTime, double);
   ///@}
 
@@ -242,8 +247,12 @@ protected:
   void ComputeBounds();
   /** Brings the input up to date (unless Static). */
   void UpdateInput();
-  /** Takes one frame's counters: pixels starting inside, cut rays, cut shadow rays. */
-  void ReportCounters(const unsigned int counters[3]);
+  /**
+   * Takes one frame's counters: pixels starting inside, cut rays, cut shadow
+   * rays, and the GPU ray caster's samples, bisection samples, voxel visits,
+   * empty voxel visits, kernel terms and hits.
+   */
+  void ReportCounters(const unsigned int counters[9]);
 
   /**
    * The hits of the last render, one tuple per viewport pixel (rows from the
@@ -287,6 +296,7 @@ protected:
   int Bisections = 10;
   double GridBuildTime = 0.0;
   double RayCastTime = 0.0;
+  double UploadTime = 0.0;
   vtkIdType NumberOfPairs = 0;
   vtkIdType MaximumBallsPerVoxel = 0;
   vtkIdType NumberOfCulledBalls = 0;

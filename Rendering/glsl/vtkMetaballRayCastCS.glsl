@@ -11,6 +11,9 @@
 // others; otherwise the group loads them batch by batch at every sample and
 // the rays march in lock step:
 //
+// - each ray starts and ends its march in a voxel (held in shared memory) at
+//   the first and last ball support it crosses there, and skips the voxel
+//   when it crosses none: the field is -T outside the supports;
 // - the step follows the field: |f| / L, with L a bound on |grad f| over the
 //   voxel's balls, so a step never jumps over the surface where f changes
 //   fast, and large steps are taken in free space; it never goes below
@@ -37,8 +40,11 @@ layout(std430, binding = 1) readonly buffer Colors { uint colors[]; };   // rgba
 layout(std430, binding = 2) readonly buffer Strengths { float strengths[]; };
 layout(std430, binding = 3) readonly buffer Offsets { uint offsets[]; }; // voxels + 1
 layout(std430, binding = 4) readonly buffer VoxelBalls { uint voxelBalls[]; };
-// [0]: rays starting inside the surface; [1]: rays whose loops the driver cut.
-layout(std430, binding = 5) buffer Counters { uint insideCount[2]; };
+// [0]: rays starting inside the surface; [1]: rays whose loops the driver cut;
+// [2]: shadow rays cut (the shadow pass's); where the time goes: [3] field
+// samples of the march, [4] of the bisections, [5] (ray, voxel) visits, [6]
+// of those to empty voxels, [7] kernel terms (saturating), [8] hits.
+layout(std430, binding = 5) buffer Counters { uint insideCount[9]; };
 
 layout(rgba8, binding = 0) writeonly uniform image2D colorImage;
 layout(rgba32f, binding = 1) writeonly uniform image2D normalImage;
@@ -279,6 +285,7 @@ void main()
   vec3 normal = -dir;
   vec4 color = vec4(1.0);
 
+  uint samples = 0u, bisectionSamples = 0u, visits = 0u, emptyVisits = 0u, terms = 0u;
   int lastSlab = -1;
   for (int slab = 0; slab < slabs; ++slab)
   {
@@ -294,9 +301,11 @@ void main()
       perDistance;
     float t1 = (slabNear + (slabFar - slabNear) * float(slab + 1) / float(slabs) + origin.z) /
       perDistance;
+    visits += searching ? 1u : 0u;
     if (count == 0u)
     {
       // An empty voxel, skipped: f = -T all through it.
+      emptyVisits += searching ? 1u : 0u;
       tA = t1;
       fA = -threshold;
       haveA = true;
@@ -361,6 +370,47 @@ void main()
     float ba = 0.0, bb = 0.0, bfa = 0.0;
     if (single)
     {
+      // This ray's stretch of the voxel inside some ball's support: the field
+      // is -T before the first support it enters and after the last it
+      // leaves, so the march starts and ends there, and a ray that crosses
+      // no support skips the voxel. (A loop cut short by the driver keeps
+      // the whole voxel.)
+      float tEnd = t1;
+      if (marching)
+      {
+        float enter = 3.0e38, leave = -3.0e38;
+        int k = 0;
+        for (; k < int(count); ++k)
+        {
+          vec4 b = sharedBalls[k];
+          vec3 oc = b.xyz - origin;
+          float along = dot(oc, dir);
+          vec3 across = oc - along * dir;
+          float h2 = b.w * b.w - dot(across, across);
+          if (h2 > 0.0)
+          {
+            float h = sqrt(h2);
+            enter = min(enter, along - h);
+            leave = max(leave, along + h);
+          }
+        }
+        if (k == int(count))
+        {
+          if (!(max(enter, t0) < min(leave, t1)))
+          {
+            emptyVisits += 1u;
+            tA = t1;
+            fA = -threshold;
+            haveA = true;
+            marching = false;
+          }
+          else
+          {
+            t = max(enter, t0);
+            tEnd = min(leave, t1);
+          }
+        }
+      }
       // The list is in shared memory: every ray marches on its own.
       while (marching)
       {
@@ -368,7 +418,10 @@ void main()
         vec3 g = vec3(0.0);
         vec4 c = vec4(0.0);
         bool complete = psAccumulate(origin + t * dir, int(count), f, g, c, false) && loaded;
-        psStep(t, f, t1, baseStep, lipschitz, origin, dir, first, count, true, steps, haveA, tA,
+        samples += bisecting > 0 ? 0u : 1u;
+        bisectionSamples += bisecting > 0 ? 1u : 0u;
+        terms += count;
+        psStep(t, f, tEnd, baseStep, lipschitz, origin, dir, first, count, true, steps, haveA, tA,
           fA, marching, searching, hit, tHit, normal, color, slab == 0, complete, bisecting, ba,
           bb, bfa);
       }
@@ -409,6 +462,9 @@ void main()
         complete = complete && base >= count;
         if (marching)
         {
+          samples += bisecting > 0 ? 0u : 1u;
+          bisectionSamples += bisecting > 0 ? 1u : 0u;
+          terms += count;
           psStep(t, f, t1, baseStep, lipschitz, origin, dir, first, count, false, steps, haveA,
             tA, fA, marching, searching, hit, tHit, normal, color, slab == 0, complete,
             bisecting, ba, bb, bfa);
@@ -432,6 +488,26 @@ void main()
   if (searching && lastSlab < slabs - 1)
   {
     atomicAdd(insideCount[1], 1u); // the slab loop was cut short by the driver
+  }
+  // This ray's counts, one atomic each.
+  if (samples > 0u)
+  {
+    atomicAdd(insideCount[3], samples);
+    atomicAdd(insideCount[4], bisectionSamples);
+    uint before = atomicAdd(insideCount[7], terms);
+    if (before + terms < before)
+    {
+      atomicMax(insideCount[7], 0xffffffffu); // saturated
+    }
+  }
+  if (visits > 0u)
+  {
+    atomicAdd(insideCount[5], visits);
+    atomicAdd(insideCount[6], emptyVisits);
+  }
+  if (hit && inside)
+  {
+    atomicAdd(insideCount[8], 1u);
   }
   if (!inside)
   {

@@ -28,7 +28,7 @@ layout(std430, binding = 0) readonly buffer Balls { vec4 balls[]; };
 layout(std430, binding = 2) readonly buffer Strengths { float strengths[]; };
 layout(std430, binding = 3) readonly buffer Offsets { uint offsets[]; };
 layout(std430, binding = 4) readonly buffer VoxelBalls { uint voxelBalls[]; };
-layout(std430, binding = 5) buffer Counters { uint counters[3]; }; // [2]: cut shadow rays
+layout(std430, binding = 5) buffer Counters { uint counters[9]; }; // [2]: cut shadow rays
 
 layout(r32f, binding = 2) readonly uniform image2D depthImage;
 layout(rgba32f, binding = 3) uniform image2D shadowImage;
