@@ -17,8 +17,9 @@ With no input, a built-in simulation runs instead: 20 000 particles falling
 into a swirling vortex, coloured by speed.
 
 Every frame, the positions change and vtkMetaballMapper rebuilds its
-perspective grid on the GPU and ray-casts the blobby surface; nothing else
-is uploaded again. The camera stays fixed (set from the first frame), so
+perspective grid and ray-casts the blobby surface (on the GPU, or natively
+on the CPU under a software OpenGL such as llvmpipe); nothing else is
+uploaded again. The camera stays fixed (set from the first frame), so
 the frames can be joined into a video, for example with
 `ffmpeg -i DIR/frame_%04d.png anim.mp4`. --vdb also writes each frame's
 surface as an OpenVDB level set (DIR/frame_NNNN.vdb) for Houdini or Blender.
@@ -224,7 +225,8 @@ def main():
 
     print("frames:       %d of %d particles, %dx%d, in %s" % (steps, len(xyz), args.size,
                                                               args.size, args.out))
-    print("window:       %s" % window.GetClassName())
+    print("window:       %s, %s ray caster" % (
+        window.GetClassName(), "CPU" if mapper.GetRayCasterInUse() == mapper.CPU else "GPU"))
     print("per frame:    median %.1f ms (grid build %.2f ms, ray cast %.1f ms); first %.1f ms"
           % (float(np.median(frames[1:] or frames)), float(np.median(builds)),
              float(np.median(rays)), frames[0]))

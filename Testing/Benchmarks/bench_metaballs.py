@@ -6,7 +6,9 @@
 For each input (scattered balls at N = 10K, 100K and 1M; the halo, HYG-star
 and solvated-protein sets of ../shared/data; the halo as SPH gas, each
 particle's radius its smoothing length from its 32 nearest neighbours, spread
-over 30x; a sparse liquid, SPC water from a GROMACS run, and a Lennard-Jones
+over 30x; the gas of a Gadget-4 snapshot, radius its smoothing length; a
+coarse-grained vesicle of two bead leaflets (made by the script); a sparse
+liquid, SPC water from a GROMACS run, and a Lennard-Jones
 melt from a LAMMPS run, both committed under IO/Testing/Data) the same window
 draws:
 
@@ -125,6 +127,35 @@ def load(name, smoke):
                          else os.path.join(SHARED, "particles", "halo_32k.xyz"))
         distances, _ = cKDTree(xyz).query(xyz, k=33)
         return xyz, distances[:, 32]
+    if name == "vesicle":
+        # A coarse-grained vesicle, made here (no run of a CG force field is
+        # at hand): two leaflets of lipid beads 0.8 nm apart on spheres of
+        # radius 6 and 4.4 nm (Fibonacci lattices, 1 086 beads), beads of
+        # radius 0.6 nm (support 1.2 nm), jittered by 0.1 nm.
+        rng = np.random.default_rng(7)
+        leaflets = []
+        for radius in (6.0, 4.4):
+            count = int(4.0 * np.pi * radius ** 2 / 0.64)
+            k = np.arange(count) + 0.5
+            polar = np.arccos(1.0 - 2.0 * k / count)
+            azimuth = np.pi * (1.0 + 5.0 ** 0.5) * k
+            leaflets.append(radius * np.column_stack([np.cos(azimuth) * np.sin(polar),
+                                                      np.sin(azimuth) * np.sin(polar),
+                                                      np.cos(polar)]))
+        xyz = np.vstack(leaflets) + rng.normal(0.0, 0.1, size=(sum(map(len, leaflets)), 3))
+        return xyz, np.full(len(xyz), 1.2)
+    if name == "gadget-gas":
+        # SPH gas of a Gadget-4 cosmological snapshot (z = 5), the radius its
+        # smoothing length (Gadget's: the kernel's support).
+        from pointsurfaces import vtkGadgetHDF5Reader
+        reader = vtkGadgetHDF5Reader()
+        reader.SetFileName(os.path.join(IO_DATA, "gadget", "lcdm_gas_z5_subset.hdf5") if smoke
+                           else os.path.join(SHARED, "particles", "gadget4_lcdm_gas_z5.hdf5"))
+        reader.Update()
+        out = reader.GetOutput()
+        xyz = vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64)
+        h = vtk_to_numpy(out.GetPointData().GetArray("SmoothingLength")).astype(np.float64)
+        return xyz, h
     if name == "water-gro":
         # A sparse liquid: SPC water from a short GROMACS run (its first frame),
         # radii twice the reader's van der Waals radii (nm), as for the proteins.
@@ -270,10 +301,12 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("inputs", nargs="*", default=[
         "scattered-10K", "scattered-100K", "scattered-1M", "halo", "hyg-stars", "adk-solvated",
-        "halo-sph", "water-gro", "lammps-melt"])
+        "halo-sph", "gadget-gas", "water-gro", "lammps-melt", "vesicle"])
     parser.add_argument("--out", default="bench-results")
     parser.add_argument("--frames", type=int, default=3)
     parser.add_argument("--smoke", action="store_true")
+    parser.add_argument("--grids", type=int, nargs="+",
+                        help="sample-and-contour grid sizes (default: 64 128 256, 64 128 over 50K)")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
     frames = 1 if args.smoke else args.frames
@@ -364,7 +397,7 @@ def main():
                                  pairs=surface.GetNumberOfCells(), incomplete=0,
                                  rmse="%.4f" % np.sqrt(np.mean((image - reference) ** 2))))
 
-            grids = (32,) if args.smoke else ((64, 128) if n > 50000 else (64, 128, 256))
+            grids = (32,) if args.smoke else (args.grids or ((64, 128) if n > 50000 else (64, 128, 256)))
             for grid in grids:
                 t0 = time.perf_counter()
                 image_data = sample_field(centres, radii, grid, 0.5)
