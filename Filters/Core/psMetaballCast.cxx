@@ -112,7 +112,10 @@ struct ViewBalls
 struct Crossing
 {
   float Enter, Exit;
-  int Ball; // index into the voxel's scratch
+  int Ball;     // index into the voxel's scratch
+  float Peak;   // the most the ball adds to f on the ray: q K at its closest approach
+  float Along;  // the ray parameter of the closest approach
+  float Across; // the squared distance of the ray from the centre
 };
 
 // Per thread: the voxel's balls as structure of arrays, a ray's crossings and
@@ -195,6 +198,40 @@ public:
     return f;
   }
 
+  // An upper bound of f over [a, b] on the ray: the active balls and those
+  // from `next` on that begin before b, each at the point of [a, b] nearest
+  // its centre, positive strengths only.
+  float UpperBound(Scratch& s, int next, float a, float b) const
+  {
+    float u = -this->Threshold;
+    const int n = static_cast<int>(s.Crossings.size());
+    int entering = next;
+    while (entering < n && s.Crossings[entering].Enter < b)
+    {
+      ++entering;
+    }
+    const size_t active = s.Active.size();
+    for (size_t i = 0; i < active + static_cast<size_t>(entering - next); ++i)
+    {
+      const Crossing& c =
+        s.Crossings[i < active ? s.Active[i] : next + static_cast<int>(i - active)];
+      const float q = s.Q[c.Ball];
+      if (q <= 0.0f)
+      {
+        continue;
+      }
+      const float along = std::min(std::max(c.Along, a), b) - c.Along;
+      const float x = (c.Across + along * along) * s.InvR2[c.Ball];
+      ++s.Stats.KernelTerms;
+      if (x < 1.0f)
+      {
+        float slope;
+        u += q * K::Value(std::max(x, 0.0f), slope);
+      }
+    }
+    return u;
+  }
+
   // Writes the hit at t of the ray through `pixel`.
   void Shade(Scratch& s, const Ray& ray, float t, int pixel) const
   {
@@ -266,6 +303,7 @@ public:
       perp[j] = R2[j] - (px * px + py * py + pz * pz);
     }
     s.Crossings.clear();
+    float peaks = 0.0f;
     for (int j = 0; j < count; ++j)
     {
       if (perp[j] > 0.0f)
@@ -275,11 +313,18 @@ public:
         const float enter = std::max(b - h, t0), exit = std::min(b + h, t1);
         if (enter < exit)
         {
-          s.Crossings.push_back({ enter, exit, j });
+          float slope;
+          const float closest = std::min(std::max(1.0f - perp[j] * s.InvR2[j], 0.0f), 1.0f);
+          const float peak = std::max(s.Q[j], 0.0f) * K::Value(closest, slope);
+          s.Crossings.push_back({ enter, exit, j, peak, b, s.R2[j] - perp[j] });
+          peaks += peak;
         }
       }
     }
-    if (s.Crossings.empty())
+    // f <= sum of the peaks - T on the whole stretch: below T, no crossing
+    // here (and the ray arrives outside: whatever made f >= 0 before this
+    // voxel reaches into it and would count among the peaks).
+    if (s.Crossings.empty() || peaks < this->Threshold)
     {
       ++s.Stats.EmptyVoxelVisits;
       ray.TA = t1;
@@ -338,7 +383,7 @@ public:
         return false;
       }
       // Drop the supports the ray has left; the step bounds over the rest.
-      float lipschitz = 0.0f, smallest = std::numeric_limits<float>::max(), reach = t;
+      float lipschitz = 0.0f, smallest = std::numeric_limits<float>::max(), reach = t, bound = 0.0f;
       for (size_t k = 0; k < s.Active.size();)
       {
         const Crossing& c = s.Crossings[s.Active[k]];
@@ -349,30 +394,45 @@ public:
           continue;
         }
         lipschitz += s.QOverR[c.Ball];
+        bound += c.Peak;
         smallest = std::min(smallest, s.R[c.Ball]);
         reach = std::max(reach, c.Exit);
         ++k;
       }
       float tNext;
-      if (s.Active.empty())
+      if (s.Active.empty() || bound < this->Threshold)
       {
+        // f <= sum of the active peaks - T < 0 until another support begins.
         if (next >= n)
         {
-          // No support ahead in this voxel: f = -T to its end.
+          // No support begins ahead in this voxel: f < 0 to its end.
           ray.TA = t1;
           ray.FA = -this->Threshold;
           return false;
         }
-        tNext = s.Crossings[next].Enter; // f = -T across the gap
+        tNext = s.Crossings[next].Enter; // f < 0 across the gap
       }
       else
       {
         const float base = static_cast<float>(this->S.StepScale) * smallest;
         const float step = std::max(base, std::abs(f) / (lipschitz * K::SlopeBound));
-        tNext = std::min(t + step, reach);
+        float limit = std::min(reach, t1);
         if (next < n)
         {
-          tNext = std::min(tNext, s.Crossings[next].Enter);
+          limit = std::min(limit, s.Crossings[next].Enter);
+        }
+        tNext = std::min(t + step, limit);
+        // Outside the surface, a longer step where an upper bound of f over
+        // it stays below 0 (past supports that begin on the way, which it
+        // counts): tried to the voxel's end, then over a quarter and a
+        // sixteenth of that.
+        for (float span = t1 - t; f < 0.0f && span > 2.0f * (tNext - t); span *= 0.25f)
+        {
+          if (this->UpperBound(s, next, t, t + span) < 0.0f)
+          {
+            tNext = t + span;
+            break;
+          }
         }
       }
       tNext = std::min(tNext, t1);

@@ -18,6 +18,10 @@
  * - per ray and voxel, the stretches of the ray inside some ball's support:
  *   the field is -T everywhere else, so nothing else is sampled, and each
  *   sample sums only the balls whose support the ray crosses there;
+ * - stretches, whole voxels included, where the balls in reach cannot lift f
+ *   to 0 even at their closest approach to the ray (the sum of
+ *   max(q_i, 0) K(d_i^2 / R_i^2) is below T) are skipped: a dense SPH medium
+ *   below the threshold costs no samples;
  * - the march of the GPU: steps of max(base step, |f| / L), L a bound on
  *   |df/dt| over the balls in reach, base step StepScale times their smallest
  *   radius, steps cut where another support begins; then bisection of the

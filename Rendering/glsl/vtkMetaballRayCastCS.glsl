@@ -13,7 +13,8 @@
 //
 // - each ray starts and ends its march in a voxel (held in shared memory) at
 //   the first and last ball support it crosses there, and skips the voxel
-//   when it crosses none: the field is -T outside the supports;
+//   when it crosses none (the field is -T outside the supports) or when the
+//   balls it crosses cannot lift f to 0 even at their closest approach;
 // - the step follows the field: |f| / L, with L a bound on |grad f| over the
 //   voxel's balls, so a step never jumps over the surface where f changes
 //   fast, and large steps are taken in free space; it never goes below
@@ -378,7 +379,7 @@ void main()
       float tEnd = t1;
       if (marching)
       {
-        float enter = 3.0e38, leave = -3.0e38;
+        float enter = 3.0e38, leave = -3.0e38, peaks = 0.0;
         int k = 0;
         for (; k < int(count); ++k)
         {
@@ -387,16 +388,20 @@ void main()
           float along = dot(oc, dir);
           vec3 across = oc - along * dir;
           float h2 = b.w * b.w - dot(across, across);
-          if (h2 > 0.0)
+          if (h2 > 0.0 && along + sqrt(h2) > t0 && along - sqrt(h2) < t1)
           {
             float h = sqrt(h2);
             enter = min(enter, along - h);
             leave = max(leave, along + h);
+            float slope;
+            peaks += max(sharedStrength[k], 0.0) * psKernel(dot(across, across) / (b.w * b.w), slope);
           }
         }
         if (k == int(count))
         {
-          if (!(max(enter, t0) < min(leave, t1)))
+          // f <= the balls' peaks on the ray (at their closest approach) - T:
+          // below T there is no crossing in this voxel.
+          if (!(max(enter, t0) < min(leave, t1)) || peaks < threshold)
           {
             emptyVisits += 1u;
             tA = t1;
