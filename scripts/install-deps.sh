@@ -21,12 +21,14 @@ packages=(
   # numerics and readers (PCL: kd-trees, PCD files; Ceres: robust fits;
   # OpenMesh: OFF, OBJ, OM and STL meshes; OpenVDB: point grids and level sets)
   libeigen3-dev libpcl-dev libceres-dev libopenmesh-dev libopenvdb-dev
+  # HDF5's C API (Gadget and SWIFT snapshots, through VTK's VTK::hdf5)
+  libhdf5-dev
   # benchmark peers (CGAL's WLOP; PCL's MLS comes with libpcl-dev)
   libcgal-dev
   # headless GL: Mesa llvmpipe through EGL (surfaceless) or GLX under Xvfb
   libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev xvfb xauth
-  # benchmark plots and image metrics (SSIM)
-  python3-matplotlib python3-skimage
+  # benchmark plots, image metrics (SSIM) and k-nearest neighbours (SPH lengths)
+  python3-matplotlib python3-skimage python3-scipy
   # the fuzz preset: clang with libFuzzer and the sanitizer runtimes
   clang libclang-rt-14-dev
   # mpiexec: the ghost-ball test runs over three MPI ranks
