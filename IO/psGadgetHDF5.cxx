@@ -109,11 +109,15 @@ bool ReadHeader(hid_t file, SnapshotHeader& header)
     header.BoxSize[1] = header.BoxSize[2] = header.BoxSize[0];
   }
   ReadNumbers(group.Id, "MassTable", header.MassTable, 6);
+  // Counts as the file says them, when they are counts (a damaged header may
+  // hold anything: NaN, negative, beyond 2^53).
+  auto count = [](double v)
+  { return v >= 0.0 && v < 9007199254740992.0 ? static_cast<long long>(v) : 0LL; };
   double counts[6] = { 0, 0, 0, 0, 0, 0 };
   ReadNumbers(group.Id, "NumPart_ThisFile", counts, 6);
   for (int k = 0; k < 6; ++k)
   {
-    header.NumPartThisFile[k] = static_cast<long long>(counts[k]);
+    header.NumPartThisFile[k] = count(counts[k]);
     counts[k] = 0.0;
   }
   ReadNumbers(group.Id, "NumPart_Total", counts, 6);
@@ -121,8 +125,8 @@ bool ReadHeader(hid_t file, SnapshotHeader& header)
   ReadNumbers(group.Id, "NumPart_Total_HighWord", high, 6);
   for (int k = 0; k < 6; ++k)
   {
-    header.NumPartTotal[k] =
-      static_cast<long long>(counts[k]) + (static_cast<long long>(high[k]) << 32);
+    const long long low = count(counts[k]), top = count(high[k]);
+    header.NumPartTotal[k] = top < (1LL << 21) ? low + top * 4294967296LL : low;
   }
   double files = 1.0;
   ReadNumbers(group.Id, "NumFilesPerSnapshot", &files, 1);
@@ -382,6 +386,8 @@ bool WriteSnapshotFile(const std::string& path,
           H5Dwrite(d.Id, MemoryType(a.Type), H5S_ALL, H5S_ALL, H5P_DEFAULT, a.Bytes.data()) >= 0);
     }
   }
+  // What HDF5 still caches goes to the file now, so that a full disk shows.
+  ok = ok && H5Fflush(file.Id, H5F_SCOPE_GLOBAL) >= 0;
   if (!ok)
   {
     error = path + ": HDF5 could not write every part of the snapshot.";
@@ -511,6 +517,11 @@ Snapshot ReadSnapshot(const std::string& path, int type)
         arrays.end(),
         [&](const SnapshotArray& b)
         { return b.Name == a.Name && b.Type == a.Type && b.Components == a.Components; });
+      if (match == arrays.end() && a.Name == "Coordinates")
+      {
+        out.Error = name + ": its Coordinates differ in type from the snapshot's first file's.";
+        break;
+      }
       if (match == arrays.end())
       {
         out.Warnings.push_back(
@@ -519,6 +530,10 @@ Snapshot ReadSnapshot(const std::string& path, int type)
       }
       a.Bytes.insert(a.Bytes.end(), match->Bytes.begin(), match->Bytes.end());
       kept.push_back(std::move(a));
+    }
+    if (!out.Error.empty())
+    {
+      break;
     }
     out.Arrays = std::move(kept);
     out.Count += count;

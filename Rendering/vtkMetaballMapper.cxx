@@ -798,6 +798,11 @@ bool vtkMetaballMapper::CastOnCPU(vtkMatrix4x4* worldToView,
   pointsurfaces::MetaballCastStatistics stats;
   pointsurfaces::MetaballCastImages& images = in.CastImages;
   pointsurfaces::CastMetaballs(input, settings, images, &stats);
+  if (!stats.Error.empty())
+  {
+    vtkErrorMacro(<< "The CPU ray caster cast nothing: " << stats.Error << ".");
+    return false;
+  }
   this->NumberOfPairs = stats.Pairs;
   this->MaximumBallsPerVoxel = stats.MaxPerVoxel;
   this->NumberOfCulledBalls = stats.Culled;

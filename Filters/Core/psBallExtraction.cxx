@@ -9,6 +9,7 @@
 #include "vtkSMPTools.h"
 
 #include <cmath>
+#include <limits>
 
 namespace pointsurfaces
 {
@@ -81,16 +82,20 @@ BallArrays ExtractBalls(vtkPointSet* input, const BallRule& rule, double scale)
         b.Radii[i] = scale * SupportRadius(radii, i, rule);
         if (weighted)
         {
-          // A zero or negative density or radius gives a non-finite strength
-          // or radius: the ball is invalid, skipped and counted.
+          // A zero, negative or NaN density, or a zero radius, gives a
+          // non-finite strength or radius: the ball is invalid, skipped and
+          // counted.
           double q = strengths ? strengths->GetComponent(i, 0) : 1.0;
           if (densities)
           {
-            q /= densities->GetComponent(i, 0);
+            const double rho = densities->GetComponent(i, 0);
+            q = rho > 0.0 ? q / rho : std::numeric_limits<double>::quiet_NaN();
           }
           if (normalization > 0.0)
           {
-            const double r = b.Radii[i];
+            // The data's radius, not the actor-scaled one: the field keeps
+            // its values (density units) when the actor is scaled.
+            const double r = SupportRadius(radii, i, rule);
             q *= normalization / (r * r * r);
           }
           b.Strengths[i] = q;

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <new>
 
 namespace pointsurfaces
 {
@@ -145,7 +146,7 @@ public:
   const MetaballCastInput& In;
   const MetaballCastSettings& S;
   const ViewBalls& Balls;
-  const std::vector<unsigned int>& Offsets; // tile-major: (tile * slabs + slab)
+  const std::vector<size_t>& Offsets; // tile-major: (tile * slabs + slab)
   const std::vector<unsigned int>& Lists;
   const std::vector<double>& Planes;
   MetaballCastImages& Out;
@@ -498,7 +499,7 @@ public:
         break;
       }
       const size_t voxel = static_cast<size_t>(tile) * slabs + slab;
-      const unsigned int first = this->Offsets[voxel];
+      const size_t first = this->Offsets[voxel];
       const int count = static_cast<int>(this->Offsets[voxel + 1] - first);
       const float d0 = static_cast<float>(this->Planes[slab]);
       const float d1 = static_cast<float>(this->Planes[slab + 1]);
@@ -531,7 +532,7 @@ public:
   }
 
   // The voxel's balls into the thread's structure of arrays.
-  void Load(Scratch& s, unsigned int first, int count) const
+  void Load(Scratch& s, size_t first, int count) const
   {
     if (s.X.size() < static_cast<size_t>(count))
     {
@@ -565,7 +566,7 @@ void BuildGrid(const MetaballCastInput& in,
   int tilesY,
   ViewBalls& balls,
   std::vector<double>& planes,
-  std::vector<unsigned int>& offsets,
+  std::vector<size_t>& offsets,
   std::vector<unsigned int>& lists,
   MetaballCastStatistics& stats)
 {
@@ -656,8 +657,9 @@ void BuildGrid(const MetaballCastInput& in,
   stats.SlabFar = slabFar;
   auto slabOf = [&](double d)
   {
-    const int k = static_cast<int>(std::floor((d - slabNear) / (slabFar - slabNear) * slabs));
-    return std::min(std::max(k, 0), slabs - 1);
+    // Clamped in double first: a cast of a value beyond int is undefined.
+    const double k = std::floor((d - slabNear) / (slabFar - slabNear) * slabs);
+    return static_cast<int>(std::min(std::max(k, 0.0), slabs - 1.0));
   };
   // Each visible ball's voxel range, from its view-space box's projection.
   std::atomic<long long> culled(0);
@@ -717,10 +719,16 @@ void BuildGrid(const MetaballCastInput& in,
             ++out;
             continue;
           }
-          range[0] = std::max(0, static_cast<int>(std::floor(lo[0] / S.TileSize)));
-          range[1] = std::min(tilesX - 1, static_cast<int>(std::floor(hi[0] / S.TileSize)));
-          range[2] = std::max(0, static_cast<int>(std::floor(lo[1] / S.TileSize)));
-          range[3] = std::min(tilesY - 1, static_cast<int>(std::floor(hi[1] / S.TileSize)));
+          // Clamped in double first (a corner just in front of the eye
+          // projects far out; casting beyond int is undefined).
+          auto tileOf = [&S](double p, int tiles) {
+            return static_cast<int>(
+              std::min(std::max(std::floor(p / S.TileSize), 0.0), tiles - 1.0));
+          };
+          range[0] = tileOf(lo[0], tilesX);
+          range[1] = tileOf(hi[0], tilesX);
+          range[2] = tileOf(lo[1], tilesY);
+          range[3] = tileOf(hi[1], tilesY);
         }
         range[4] = slabOf(d - r);
         range[5] = slabOf(d + r);
@@ -748,12 +756,12 @@ void BuildGrid(const MetaballCastInput& in,
   }
   for (size_t v = 0; v < voxels; ++v)
   {
-    stats.MaxPerVoxel = std::max<long long>(stats.MaxPerVoxel, offsets[v + 1]);
+    stats.MaxPerVoxel = std::max(stats.MaxPerVoxel, static_cast<long long>(offsets[v + 1]));
     offsets[v + 1] += offsets[v];
   }
   stats.Pairs = offsets[voxels];
   lists.resize(offsets[voxels]);
-  std::vector<unsigned int> cursor(offsets.begin(), offsets.end() - 1);
+  std::vector<size_t> cursor(offsets.begin(), offsets.end() - 1);
   for (long long i = 0; i < n; ++i)
   {
     const int* r = &balls.Range[6 * i];
@@ -775,7 +783,7 @@ template<class K>
 void CastTiles(const MetaballCastInput& in,
   const MetaballCastSettings& S,
   const ViewBalls& balls,
-  const std::vector<unsigned int>& offsets,
+  const std::vector<size_t>& offsets,
   const std::vector<unsigned int>& lists,
   const std::vector<double>& planes,
   int tilesX,
@@ -826,8 +834,12 @@ void CastMetaballs(const MetaballCastInput& input,
   images.Color.assign(pixels, 0u);
   images.NormalDistance.assign(4 * pixels, 0.0f);
   images.Depth.assign(pixels, 1.0f);
+  if (input.Count > static_cast<long long>(std::numeric_limits<unsigned int>::max()))
+  {
+    stats.Error = "more than 2^32 - 1 balls: ball ids are 32-bit, as on the GPU";
+  }
   if (pixels == 0 || settings.TileSize <= 0 || settings.Slabs <= 0 || input.Count <= 0 ||
-    !input.Balls)
+    !stats.Error.empty() || !input.Balls)
   {
     if (statistics)
     {
@@ -840,36 +852,50 @@ void CastMetaballs(const MetaballCastInput& input,
   const int tilesY = (height + settings.TileSize - 1) / settings.TileSize;
   ViewBalls balls;
   std::vector<double> planes;
-  std::vector<unsigned int> offsets, lists;
-  BuildGrid(input, settings, tilesX, tilesY, balls, planes, offsets, lists, stats);
-  const auto built = Clock::now();
-  switch (input.Kernel)
+  std::vector<size_t> offsets;
+  std::vector<unsigned int> lists;
+  auto built = start;
+  try
   {
-    case MetaballKernel::Quartic:
-      CastTiles<QuarticKernel>(
-        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
-      break;
-    case MetaballKernel::Gaussian:
-      CastTiles<GaussianKernel>(
-        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
-      break;
-    case MetaballKernel::CubicSpline:
-      CastTiles<CubicSplineKernel>(
-        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
-      break;
-    case MetaballKernel::WendlandC2:
-      CastTiles<WendlandC2Kernel>(
-        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
-      break;
-    case MetaballKernel::WendlandC4:
-      CastTiles<WendlandC4Kernel>(
-        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
-      break;
-    case MetaballKernel::Wyvill:
-    default:
-      CastTiles<WyvillKernel>(
-        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
-      break;
+    BuildGrid(input, settings, tilesX, tilesY, balls, planes, offsets, lists, stats);
+    built = Clock::now();
+    switch (input.Kernel)
+    {
+      case MetaballKernel::Quartic:
+        CastTiles<QuarticKernel>(
+          input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+        break;
+      case MetaballKernel::Gaussian:
+        CastTiles<GaussianKernel>(
+          input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+        break;
+      case MetaballKernel::CubicSpline:
+        CastTiles<CubicSplineKernel>(
+          input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+        break;
+      case MetaballKernel::WendlandC2:
+        CastTiles<WendlandC2Kernel>(
+          input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+        break;
+      case MetaballKernel::WendlandC4:
+        CastTiles<WendlandC4Kernel>(
+          input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+        break;
+      case MetaballKernel::Wyvill:
+      default:
+        CastTiles<WyvillKernel>(
+          input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+        break;
+    }
+  }
+  catch (const std::bad_alloc&)
+  {
+    // The grid's (voxel, ball) pairs or the scratch do not fit: no image.
+    stats.Error = "not enough memory for the grid's (voxel, ball) pairs: use fewer slabs or "
+                  "larger tiles";
+    images.Color.assign(pixels, 0u);
+    images.NormalDistance.assign(4 * pixels, 0.0f);
+    images.Depth.assign(pixels, 1.0f);
   }
   const auto done = Clock::now();
   stats.GridSeconds = std::chrono::duration<double>(built - start).count();

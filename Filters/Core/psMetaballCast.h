@@ -40,6 +40,7 @@
 #include "PointSurfacesFiltersModule.h" // For export macro
 #include "psMetaball.h"                 // For MetaballKernel
 
+#include <string> // For the error
 #include <vector> // For the images
 
 namespace pointsurfaces
@@ -96,6 +97,7 @@ struct MetaballCastStatistics
   long long Samples = 0;          ///< field evaluations of the march
   long long BisectionSamples = 0; ///< field evaluations of the bisections
   long long KernelTerms = 0;      ///< kernel evaluations in all of those
+  std::string Error;              ///< why nothing was cast (too many balls, no memory); else empty
   double GridSeconds = 0.0;       ///< wall time of the grid build
   double CastSeconds = 0.0;       ///< wall time of the march
 };

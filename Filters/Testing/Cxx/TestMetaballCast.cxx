@@ -325,6 +325,25 @@ int TestMetaballCast(int, char*[])
       "a ball around the eye: every ray starts inside and finds its surface");
   }
 
+  // A ball whose front lies a float's step in front of the eye: its box
+  // corners project far out of the viewport (tile ranges are clamped before
+  // they become ints), it covers the whole view, and the near plane cuts
+  // into it.
+  {
+    Scene close;
+    close.Add(0.0, 0.0, -(3.0 + 4e-7), 3.0, 1.0);
+    MetaballCastInput in;
+    in.Balls = close.Balls.data();
+    in.Count = 1;
+    MetaballCastImages images;
+    MetaballCastStatistics stats;
+    CastMetaballs(in, MakeSettings(32, 32, false), images, &stats);
+    std::cout << "ball at the eye plane: " << stats.Hits << " hits, " << stats.StartingInside
+              << " rays start inside\n";
+    Check(
+      stats.Culled == 0 && stats.Hits == 32 * 32, "a ball reaching the eye plane covers the view");
+  }
+
   if (Failures == 0)
   {
     std::cout << "metaball CPU caster: all checks passed\n";

@@ -15,8 +15,9 @@
 //   density, has its iso-surface within a/2 of that radius (the reference ray
 //   caster), and the mapper's CPU ray caster finds it where the reference
 //   does, within 1e-3 a;
-// - bad input: a zero density makes its ball invalid; a missing density
-//   array is warned about and ignored.
+// - bad input: a zero or negative density makes its ball invalid; a missing
+//   density array is warned about and ignored; an actor's scale enlarges the
+//   supports but leaves the normalisation (and so the densities) alone.
 #include "psFiltersTestSupport.h"
 #include "psMetaball.h"
 #include "psMetaballCast.h"
@@ -191,6 +192,16 @@ int TestSPHDensity(int, char*[])
       valid += ValidBall(balls.Set, i);
     }
     Check(valid == balls.Set.Count - 1 && !ValidBall(balls.Set, 3), "a zero density: invalid");
+    vtkDoubleArray::SafeDownCast(lattice->GetPointData()->GetArray("Density"))->SetValue(5, -2.0);
+    BallArrays negative = field->ExtractBalls(lattice);
+    Check(!ValidBall(negative.Set, 5), "a negative density: invalid");
+    // An actor's scale enlarges the supports, not the field's values.
+    field->SetDensityArrayName("");
+    BallArrays plain = field->ExtractBalls(lattice), scaled = field->ExtractBalls(lattice, 2.0);
+    Check(scaled.Set.Radii[0] == 2.0 * plain.Set.Radii[0] &&
+        scaled.Set.Strengths[0] == plain.Set.Strengths[0],
+      "the SPH normalisation uses the data's radius, not the actor-scaled one");
+    field->SetDensityArrayName("Density");
     field->SetDensityArrayName("rho");
     BallArrays missing = field->ExtractBalls(lattice);
     const std::string warning = MissingStrengthsWarning(missing, "Masses");

@@ -12,8 +12,9 @@
 // - the real snapshot: 2000 gas particles with SmoothingLength and Density,
 //   Masses from its MassTable, redshift 5.04;
 // - bad input: a missing file, a text file, truncated copies, no Header, no
-//   Coordinates, Coordinates of two columns, a missing part of a split
-//   snapshot: one error each and an empty output.
+//   Coordinates, Coordinates of two columns, parts whose Coordinates differ
+//   in type, a missing part of a split snapshot: one error each and an empty
+//   output.
 #include "psGadgetHDF5.h"
 #include "psIOTestSupport.h"
 #include "vtkFieldData.h"
@@ -279,6 +280,12 @@ int TestGadgetHDF5Reader(int, char*[])
   Write(noneFile, header, { none });
   ExpectReadError<vtkGadgetHDF5Reader>(flatFile, "not a list of 3-D points");
   ExpectReadError<vtkGadgetHDF5Reader>(noneFile, "no Coordinates");
+  // Coordinates of another type in the second file: an error, not points lost.
+  pointsurfaces::SnapshotPart doubles = second;
+  doubles.Arrays[0] =
+    Array("Coordinates", SnapshotArray::Float32, 3, std::vector<float>{ 3, 3, 3, 4, 4, 4 });
+  Write(part1, swift, { doubles });
+  ExpectReadError<vtkGadgetHDF5Reader>(part1, "Coordinates differ in type");
   std::remove(part0.c_str());
   ExpectReadError<vtkGadgetHDF5Reader>(part1, "swift_snap.0.hdf5");
 
