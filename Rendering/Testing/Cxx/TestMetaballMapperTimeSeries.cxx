@@ -6,8 +6,9 @@
 // uploaded once, every frame finds the surface, the grid is rebuilt each
 // time, and nothing grows: the resident memory after the first 20 frames
 // stays within 8 MB (not checked under AddressSanitizer, whose quarantine
-// holds freed memory; the asan preset runs this test for leaks and misuse
-// instead). The per-frame upload, grid and ray-cast times are printed;
+// holds freed memory; the asan preset runs only the unit tests, and
+// TestMetaballCast's time series is the CPU caster's check there). The
+// per-frame upload, grid and ray-cast times are printed;
 // bench_metaball_series.py measures them at full size.
 #include "vtkActor.h"
 #include "vtkCamera.h"
