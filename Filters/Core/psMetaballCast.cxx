@@ -662,6 +662,16 @@ void BuildGrid(const MetaballCastInput& in,
     return static_cast<int>(std::min(std::max(k, 0.0), slabs - 1.0));
   };
   // Each visible ball's voxel range, from its view-space box's projection.
+  double corners[8][4]; // sum over the axes of +-1 times column j of ViewToClip
+  for (int k = 0; k < 8; ++k)
+  {
+    for (int row = 0; row < 4; ++row)
+    {
+      const double* m = S.ViewToClip + 4 * row;
+      corners[k][row] =
+        ((k & 1) ? m[0] : -m[0]) + ((k & 2) ? m[1] : -m[1]) + ((k & 4) ? m[2] : -m[2]);
+    }
+  }
   std::atomic<long long> culled(0);
   vtkSMPTools::For(0,
     n,
@@ -686,13 +696,16 @@ void BuildGrid(const MetaballCastInput& in,
         }
         double lo[2] = { 1e300, 1e300 }, hi[2] = { -1e300, -1e300 };
         bool everywhere = !S.Parallel && d - r <= 0.0;
+        double centre[4];
+        Apply(S.ViewToClip, c, 1.0, centre);
         for (int k = 0; k < 8 && !everywhere; ++k)
         {
-          const double corner[3] = {
-            c[0] + ((k & 1) ? r : -r), c[1] + ((k & 2) ? r : -r), c[2] + ((k & 4) ? r : -r)
-          };
-          double clip[4];
-          Apply(S.ViewToClip, corner, 1.0, clip);
+          // The projection is linear: a corner's clip coordinates are the
+          // centre's plus r times a signed sum of the matrix's columns.
+          const double clip[4] = { centre[0] + r * corners[k][0],
+            centre[1] + r * corners[k][1],
+            centre[2] + r * corners[k][2],
+            centre[3] + r * corners[k][3] };
           if (!(clip[3] > 0.0))
           {
             everywhere = true;
