@@ -98,6 +98,12 @@ def read_step(path, time_value=None):
                  if radius is not None else None)
 
 
+def spacing_radius(xyz):
+    """A support radius for particles without one: about three neighbours inside each."""
+    extent = np.ptp(xyz, axis=0).max()
+    return 1.6 * extent * (3.0 / len(xyz)) ** (1.0 / 3.0) / 2.0
+
+
 class Vortex:
     """Particles falling into a swirling vortex, re-seeded at the top."""
 
@@ -179,9 +185,7 @@ def main():
             speed = None
         if radii is None:
             if args.radius <= 0.0:
-                # About three neighbours inside each support.
-                extent = np.ptp(xyz, axis=0).max()
-                args.radius = 1.6 * extent * (3.0 / len(xyz)) ** (1.0 / 3.0) / 2.0
+                args.radius = spacing_radius(xyz)
             radii = np.full(len(xyz), args.radius)
         # New arrays every step: the mapper sees the change and uploads once.
         points.SetData(numpy_to_vtk(np.ascontiguousarray(xyz), deep=True))

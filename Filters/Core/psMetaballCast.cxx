@@ -872,32 +872,32 @@ void CastMetaballs(const MetaballCastInput& input,
   {
     BuildGrid(input, settings, tilesX, tilesY, balls, planes, offsets, lists, stats);
     built = Clock::now();
+    // One instance of the march per kernel, so that the kernel inlines.
+    auto cast = [&](auto kernel)
+    {
+      CastTiles<decltype(kernel)>(
+        input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+    };
     switch (input.Kernel)
     {
       case MetaballKernel::Quartic:
-        CastTiles<QuarticKernel>(
-          input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+        cast(QuarticKernel{});
         break;
       case MetaballKernel::Gaussian:
-        CastTiles<GaussianKernel>(
-          input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+        cast(GaussianKernel{});
         break;
       case MetaballKernel::CubicSpline:
-        CastTiles<CubicSplineKernel>(
-          input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+        cast(CubicSplineKernel{});
         break;
       case MetaballKernel::WendlandC2:
-        CastTiles<WendlandC2Kernel>(
-          input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+        cast(WendlandC2Kernel{});
         break;
       case MetaballKernel::WendlandC4:
-        CastTiles<WendlandC4Kernel>(
-          input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+        cast(WendlandC4Kernel{});
         break;
       case MetaballKernel::Wyvill:
       default:
-        CastTiles<WyvillKernel>(
-          input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
+        cast(WyvillKernel{});
         break;
     }
   }

@@ -36,7 +36,7 @@ from vtkmodules.vtkCommonDataModel import vtkPolyData  # noqa: E402
 from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow  # noqa: E402
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401,E402
 
-from particle_animation import Vortex, expand_steps, read_step  # noqa: E402
+from particle_animation import Vortex, expand_steps, read_step, spacing_radius  # noqa: E402
 
 
 def resident_mb():
@@ -88,8 +88,7 @@ def main():
             xyz, radii = read_step(*steps[k])
         if radii is None:
             if radius is None:
-                extent = np.ptp(xyz, axis=0).max()
-                radius = 1.6 * extent * (3.0 / len(xyz)) ** (1.0 / 3.0) / 2.0
+                radius = spacing_radius(xyz)
             radii = np.full(len(xyz), radius)
         points = vtkPoints()
         points.SetData(numpy_to_vtk(np.ascontiguousarray(xyz, dtype=np.float64), deep=True))

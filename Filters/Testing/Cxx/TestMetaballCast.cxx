@@ -246,19 +246,10 @@ int TestMetaballCast(int, char*[])
   {
     scene.Add(uni(gen), uni(gen), -5.0 + uni(gen), rad(gen), str(gen));
   }
-  const MetaballKernel kernels[6] = { MetaballKernel::Wyvill,
-    MetaballKernel::Quartic,
-    MetaballKernel::Gaussian,
-    MetaballKernel::CubicSpline,
-    MetaballKernel::WendlandC2,
-    MetaballKernel::WendlandC4 };
-  const char* names[6] = {
-    "Wyvill", "quartic", "Gaussian", "cubic spline", "Wendland C2", "Wendland C4"
-  };
   for (int k = 0; k < 6; ++k)
   {
-    const std::string what = std::string(names[k]) + ", perspective";
-    Check(Compare(scene, kernels[k], MakeSettings(100, 90, false), what.c_str()),
+    const std::string what = std::string(MetaballKernelNames[k]) + ", perspective";
+    Check(Compare(scene, MetaballKernels[k], MakeSettings(100, 90, false), what.c_str()),
       "the CPU caster matches the reference in perspective");
   }
   Check(Compare(scene, MetaballKernel::Wyvill, MakeSettings(96, 80, true), "Wyvill, parallel"),

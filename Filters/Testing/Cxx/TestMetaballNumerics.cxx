@@ -62,15 +62,9 @@ double IsoRadius(MetaballKernel kernel, double R, double T)
 
 int TestMetaballNumerics(int, char*[])
 {
-  const MetaballKernel kernels[6] = { MetaballKernel::Wyvill,
-    MetaballKernel::Quartic,
-    MetaballKernel::Gaussian,
-    MetaballKernel::CubicSpline,
-    MetaballKernel::WendlandC2,
-    MetaballKernel::WendlandC4 };
 
   // Kernels.
-  for (MetaballKernel k : kernels)
+  for (MetaballKernel k : MetaballKernels)
   {
     Check(std::abs(KernelValue(k, 0.0) - 1.0) < 1e-14, "kernel f(0) = 1");
     Check(std::abs(KernelValue(k, 1.0)) < 1e-14 && KernelValue(k, 2.0) == 0.0, "kernel f(1) = 0");
@@ -94,7 +88,7 @@ int TestMetaballNumerics(int, char*[])
   // The SPH kernels: N / R^3 K integrates to 1 over space (midpoint rule in
   // q = r / R), the slope bound is the largest |dK/dq|, and the closed forms
   // of the cubic spline's two pieces and the Wendland polynomials hold.
-  for (MetaballKernel k : kernels)
+  for (MetaballKernel k : MetaballKernels)
   {
     double largest = 0.0;
     for (int i = 1; i < 100000; ++i)
@@ -165,7 +159,7 @@ int TestMetaballNumerics(int, char*[])
     radii[i] = rad(gen);
     strengths[i] = 0.5 + 0.5 * (uni(gen) + 1.0);
   }
-  for (MetaballKernel k : kernels)
+  for (MetaballKernel k : MetaballKernels)
   {
     MetaballSet set;
     set.Centers = centres.data();
@@ -192,7 +186,7 @@ int TestMetaballNumerics(int, char*[])
   }
 
   // Ray casts on single balls: exact iso-spheres, radii 1e-4 to 1e2, offset 1e7 too.
-  for (MetaballKernel k : kernels)
+  for (MetaballKernel k : MetaballKernels)
   {
     for (double R : { 1e-4, 1e-2, 1.0, 1e2 })
     {

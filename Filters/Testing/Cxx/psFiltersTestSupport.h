@@ -1,10 +1,13 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
-// The check counter of the numerics unit tests: Check() reports a failed
-// check by name and counts it; a test returns EXIT_FAILURE when Failures is
-// not zero. One test runs per process, so one counter serves them all.
+// The check counter of the numerics unit tests, and the metaball kernels they
+// loop over: Check() reports a failed check by name and counts it; a test
+// returns EXIT_FAILURE when Failures is not zero. One test runs per process,
+// so one counter serves them all.
 #ifndef psFiltersTestSupport_h
 #define psFiltersTestSupport_h
+
+#include "psMetaball.h"
 
 #include <iostream>
 
@@ -20,9 +23,26 @@ inline void Check(bool ok, const char* what)
     ++Failures;
   }
 }
+/** Every metaball kernel, and a name for each to print. */
+inline constexpr pointsurfaces::MetaballKernel MetaballKernels[6] = {
+  pointsurfaces::MetaballKernel::Wyvill,
+  pointsurfaces::MetaballKernel::Quartic,
+  pointsurfaces::MetaballKernel::Gaussian,
+  pointsurfaces::MetaballKernel::CubicSpline,
+  pointsurfaces::MetaballKernel::WendlandC2,
+  pointsurfaces::MetaballKernel::WendlandC4
+};
+inline constexpr const char* MetaballKernelNames[6] = { "Wyvill",
+  "quartic",
+  "Gaussian",
+  "cubic spline",
+  "Wendland C2",
+  "Wendland C4" };
 } // namespace pstest
 
 using pstest::Check;
 using pstest::Failures;
+using pstest::MetaballKernelNames;
+using pstest::MetaballKernels;
 
 #endif
