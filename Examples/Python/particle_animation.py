@@ -4,7 +4,7 @@
 """Render a particle time series as metaballs, headless, one PNG a frame.
 
     particle_animation.py [INPUT ...] [--out DIR] [--frames N] [--size N]
-                          [--radius R] [--vdb]
+                          [--radius R] [--structure GRO] [--vdb]
 
 INPUT is a time series, one file a step, in the order given (a shell glob
 such as 'steps/*.vtp' sorts them): .vtp or .vtu (any point set; a "Radius"
@@ -12,7 +12,9 @@ point array is used when present), .vdb (OpenVDB point grids, through
 vtkOpenVDBPointsReader; "pscale" is the radius) or .xyz (x y z per line);
 or a trajectory in one file, every frame of which is a step: a LAMMPS dump
 (.lammpstrj, .dump, vtkLAMMPSDumpReader; a "radius" column is the radius)
-or a GROMACS .gro (vtkGromacsGroReader; van der Waals radii of the elements).
+a GROMACS .gro (vtkGromacsGroReader; van der Waals radii of the elements)
+or a GROMACS .xtc (vtkGromacsXtcReader; --structure names a .gro of the same
+atoms, whose elements give the radii).
 With no input, a built-in simulation runs instead: 20 000 particles falling
 into a swirling vortex, coloured by speed.
 
@@ -46,34 +48,40 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 
 # Trajectories whose one file holds every step: their reader and radius array.
 TRAJECTORIES = {".lammpstrj": "vtkLAMMPSDumpReader", ".dump": "vtkLAMMPSDumpReader",
-                ".gro": "vtkGromacsGroReader"}
+                ".gro": "vtkGromacsGroReader", ".xtc": "vtkGromacsXtcReader"}
 
 
-def expand_steps(inputs):
-    """(file, time or None) for each time step: a LAMMPS dump gives one per snapshot."""
+def trajectory_reader(path, structure=None):
+    """The reader of a one-file trajectory; an .xtc takes its atoms' names from `structure`."""
+    reader = getattr(pointsurfaces, TRAJECTORIES[os.path.splitext(path)[1].lower()])()
+    reader.SetFileName(path)
+    if structure and hasattr(reader, "SetStructureFileName"):
+        reader.SetStructureFileName(structure)
+    return reader
+
+
+def expand_steps(inputs, structure=None):
+    """(file, time or None, structure) for each time step: a trajectory gives one per frame."""
     steps = []
     for path in inputs:
-        ext = os.path.splitext(path)[1].lower()
-        if ext in TRAJECTORIES:
-            reader = getattr(pointsurfaces, TRAJECTORIES[ext])()
-            reader.SetFileName(path)
+        if os.path.splitext(path)[1].lower() in TRAJECTORIES:
+            reader = trajectory_reader(path, structure)
             reader.UpdateInformation()
             times = reader.GetOutputInformation(0).Get(
                 vtkStreamingDemandDrivenPipeline.TIME_STEPS()) or ()
-            steps += [(path, t) for t in times]
+            steps += [(path, t, structure) for t in times]
         else:
-            steps.append((path, None))
+            steps.append((path, None, None))
     return steps
 
 
-def read_step(path, time_value=None):
+def read_step(path, time_value=None, structure=None):
     """Centres (n x 3) and radii (n, or None) of one time step."""
     ext = os.path.splitext(path)[1].lower()
     if ext == ".xyz":
         return np.loadtxt(path, ndmin=2)[:, :3], None
     if ext in TRAJECTORIES:
-        reader = getattr(pointsurfaces, TRAJECTORIES[ext])()
-        reader.SetFileName(path)
+        reader = trajectory_reader(path, structure)
         reader.UpdateTimeStep(time_value)
         data = reader.GetOutput()
         if data.GetNumberOfPoints() == 0:
@@ -137,9 +145,10 @@ def main():
     parser.add_argument("--size", type=int, default=640)
     parser.add_argument("--radius", type=float, default=0.0,
                         help="support radius where the data has none (default: from spacing)")
+    parser.add_argument("--structure", help="a .gro of an .xtc's atoms (names, radii)")
     parser.add_argument("--vdb", action="store_true", help="also write OpenVDB level sets")
     args = parser.parse_args()
-    for path in args.inputs:
+    for path in args.inputs + ([args.structure] if args.structure else []):
         if not os.path.exists(path):
             print("particle_animation.py: no such file: " + path)
             return 1
@@ -148,7 +157,7 @@ def main():
     os.makedirs(args.out, exist_ok=True)
 
     vortex = None if args.inputs else Vortex(args.particles)
-    inputs = expand_steps(args.inputs)
+    inputs = expand_steps(args.inputs, args.structure)
     steps = len(inputs) if args.inputs else args.frames
 
     poly = vtkPolyData()

@@ -88,7 +88,7 @@ pxm = servermanager.ProxyManager()
 for proxy in ("AlgebraicSplatFitter", "MultiResolutionSplatBuilder", "SplatErrorMetric"):
     check(pxm.GetPrototypeProxy("filters", proxy) is not None, "filter " + proxy)
 for proxy in ("OpenMeshReader", "OpenVDBPointsReader", "LAMMPSDumpReader", "GromacsGroReader",
-              "GadgetHDF5Reader"):
+              "GromacsXtcReader", "GadgetHDF5Reader"):
     check(pxm.GetPrototypeProxy("sources", proxy) is not None, "reader " + proxy)
 
 # A LAMMPS run's dump, animated over its snapshots.
@@ -107,6 +107,16 @@ gro.UpdatePipeline(0.02)
 check(len(gro.TimestepValues) == 4 and gro.GetDataInformation().GetNumberOfPoints() == 327,
       "the GROMACS trajectory's four frames of 327 atoms")
 Delete(gro)
+gromacs = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "IO", "Testing",
+                       "Data", "gromacs")
+xtc = GROMACSXTCReader(FileName=os.path.join(gromacs, "water_p3.xtc"),
+                       StructureFile=os.path.join(gromacs, "water_traj.gro"))
+xtc.UpdatePipeline(0.04)
+xtc_info = xtc.GetDataInformation()
+check(len(xtc.TimestepValues) == 4 and xtc_info.GetNumberOfPoints() == 327 and
+      xtc_info.GetPointDataInformation().GetArrayInformation("radius") is not None,
+      "the GROMACS .xtc's four frames of 327 atoms, with radii from the .gro")
+Delete(xtc)
 snapshot = GadgetHDF5SnapshotReader(FileNames=[os.path.join(
     os.path.dirname(os.path.abspath(__file__)), "..", "..", "IO", "Testing", "Data", "gadget",
     "lcdm_gas_z5_subset.hdf5")])

@@ -167,6 +167,13 @@ runs = [
                                             "melt.lammpstrj"),
                                "--out", os.path.join(TEMP, "lammps"), "--size", "120"],
      "frames:       6", os.path.join(TEMP, "lammps", "frame_0005.png")),
+    # A GROMACS .xtc, its radii from a .gro of the same atoms: its four frames.
+    ("particle_animation.py", [os.path.join(ROOT, "IO", "Testing", "Data", "gromacs",
+                                            "water_p3.xtc"),
+                               "--structure", os.path.join(ROOT, "IO", "Testing", "Data",
+                                                           "gromacs", "water_traj.gro"),
+                               "--out", os.path.join(TEMP, "xtc"), "--size", "120"],
+     "frames:       4", os.path.join(TEMP, "xtc", "frame_0003.png")),
     ("speed_accuracy_sweep.py", [data_file("hemoglobin_chainA.pdb"), temp("sweep.png"),
                                  "--size", "96", "--steps", "0.4,0.1", "--bisections", "0,5"],
      "sweep:        4 settings", os.path.join(TEMP, "sweep.png")),
