@@ -26,6 +26,9 @@ env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \
   --out "$out/render-bunny-1M"
 env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \
   "$root/Testing/Benchmarks/bench_metaballs.py" --out "$out"
+# The SPH density surface of the Gadget snapshot's gas, at four thresholds.
+env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \
+  "$root/Testing/Benchmarks/bench_sph_density.py" --out "$out"
 # Splat image quality against the mesh: Bunny, Horse, Lucy, six views each.
 env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \
   "$root/Testing/Benchmarks/bench_splat_quality.py" --data "$scans" --out "$out/quality"

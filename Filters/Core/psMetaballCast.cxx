@@ -130,6 +130,19 @@ struct Scratch
   MetaballCastStatistics Stats;
 };
 
+// A block of BlockSize x BlockSize rays of a tile, consecutive in the
+// tile's list of rays, and its four corner rays.
+constexpr int BlockSize = 4;
+// A crowded voxel's depth is cut into this many parts for the field bounds.
+constexpr int BoundParts = 4;
+// Voxels with at least this many balls get field bounds.
+constexpr int BoundMinimumBalls = 32;
+struct Block
+{
+  int Begin = 0, End = 0;
+  int Corners[4] = { 0, 0, 0, 0 };
+};
+
 // A ray of the tile: its geometry and where its search stands.
 struct Ray
 {
@@ -442,6 +455,213 @@ public:
     }
   }
 
+  // Whether f can reach 0 in the view-space box [lo, hi] (the balls of the
+  // voxel loaded in s): the sum over the balls of their positive strength
+  // times the kernel at the box's point nearest the centre, an upper bound
+  // of f + T anywhere in the box, against T.
+  bool Live(Scratch& s, int count, const float lo[3], const float hi[3]) const
+  {
+    float sum = 0.0f;
+    for (int j = 0; j < count; ++j)
+    {
+      const float q = s.Q[j];
+      if (q <= 0.0f)
+      {
+        continue;
+      }
+      const float dx = std::max(std::max(lo[0] - s.X[j], s.X[j] - hi[0]), 0.0f);
+      const float dy = std::max(std::max(lo[1] - s.Y[j], s.Y[j] - hi[1]), 0.0f);
+      const float dz = std::max(std::max(lo[2] - s.Z[j], s.Z[j] - hi[2]), 0.0f);
+      const float x = (dx * dx + dy * dy + dz * dz) * s.InvR2[j];
+      if (x < 1.0f)
+      {
+        float slope;
+        sum += q * K::Value(x, slope);
+        if (sum >= this->Threshold)
+        {
+          s.Stats.KernelTerms += j + 1;
+          return true;
+        }
+      }
+    }
+    s.Stats.KernelTerms += count;
+    return false;
+  }
+
+  // The view-space box around the segments of the block's rays between view
+  // depths da and db: at a given depth a ray's point is affine in its
+  // pixel, so the four corner rays' points bound the others'.
+  static void BlockBox(const std::vector<Ray>& rays,
+    const Block& b,
+    float da,
+    float db,
+    float lo[3],
+    float hi[3])
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      lo[k] = std::numeric_limits<float>::max();
+      hi[k] = -std::numeric_limits<float>::max();
+    }
+    for (int c : b.Corners)
+    {
+      const Ray& ray = rays[c];
+      for (float d : { da, db })
+      {
+        const float t = d / ray.PerDistance;
+        for (int k = 0; k < 3; ++k)
+        {
+          const float v = ray.Origin[k] + t * ray.Dir[k];
+          lo[k] = std::min(lo[k], v);
+          hi[k] = std::max(hi[k], v);
+        }
+      }
+    }
+    // Float rounding must not cut a ball's reach off.
+    for (int k = 0; k < 3; ++k)
+    {
+      const float slack = 1e-5f * (std::abs(lo[k]) + std::abs(hi[k]));
+      lo[k] -= slack;
+      hi[k] += slack;
+    }
+  }
+
+  // A ray's visit of a voxel where f < 0 throughout: nothing to sample.
+  void PassEmpty(Scratch& s, Ray& ray, float t1) const
+  {
+    ++s.Stats.VoxelVisits;
+    ++s.Stats.EmptyVoxelVisits;
+    ray.TA = t1;
+    ray.FA = -this->Threshold;
+    ray.HaveA = true;
+  }
+
+  // The rays of `blocks` [begin, end) (a group of up to 2 x 2 blocks)
+  // through a voxel of `count` balls (loaded in s) between view depths d0
+  // and d1. In a crowded voxel the depth is cut in BoundParts and the field
+  // bounded in each part's box, first around the whole group, then, in the
+  // parts where that bound reaches T, around each block: a block's rays
+  // march only from its first part where the bound reaches T to the end of
+  // its last, and skip the voxel when there is none. SPH gas is the case: a
+  // ray crosses hundreds of supports, mostly where the density is far
+  // below T.
+  void MarchGroup(Scratch& s,
+    std::vector<Ray>& rays,
+    const std::vector<int>& pixels,
+    const std::vector<Block>& blocks,
+    size_t begin,
+    size_t end,
+    int count,
+    float d0,
+    float d1,
+    bool nearSlab) const
+  {
+    bool bounded = count >= BoundMinimumBalls;
+    for (size_t k = begin; k < end && bounded; ++k)
+    {
+      for (int c : blocks[k].Corners)
+      {
+        bounded = bounded && rays[c].PerDistance > 0.0f;
+      }
+    }
+    auto depth = [d0, d1](int part)
+    { return part >= BoundParts ? d1 : d0 + (d1 - d0) * part / BoundParts; };
+    bool groupLive[BoundParts];
+    if (bounded)
+    {
+      bool any = false;
+      for (int part = 0; part < BoundParts; ++part)
+      {
+        float lo[3], hi[3];
+        for (size_t k = begin; k < end; ++k)
+        {
+          float blo[3], bhi[3];
+          BlockBox(rays, blocks[k], depth(part), depth(part + 1), blo, bhi);
+          for (int c = 0; c < 3; ++c)
+          {
+            lo[c] = k == begin ? blo[c] : std::min(lo[c], blo[c]);
+            hi[c] = k == begin ? bhi[c] : std::max(hi[c], bhi[c]);
+          }
+        }
+        groupLive[part] = this->Live(s, count, lo, hi);
+        any = any || groupLive[part];
+      }
+      if (!any)
+      {
+        for (int r = blocks[begin].Begin; r < blocks[end - 1].End; ++r)
+        {
+          if (rays[r].Searching)
+          {
+            this->PassEmpty(s, rays[r], d1 / rays[r].PerDistance);
+          }
+        }
+        return;
+      }
+    }
+    for (size_t k = begin; k < end; ++k)
+    {
+      const Block& b = blocks[k];
+      bool searching = false;
+      for (int r = b.Begin; r < b.End; ++r)
+      {
+        searching = searching || rays[r].Searching;
+      }
+      if (!searching)
+      {
+        continue;
+      }
+      int first = 0, last = BoundParts - 1;
+      if (bounded)
+      {
+        first = -1;
+        for (int part = 0; part < BoundParts; ++part)
+        {
+          float lo[3], hi[3];
+          BlockBox(rays, b, depth(part), depth(part + 1), lo, hi);
+          if (groupLive[part] && this->Live(s, count, lo, hi))
+          {
+            first = first < 0 ? part : first;
+            last = part;
+          }
+        }
+      }
+      const float from = depth(first), to = depth(last + 1);
+      for (int r = b.Begin; r < b.End; ++r)
+      {
+        Ray& ray = rays[r];
+        if (!ray.Searching)
+        {
+          continue;
+        }
+        if (first < 0)
+        {
+          this->PassEmpty(s, ray, d1 / ray.PerDistance);
+          continue;
+        }
+        if (first > 0)
+        {
+          // f < 0 before `from`: the ray arrives there outside.
+          ray.TA = from / ray.PerDistance;
+          ray.FA = -this->Threshold;
+          ray.HaveA = true;
+        }
+        if (!this->MarchVoxel(s,
+              ray,
+              count,
+              from / ray.PerDistance,
+              to / ray.PerDistance,
+              nearSlab && first == 0,
+              pixels[r]) &&
+          last + 1 < BoundParts)
+        {
+          ray.TA = d1 / ray.PerDistance; // and f < 0 after `to`
+          ray.FA = -this->Threshold;
+          ray.HaveA = true;
+        }
+      }
+    }
+  }
+
   void CastTile(int tile) const
   {
     Scratch& s = this->Local.Local();
@@ -452,39 +672,68 @@ public:
     std::vector<Ray> rays;
     rays.reserve(static_cast<size_t>(ts) * ts);
     std::vector<int> pixels;
-    for (int y = y0; y < y1; ++y)
+    std::vector<Block> blocks;
+    std::vector<size_t> groups; // the first block of each group of 2 x 2 blocks, and the end
+    // Rays block by block, blocks group by group: each block's rays, and
+    // each group's blocks, are consecutive.
+    for (int gy = y0; gy < y1; gy += 2 * BlockSize)
     {
-      for (int x = x0; x < x1; ++x)
+      for (int gx = x0; gx < x1; gx += 2 * BlockSize)
       {
-        Ray ray;
-        const double ndc[2] = { (x + 0.5) / this->S.Width * 2.0 - 1.0,
-          (y + 0.5) / this->S.Height * 2.0 - 1.0 };
-        double nearPoint[4], farPoint[4];
-        const double nearClip[3] = { ndc[0], ndc[1], -1.0 }, farClip[3] = { ndc[0], ndc[1], 1.0 };
-        Apply(this->S.ClipToView, nearClip, 1.0, nearPoint);
-        Apply(this->S.ClipToView, farClip, 1.0, farPoint);
-        double dir[3], norm = 0.0;
-        for (int k = 0; k < 3; ++k)
+        groups.push_back(blocks.size());
+        for (int by = gy; by < std::min(gy + 2 * BlockSize, y1); by += BlockSize)
         {
-          nearPoint[k] /= nearPoint[3];
-          farPoint[k] /= farPoint[3];
-          dir[k] = farPoint[k] - nearPoint[k];
-          norm += dir[k] * dir[k];
+          for (int bx = gx; bx < std::min(gx + 2 * BlockSize, x1); bx += BlockSize)
+          {
+            Block block;
+            block.Begin = static_cast<int>(rays.size());
+            const int bx1 = std::min(bx + BlockSize, x1), by1 = std::min(by + BlockSize, y1);
+            for (int y = by; y < by1; ++y)
+            {
+              for (int x = bx; x < bx1; ++x)
+              {
+                Ray ray;
+                const double ndc[2] = { (x + 0.5) / this->S.Width * 2.0 - 1.0,
+                  (y + 0.5) / this->S.Height * 2.0 - 1.0 };
+                double nearPoint[4], farPoint[4];
+                const double nearClip[3] = { ndc[0], ndc[1], -1.0 },
+                             farClip[3] = { ndc[0], ndc[1], 1.0 };
+                Apply(this->S.ClipToView, nearClip, 1.0, nearPoint);
+                Apply(this->S.ClipToView, farClip, 1.0, farPoint);
+                double dir[3], norm = 0.0;
+                for (int k = 0; k < 3; ++k)
+                {
+                  nearPoint[k] /= nearPoint[3];
+                  farPoint[k] /= farPoint[3];
+                  dir[k] = farPoint[k] - nearPoint[k];
+                  norm += dir[k] * dir[k];
+                }
+                norm = std::sqrt(norm);
+                for (int k = 0; k < 3; ++k)
+                {
+                  ray.Dir[k] = static_cast<float>(dir[k] / norm);
+                }
+                ray.Origin[0] = this->S.Parallel ? static_cast<float>(nearPoint[0]) : 0.0f;
+                ray.Origin[1] = this->S.Parallel ? static_cast<float>(nearPoint[1]) : 0.0f;
+                ray.Origin[2] = 0.0f;
+                ray.PerDistance = -ray.Dir[2];
+                ray.Searching = ray.PerDistance > 0.0f;
+                rays.push_back(ray);
+                pixels.push_back(y * this->S.Width + x);
+              }
+            }
+            block.End = static_cast<int>(rays.size());
+            const int w = bx1 - bx;
+            block.Corners[0] = block.Begin;
+            block.Corners[1] = block.Begin + w - 1;
+            block.Corners[2] = block.End - w;
+            block.Corners[3] = block.End - 1;
+            blocks.push_back(block);
+          }
         }
-        norm = std::sqrt(norm);
-        for (int k = 0; k < 3; ++k)
-        {
-          ray.Dir[k] = static_cast<float>(dir[k] / norm);
-        }
-        ray.Origin[0] = this->S.Parallel ? static_cast<float>(nearPoint[0]) : 0.0f;
-        ray.Origin[1] = this->S.Parallel ? static_cast<float>(nearPoint[1]) : 0.0f;
-        ray.Origin[2] = 0.0f;
-        ray.PerDistance = -ray.Dir[2];
-        ray.Searching = ray.PerDistance > 0.0f;
-        rays.push_back(ray);
-        pixels.push_back(y * this->S.Width + x);
       }
     }
+    groups.push_back(blocks.size());
     s.Stats.Rays += static_cast<long long>(rays.size());
     const int slabs = this->S.Slabs;
     for (int slab = 0; slab < slabs; ++slab)
@@ -519,14 +768,10 @@ public:
         continue;
       }
       this->Load(s, first, count);
-      for (size_t r = 0; r < rays.size(); ++r)
+      for (size_t g = 0; g + 1 < groups.size(); ++g)
       {
-        Ray& ray = rays[r];
-        if (ray.Searching)
-        {
-          this->MarchVoxel(
-            s, ray, count, d0 / ray.PerDistance, d1 / ray.PerDistance, slab == 0, pixels[r]);
-        }
+        this->MarchGroup(
+          s, rays, pixels, blocks, groups[g], groups[g + 1], count, d0, d1, slab == 0);
       }
     }
   }

@@ -22,6 +22,15 @@
  *   to 0 even at their closest approach to the ray (the sum of
  *   max(q_i, 0) K(d_i^2 / R_i^2) is below T) are skipped: a dense SPH medium
  *   below the threshold costs no samples;
+ * - in a crowded voxel (32 balls or more) the field is bounded before any
+ *   ray marches: the voxel's depth is cut in 4 parts, and in the box around
+ *   each part of an 8 x 8 pixel group, then of each 4 x 4 block, the sum of
+ *   max(q_i, 0) K at the box's point nearest each centre bounds f + T. A
+ *   block's rays march only from its first part whose bound reaches T to
+ *   the end of its last, and skip the voxel when none does: in SPH gas a
+ *   ray crosses hundreds of supports, mostly where the density is far
+ *   below T, and finding its crossings and closest approaches cost more
+ *   than the bounds;
  * - the march of the GPU: steps of max(base step, |f| / L), L a bound on
  *   |df/dt| over the balls in reach, base step StepScale times their smallest
  *   radius, steps cut where another support begins; then bisection of the

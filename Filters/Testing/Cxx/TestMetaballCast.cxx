@@ -272,6 +272,33 @@ int TestMetaballCast(int, char*[])
       "the CPU caster matches the reference on crowded balls of spread radii");
   }
 
+  // SPH gas: 400 cubic-spline supports overlapping in a Gaussian cloud, the
+  // threshold crossed only in its core. Crowded voxels (at least 32 balls)
+  // are bounded part by part; rays skip the parts where the bound stays
+  // below T and must still find the same surface.
+  {
+    Scene gas;
+    std::normal_distribution<double> cloud(0.0, 0.4);
+    for (int i = 0; i < 400; ++i)
+    {
+      gas.Add(cloud(gen), cloud(gen), -5.0 + cloud(gen), 0.5, 0.08);
+    }
+    MetaballCastStatistics probe;
+    MetaballCastInput in;
+    in.Balls = gas.Balls.data();
+    in.Strengths = gas.Q.data();
+    in.Count = 400;
+    in.Kernel = MetaballKernel::CubicSpline;
+    MetaballCastImages images;
+    CastMetaballs(in, MakeSettings(64, 64, false), images, &probe);
+    Check(probe.MaxPerVoxel >= 64, "the gas crowds its voxels (their field is bounded)");
+    Check(Compare(gas, MetaballKernel::CubicSpline, MakeSettings(64, 64, false), "SPH gas"),
+      "the CPU caster matches the reference in overlapping SPH supports");
+    Check(
+      Compare(gas, MetaballKernel::CubicSpline, MakeSettings(64, 64, true), "SPH gas, parallel"),
+      "the CPU caster matches the reference in overlapping SPH supports, parallel projection");
+  }
+
   // Bad input: skipped and counted; the rest drawn.
   {
     Scene bad = scene;
