@@ -12,7 +12,12 @@
 #ifndef psReaderTime_h
 #define psReaderTime_h
 
+#include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
+#include "vtkNew.h"
 #include "vtkObject.h"
 #include "vtkSetGet.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
@@ -174,6 +179,32 @@ struct FrameIndex
     return pick;
   }
 };
+
+/**
+ * A frame's field data, as the GROMACS readers write it: `Time`, `Step` and,
+ * when given, `Box` (nine numbers); and the output's DATA_TIME_STEP.
+ */
+inline void StampFrame(vtkDataObject* output, double time, long long step, const double* box)
+{
+  vtkFieldData* fd = output->GetFieldData();
+  vtkNew<vtkDoubleArray> t;
+  t->SetName("Time");
+  t->InsertNextValue(time);
+  fd->AddArray(t);
+  vtkNew<vtkIdTypeArray> s;
+  s->SetName("Step");
+  s->InsertNextValue(static_cast<vtkIdType>(step));
+  fd->AddArray(s);
+  if (box)
+  {
+    vtkNew<vtkDoubleArray> b;
+    b->SetName("Box");
+    b->SetNumberOfComponents(9);
+    b->InsertNextTypedTuple(box);
+    fd->AddArray(b);
+  }
+  output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), time);
+}
 
 /**
  * Whether this update asks for a piece other than the first: a text

@@ -6,8 +6,6 @@
 #include "psReaderTime.h"
 
 #include "vtkDoubleArray.h"
-#include "vtkFieldData.h"
-#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
@@ -161,21 +159,7 @@ int vtkGromacsGroReader::RequestData(vtkInformation*,
     std::copy(frame.Velocities.begin(), frame.Velocities.end(), v->GetPointer(0));
     pd->AddArray(v);
   }
-  vtkFieldData* fd = output->GetFieldData();
-  vtkNew<vtkDoubleArray> time;
-  time->SetName("Time");
-  time->InsertNextValue(where.Time);
-  fd->AddArray(time);
-  vtkNew<vtkIdTypeArray> step;
-  step->SetName("Step");
-  step->InsertNextValue(static_cast<vtkIdType>(where.Step));
-  fd->AddArray(step);
-  vtkNew<vtkDoubleArray> box;
-  box->SetName("Box");
-  box->SetNumberOfComponents(9);
-  box->InsertNextTypedTuple(frame.Box);
-  fd->AddArray(box);
-  output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), where.Time);
+  pointsurfaces::StampFrame(output, where.Time, where.Step, frame.Box);
   return 1;
 }
 

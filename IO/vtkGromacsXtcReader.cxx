@@ -10,7 +10,6 @@
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkGromacsGroReader.h"
-#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
@@ -165,25 +164,11 @@ int vtkGromacsXtcReader::RequestData(vtkInformation*,
     pd->AddArray(atomid);
   }
 
-  vtkFieldData* fd = output->GetFieldData();
-  vtkNew<vtkDoubleArray> time;
-  time->SetName("Time");
-  time->InsertNextValue(where.Time);
-  fd->AddArray(time);
-  vtkNew<vtkIdTypeArray> step;
-  step->SetName("Step");
-  step->InsertNextValue(static_cast<vtkIdType>(where.Step));
-  fd->AddArray(step);
-  vtkNew<vtkDoubleArray> box;
-  box->SetName("Box");
-  box->SetNumberOfComponents(9);
-  box->InsertNextTypedTuple(where.Box);
-  fd->AddArray(box);
+  pointsurfaces::StampFrame(output, where.Time, where.Step, where.Box);
   vtkNew<vtkDoubleArray> precision;
   precision->SetName("Precision");
   precision->InsertNextValue(where.Precision);
-  fd->AddArray(precision);
-  output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), where.Time);
+  output->GetFieldData()->AddArray(precision);
   return 1;
 }
 
