@@ -18,7 +18,6 @@ from the first to the last quarter of the series, and the growth of resident
 memory after the first tenth. Writes <out>/series.csv and <out>/series.png.
 """
 import argparse
-import csv
 import os
 import statistics
 import sys
@@ -37,6 +36,7 @@ from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow  
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401,E402
 
 from particle_animation import Vortex, expand_steps, read_step, spacing_radius  # noqa: E402
+from bench_csv import write_rows  # noqa: E402
 
 
 def resident_mb():
@@ -114,14 +114,7 @@ def main():
                          resident_mb="%.1f" % resident_mb(),
                          caster="cpu" if mapper.GetRayCasterInUse() == mapper.CPU else "gpu"))
 
-    fields = list(rows[0].keys())
-    with open(os.path.join(args.out, "series.csv"), "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=fields)
-        writer.writeheader()
-        writer.writerows(rows)
-    writer = csv.DictWriter(sys.stdout, fieldnames=fields)
-    writer.writeheader()
-    writer.writerows(rows)
+    write_rows(os.path.join(args.out, "series.csv"), rows)
 
     def column(name, part=slice(None)):
         return [float(r[name]) for r in rows[part]]

@@ -23,7 +23,6 @@ gadget4_lcdm_gas_z5.hdf5; --smoke reads the committed 2000-particle subset
 at 96x96.
 """
 import argparse
-import csv
 import os
 import sys
 
@@ -36,6 +35,7 @@ from vtkmodules.vtkRenderingCore import vtkActor
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+from bench_csv import write_rows  # noqa: E402
 from bench_metaballs import LONE_ISO, Scene, imposters, material  # noqa: E402
 
 SNAPSHOT = os.path.join(HERE, "..", "..", "..", "shared", "data", "particles",
@@ -107,14 +107,7 @@ def main():
                          cast_ms="%.1f" % mapper.GetRayCastTime(),
                          imposters_ms="%.1f" % yardstick,
                          vs_imposters="%.1f" % (ms / yardstick), **stats))
-    fields = list(rows[0].keys())
-    with open(os.path.join(args.out, "sph_density.csv"), "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=fields)
-        writer.writeheader()
-        writer.writerows(rows)
-    writer = csv.DictWriter(sys.stdout, fieldnames=fields)
-    writer.writeheader()
-    writer.writerows(rows)
+    write_rows(os.path.join(args.out, "sph_density.csv"), rows)
     return 0
 
 

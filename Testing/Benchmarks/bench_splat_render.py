@@ -51,6 +51,7 @@ import time
 import numpy as np
 
 import pointsurfaces  # noqa: F401  (registers the EGL window factory)
+from bench_csv import write_rows
 from pointsurfaces import vtkAlgebraicSplatFitter, vtkAlgebraicSplatMapper
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints, vtkUnsignedCharArray
@@ -350,13 +351,7 @@ def main():
               "primitive_fraction",
               "frame_ms", "time_vs_gaussian", "rmse", "gpu_bytes_per_primitive"]
     path = os.path.join(args.out, "splat_render.csv")
-    with open(path, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=fields)
-        writer.writeheader()
-        writer.writerows(rows)
-    writer = csv.DictWriter(sys.stdout, fieldnames=fields)
-    writer.writeheader()
-    writer.writerows(rows)
+    write_rows(path, rows, fields)
     equal = equal_error(rows)
     with open(os.path.join(args.out, "splat_render_equal_error.csv"), "w", newline="") as f:
         eq_writer = csv.DictWriter(f, fieldnames=list(equal[0].keys()) if equal else ["size"])
