@@ -7,7 +7,9 @@ For each input (scattered balls at N = 10K, 100K and 1M; the halo, HYG-star
 and solvated-protein sets of ../shared/data; the halo as SPH gas, each
 particle's radius its smoothing length from its 32 nearest neighbours, spread
 over 30x; the gas of a Gadget-4 snapshot, radius its smoothing length; a
-coarse-grained vesicle of two bead leaflets (made by the script); a sparse
+coarse-grained vesicle of two bead leaflets (made by the script); the SDS
+surfactant monolayers of LAMMPS's CG-SDK example (from Debian's
+lammps-examples, skipped without it); a sparse
 liquid, SPC water from a GROMACS run, and a Lennard-Jones
 melt from a LAMMPS run, both committed under IO/Testing/Data) the same window
 draws:
@@ -144,6 +146,37 @@ def load(name, smoke):
                                                       np.cos(polar)]))
         xyz = np.vstack(leaflets) + rng.normal(0.0, 0.1, size=(sum(map(len, leaflets)), 3))
         return xyz, np.full(len(xyz), 1.2)
+    if name == "sds-monolayer":
+        # A coarse-grained membrane from a real simulation: the two SDS
+        # surfactant monolayers (SDK force field: SO4, CM and CT beads, and
+        # the sodium ions) of LAMMPS's CG-SDK example, its equilibrated data
+        # file as Debian's lammps-examples package ships it (not committed:
+        # the scene is skipped without that package). The CG water is left
+        # out, as a membrane's solvent is hidden. Support radius: the bead
+        # type's LJ sigma (4.1 to 4.6 Angstrom), so that a lone bead shows
+        # at about half of it.
+        path = "/usr/share/lammps/examples/PACKAGES/cgsdk/sds-monolayer/data.sds.gz"
+        if not os.path.exists(path):
+            return None, None
+        import gzip
+        sigma = {1: 4.321, 2: 4.506, 3: 4.585, 4: 4.371}
+        xyz, radius = [], []
+        with gzip.open(path, "rt") as f:
+            section = None
+            for line in f:
+                words = line.split()
+                if not words:
+                    continue
+                if words[0][0].isalpha():
+                    section = words[0]
+                    continue
+                if section == "Atoms" and int(words[2]) in sigma:
+                    xyz.append([float(v) for v in words[4:7]])
+                    radius.append(sigma[int(words[2])])
+        xyz, radius = np.array(xyz), np.array(radius)
+        if smoke:
+            xyz, radius = xyz[:2000], radius[:2000]
+        return xyz, radius
     if name == "gadget-gas":
         # SPH gas of a Gadget-4 cosmological snapshot (z = 5), the radius its
         # smoothing length (Gadget's: the kernel's support).
@@ -301,7 +334,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("inputs", nargs="*", default=[
         "scattered-10K", "scattered-100K", "scattered-1M", "halo", "hyg-stars", "adk-solvated",
-        "halo-sph", "gadget-gas", "water-gro", "lammps-melt", "vesicle"])
+        "halo-sph", "gadget-gas", "water-gro", "lammps-melt", "vesicle", "sds-monolayer"])
     parser.add_argument("--out", default="bench-results")
     parser.add_argument("--frames", type=int, default=3)
     parser.add_argument("--smoke", action="store_true")
@@ -313,6 +346,9 @@ def main():
     rows = []
     for name in args.inputs:
         centres, radii = load(name, args.smoke)
+        if centres is None:
+            print("# %s: its data is not installed here, skipped" % name, file=sys.stderr)
+            continue
         centres = np.asarray(centres, dtype=np.float64).reshape(-1, 3)
         radii = np.asarray(radii, dtype=np.float64).ravel()
         n = len(centres)
