@@ -319,6 +319,12 @@ bool Decode(const unsigned char* data,
       "the coded block claims " + std::to_string(bytes) + " bytes, the frame has " +
         std::to_string(size - BlockHeaderBytes));
   }
+  // Every atom takes at least two bits: a damaged count must not allocate.
+  if (natoms > 4 * bytes || static_cast<unsigned long long>(natoms) > positions.max_size() / 3)
+  {
+    return Fail(error,
+      std::to_string(natoms) + " atoms cannot fit in " + std::to_string(bytes) + " coded bytes");
+  }
   BitReader reader(data + BlockHeaderBytes, static_cast<std::size_t>(bytes));
 
   std::int64_t smaller = MagicInts[std::max(FirstIndex, smallIndex - 1)] / 2;
@@ -329,6 +335,10 @@ bool Decode(const unsigned char* data,
   positions.resize(static_cast<std::size_t>(3 * natoms));
   float* out = positions.data();
   const float inverse = 1.0f / precision;
+  if (!std::isfinite(2147483648.0f * inverse))
+  {
+    return Fail(error, "the precision " + std::to_string(precision) + " is too small");
+  }
   auto emit = [&out, inverse](const std::int64_t c[3])
   {
     for (int k = 0; k < 3; ++k)
@@ -557,9 +567,11 @@ std::vector<XtcFrameInfo> ScanXtc(std::istream& in, std::string& error)
       }
       f.Precision = Float(header + HeaderBytes);
       const std::int64_t bytes = Int(header + HeaderBytes + 32);
-      if (bytes < 0)
+      if (bytes < 0 || f.NumberOfAtoms > 4 * bytes)
       {
-        error = where + " claims " + std::to_string(bytes) + " coded bytes";
+        // Every atom takes at least two bits of the coded bytes.
+        error = where + " claims " + std::to_string(f.NumberOfAtoms) + " atoms in " +
+          std::to_string(bytes) + " coded bytes";
         return frames;
       }
       size = HeaderBytes + static_cast<std::int64_t>(BlockHeaderBytes) + (bytes + 3) / 4 * 4;
@@ -584,7 +596,9 @@ bool ReadXtcFrame(std::istream& in,
   std::string& error)
 {
   positions.clear();
-  if (where.Size < HeaderBytes || where.NumberOfAtoms <= 0)
+  if (where.Size < HeaderBytes || where.NumberOfAtoms <= 0 ||
+    (where.NumberOfAtoms <= MaxUncompressedAtoms &&
+      where.Size != HeaderBytes + 12 * where.NumberOfAtoms))
   {
     return Fail(error, "the frame was not indexed");
   }

@@ -27,7 +27,10 @@
  * GROMACS itself decodes (`gmx trjconv -o .g96`, 9 decimals).
  *
  * ScanXtc() indexes the frames from their headers without decoding them;
- * ReadXtcFrame() decodes one.
+ * ReadXtcFrame() decodes one. Not read: the 64-bit frames (magic 2023) that
+ * GROMACS 2023 and later write for systems of hundreds of millions of atoms,
+ * and a small-difference size index of 73, past the end of the format's
+ * table (GROMACS's encoder can reach it at precisions of 1e7 and finer).
  */
 #ifndef psGromacsXtc_h
 #define psGromacsXtc_h

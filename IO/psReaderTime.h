@@ -36,19 +36,25 @@ struct FrameIndex
 {
   std::string File;
   long long Modified = -1;
+  long long Size = -1;
   std::vector<Frame> Frames;
 
-  /** Whether `file` must be scanned (again): another file, or changed since. */
+  /**
+   * Whether `file` must be scanned (again): another file, or changed since
+   * (its modification time, whole seconds, or its size).
+   */
   bool Stale(const std::string& file) const
   {
     return file != this->File ||
-      static_cast<long long>(vtksys::SystemTools::ModifiedTime(file)) != this->Modified;
+      static_cast<long long>(vtksys::SystemTools::ModifiedTime(file)) != this->Modified ||
+      static_cast<long long>(vtksys::SystemTools::FileLength(file)) != this->Size;
   }
   /** Remember that `file` was scanned into Frames. */
   void Scanned(const std::string& file)
   {
     this->File = file;
     this->Modified = static_cast<long long>(vtksys::SystemTools::ModifiedTime(file));
+    this->Size = static_cast<long long>(vtksys::SystemTools::FileLength(file));
   }
   /**
    * Order the frames by time, keeping the last of frames with equal times

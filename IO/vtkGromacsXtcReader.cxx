@@ -20,8 +20,11 @@
 #include "vtkPolyData.h"
 #include "vtkSplatDataModel.h"
 
+#include "vtksys/SystemTools.hxx"
+
 #include <algorithm>
 #include <fstream>
+#include <new>
 
 vtkStandardNewMacro(vtkGromacsXtcReader);
 
@@ -33,6 +36,8 @@ struct vtkGromacsXtcReader::Internals
   vtkNew<vtkGromacsGroReader> Structure;
   vtkNew<vtkCallbackCommand> StructureErrors;
   std::string StructureError;
+  std::string StructureFile; // the structure file last read, its modification time and size
+  long long StructureStamp[2] = { -1, -1 };
   std::vector<float> Positions; // scratch, kept from frame to frame
 
   Internals()
@@ -106,8 +111,21 @@ int vtkGromacsXtcReader::RequestData(vtkInformation*,
   vtkPolyData* structure = nullptr;
   if (!this->StructureFileName.empty())
   {
-    internal.StructureError.clear();
-    internal.Structure->SetFileName(this->StructureFileName.c_str());
+    // Read again when the file changed on disk, or failed last time.
+    const long long stamp[2] = { static_cast<long long>(
+                                   vtksys::SystemTools::ModifiedTime(this->StructureFileName)),
+      static_cast<long long>(vtksys::SystemTools::FileLength(this->StructureFileName)) };
+    if (this->StructureFileName != internal.StructureFile ||
+      stamp[0] != internal.StructureStamp[0] || stamp[1] != internal.StructureStamp[1] ||
+      !internal.StructureError.empty())
+    {
+      internal.StructureError.clear();
+      internal.StructureFile = this->StructureFileName;
+      internal.StructureStamp[0] = stamp[0];
+      internal.StructureStamp[1] = stamp[1];
+      internal.Structure->SetFileName(this->StructureFileName.c_str());
+      internal.Structure->Modified();
+    }
     internal.Structure->Update();
     structure = internal.Structure->GetOutput();
     if (!internal.StructureError.empty() || structure->GetNumberOfPoints() != n)
@@ -124,7 +142,16 @@ int vtkGromacsXtcReader::RequestData(vtkInformation*,
 
   std::ifstream in(this->FileName, std::ios::binary);
   std::string error;
-  if (!in || !pointsurfaces::ReadXtcFrame(in, where, internal.Positions, error))
+  bool read = false;
+  try
+  {
+    read = in && pointsurfaces::ReadXtcFrame(in, where, internal.Positions, error);
+  }
+  catch (const std::bad_alloc&)
+  {
+    error = "not enough memory for " + std::to_string(n) + " atoms";
+  }
+  if (!read)
   {
     vtkErrorMacro(<< "Cannot read the frame at t = " << where.Time << " ps of " << this->FileName
                   << ": " << (error.empty() ? "cannot open it" : error) << ".");

@@ -181,6 +181,25 @@ int TestGromacsXtcReader(int, char*[])
       "a structure file of other atoms: an error and an empty output");
   }
 
+  {
+    // A structure file that fails, then is mended on disk: read again.
+    const std::string gro = Write(temp + "/structure.gro", "not a structure\n");
+    vtkNew<vtkGromacsXtcReader> reader;
+    vtkNew<vtkTest::ErrorObserver> errors;
+    reader->AddObserver(vtkCommand::ErrorEvent, errors);
+    reader->SetFileName(p3.c_str());
+    reader->SetStructureFileName(gro.c_str());
+    reader->Update();
+    Check(errors->GetError() && reader->GetOutput()->GetNumberOfPoints() == 0,
+      "a structure file that cannot be read: an error and an empty output");
+    Write(gro, Slurp(data + "/water_traj.gro"));
+    reader->Modified(); // what ParaView's Reload Files does
+    reader->Update();
+    Check(reader->GetOutput()->GetNumberOfPoints() == 327 &&
+        reader->GetOutput()->GetPointData()->GetArray("radius") != nullptr,
+      "the mended structure file is read again");
+  }
+
   // Damage found while indexing.
   const std::string bytes = Slurp(p3);
   std::vector<pointsurfaces::XtcFrameInfo> frames;
@@ -227,6 +246,15 @@ int TestGromacsXtcReader(int, char*[])
     patched("bytes.xtc", block + 32, std::string("\x7f\x00\x00\x00", 4)), "truncated");
   ExpectReadError<vtkGromacsXtcReader>(
     patched("time.xtc", 12, std::string("\x7f\xc0\x00\x00", 4)), "not a finite number");
+  {
+    // 2^31 - 1 atoms in both counts: refused before anything is allocated.
+    std::string b = bytes.substr(0, static_cast<size_t>(frames[0].Size));
+    b.replace(4, 4, std::string("\x7f\xff\xff\xff", 4));
+    b.replace(52, 4, std::string("\x7f\xff\xff\xff", 4));
+    ExpectReadError<vtkGromacsXtcReader>(Write(temp + "/giant.xtc", b), "coded bytes");
+  }
+  ExpectReadError<vtkGromacsXtcReader>(
+    patched("tiny-precision.xtc", block, std::string("\x00\x00\x00\x01", 4)), "too small");
   // Damage found while decoding: the frame's output is empty.
   ExpectReadError<vtkGromacsXtcReader>(
     patched("smallidx.xtc", block + 28, std::string("\x00\x00\x00\x50", 4)), "size index");
