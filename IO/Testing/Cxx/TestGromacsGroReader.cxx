@@ -22,7 +22,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
@@ -30,12 +29,6 @@ using namespace pointsurfaces_test;
 
 namespace
 {
-std::string Write(const std::string& path, const std::string& text)
-{
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
-
 std::string StringAt(vtkPolyData* pd, const char* name, vtkIdType k)
 {
   auto* a = vtkStringArray::SafeDownCast(pd->GetPointData()->GetAbstractArray(name));
@@ -138,9 +131,7 @@ int TestGromacsGroReader(int, char*[])
   Check(m->GetFieldData()->GetArray("Time")->GetTuple1(0) == 0.0, "no t= in the title: time 0");
 
   // Damage.
-  std::ifstream whole(traj, std::ios::binary);
-  const std::string bytes(
-    (std::istreambuf_iterator<char>(whole)), std::istreambuf_iterator<char>());
+  const std::string bytes = Slurp(traj);
   const std::string cut = Write(temp + "/cut.gro", bytes.substr(0, bytes.size() * 5 / 8));
   {
     vtkNew<vtkGromacsGroReader> r;

@@ -24,7 +24,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <iterator>
 #include <random>
 #include <sstream>
 #include <string>
@@ -66,18 +65,6 @@ std::vector<G96Frame> ReadG96(const std::string& path)
     }
   }
   return frames;
-}
-
-std::string Slurp(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-std::string Write(const std::string& path, const std::string& bytes)
-{
-  std::ofstream(path, std::ios::binary) << bytes;
-  return path;
 }
 
 // Every frame of `xtc` against `g96`: times, steps and positions within `tolerance` nm.

@@ -77,12 +77,6 @@ vtkPolyData* ReadAt(vtkLAMMPSDumpReader* reader, double time)
   reader->UpdateTimeStep(time);
   return reader->GetOutput();
 }
-
-std::string Write(const std::string& path, const std::string& text)
-{
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
 } // namespace
 
 int TestLAMMPSDumpReader(int, char*[])
@@ -195,9 +189,7 @@ int TestLAMMPSDumpReader(int, char*[])
     "BoxTilt holds xy xz yz");
 
   // Damage. Truncated after three and a half snapshots: an error, three snapshots offered.
-  std::ifstream whole(melt, std::ios::binary);
-  const std::string bytes(
-    (std::istreambuf_iterator<char>(whole)), std::istreambuf_iterator<char>());
+  const std::string bytes = Slurp(melt);
   const std::string cut = Write(temp + "/cut.lammpstrj", bytes.substr(0, bytes.size() * 7 / 12));
   {
     vtkNew<vtkLAMMPSDumpReader> r;

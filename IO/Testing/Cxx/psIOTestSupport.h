@@ -21,7 +21,9 @@
 #include "vtkSmartPointer.h"
 #include "vtkTestErrorObserver.h"
 
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -39,6 +41,20 @@ inline void Check(bool ok, const std::string& what)
     std::cerr << "FAILED: " << what << "\n";
     ++Failures;
   }
+}
+
+/** Writes `bytes` to the file `path`; returns `path`. */
+inline std::string Write(const std::string& path, const std::string& bytes)
+{
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+/** The bytes of the file `path` (empty when it cannot be read). */
+inline std::string Slurp(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 /** vtkCallbackCommand callbacks for ErrorEvent and WarningEvent. */
