@@ -558,6 +558,15 @@ public:
     float d1,
     bool nearSlab) const
   {
+    bool searching = false;
+    for (int r = blocks[begin].Begin; r < blocks[end - 1].End && !searching; ++r)
+    {
+      searching = rays[r].Searching;
+    }
+    if (!searching)
+    {
+      return; // every ray of the group has hit: no bounds to take
+    }
     bool bounded = count >= BoundMinimumBalls;
     for (size_t k = begin; k < end && bounded; ++k)
     {
