@@ -30,32 +30,39 @@
 
 namespace pointsurfaces
 {
-/** A scanned file: its name, modification time and frames (each with a Time). */
-template<typename Frame>
-struct FrameIndex
+/**
+ * A file as it was when last read: its name, modification time (whole
+ * seconds) and size, to tell whether it must be read again.
+ */
+struct FileStamp
 {
   std::string File;
   long long Modified = -1;
   long long Size = -1;
-  std::vector<Frame> Frames;
 
-  /**
-   * Whether `file` must be scanned (again): another file, or changed since
-   * (its modification time, whole seconds, or its size).
-   */
+  /** Whether `file` must be read (again): another file, or changed since. */
   bool Stale(const std::string& file) const
   {
     return file != this->File ||
       static_cast<long long>(vtksys::SystemTools::ModifiedTime(file)) != this->Modified ||
       static_cast<long long>(vtksys::SystemTools::FileLength(file)) != this->Size;
   }
-  /** Remember that `file` was scanned into Frames. */
-  void Scanned(const std::string& file)
+  /** Remember `file` as it is now. */
+  void Take(const std::string& file)
   {
     this->File = file;
     this->Modified = static_cast<long long>(vtksys::SystemTools::ModifiedTime(file));
     this->Size = static_cast<long long>(vtksys::SystemTools::FileLength(file));
   }
+};
+
+/** A scanned file: its stamp and frames (each with a Time). */
+template<typename Frame>
+struct FrameIndex
+{
+  FileStamp Stamp;
+  std::vector<Frame> Frames;
+
   /**
    * Order the frames by time, keeping the last of frames with equal times
    * (a restarted run repeats them). Returns how many were dropped.
@@ -93,7 +100,7 @@ struct FrameIndex
   {
     error.clear();
     dropped = 0;
-    if (!this->Stale(file))
+    if (!this->Stamp.Stale(file))
     {
       return false;
     }
@@ -106,7 +113,7 @@ struct FrameIndex
     }
     std::string damage;
     this->Frames = scan(in, damage);
-    this->Scanned(file);
+    this->Stamp.Take(file);
     if (!damage.empty())
     {
       error = "is damaged after " + std::to_string(this->Frames.size()) + " frames: " + damage;

@@ -20,8 +20,6 @@
 #include "vtkPolyData.h"
 #include "vtkSplatDataModel.h"
 
-#include "vtksys/SystemTools.hxx"
-
 #include <algorithm>
 #include <fstream>
 #include <new>
@@ -36,9 +34,8 @@ struct vtkGromacsXtcReader::Internals
   vtkNew<vtkGromacsGroReader> Structure;
   vtkNew<vtkCallbackCommand> StructureErrors;
   std::string StructureError;
-  std::string StructureFile; // the structure file last read, its modification time and size
-  long long StructureStamp[2] = { -1, -1 };
-  std::vector<float> Positions; // scratch, kept from frame to frame
+  pointsurfaces::FileStamp StructureStamp; // the structure file as last read
+  std::vector<float> Positions;            // scratch, kept from frame to frame
 
   Internals()
   {
@@ -112,17 +109,10 @@ int vtkGromacsXtcReader::RequestData(vtkInformation*,
   if (!this->StructureFileName.empty())
   {
     // Read again when the file changed on disk, or failed last time.
-    const long long stamp[2] = { static_cast<long long>(
-                                   vtksys::SystemTools::ModifiedTime(this->StructureFileName)),
-      static_cast<long long>(vtksys::SystemTools::FileLength(this->StructureFileName)) };
-    if (this->StructureFileName != internal.StructureFile ||
-      stamp[0] != internal.StructureStamp[0] || stamp[1] != internal.StructureStamp[1] ||
-      !internal.StructureError.empty())
+    if (internal.StructureStamp.Stale(this->StructureFileName) || !internal.StructureError.empty())
     {
       internal.StructureError.clear();
-      internal.StructureFile = this->StructureFileName;
-      internal.StructureStamp[0] = stamp[0];
-      internal.StructureStamp[1] = stamp[1];
+      internal.StructureStamp.Take(this->StructureFileName);
       internal.Structure->SetFileName(this->StructureFileName.c_str());
       internal.Structure->Modified();
     }
