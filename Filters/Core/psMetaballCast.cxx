@@ -9,6 +9,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <new>
 
@@ -18,11 +20,15 @@ namespace
 {
 using Clock = std::chrono::steady_clock;
 
-// The kernels of psMetaball in float, as functions of x = r^2 / R^2: value
-// and d/dx; SlopeBound is the largest |df/dr| of a kernel of unit support.
+// The kernels of psMetaball in float, as functions of x = r^2 / R^2: the
+// value alone (branch-free, for the SIMD sums), and the value and d/dx; SlopeBound is the largest |df/dr| of a kernel of unit support.
 struct WyvillKernel
 {
   static constexpr float SlopeBound = 1.5835f;
+  static float Value(float x)
+  {
+    return ((-4.0f / 9.0f * x + 17.0f / 9.0f) * x - 22.0f / 9.0f) * x + 1.0f;
+  }
   static float Value(float x, float& slope)
   {
     slope = (-4.0f / 3.0f * x + 34.0f / 9.0f) * x - 22.0f / 9.0f;
@@ -32,6 +38,7 @@ struct WyvillKernel
 struct QuarticKernel
 {
   static constexpr float SlopeBound = 1.5397f;
+  static float Value(float x) { return (1.0f - x) * (1.0f - x); }
   static float Value(float x, float& slope)
   {
     slope = -2.0f * (1.0f - x);
@@ -41,6 +48,11 @@ struct QuarticKernel
 struct GaussianKernel
 {
   static constexpr float SlopeBound = 1.7476f;
+  static float Value(float x)
+  {
+    const float floorValue = 0.018315639f; // exp(-4)
+    return (std::exp(-4.0f * x) - floorValue) / (1.0f - floorValue);
+  }
   static float Value(float x, float& slope)
   {
     const float floorValue = 0.018315639f; // exp(-4)
@@ -53,6 +65,11 @@ struct GaussianKernel
 struct CubicSplineKernel
 {
   static constexpr float SlopeBound = 2.0f;
+  static float Value(float x)
+  {
+    const float q = std::sqrt(x), u = 1.0f - q;
+    return q < 0.5f ? 1.0f - 6.0f * x + 6.0f * x * q : 2.0f * u * u * u;
+  }
   static float Value(float x, float& slope)
   {
     const float q = std::sqrt(x);
@@ -69,6 +86,11 @@ struct CubicSplineKernel
 struct WendlandC2Kernel
 {
   static constexpr float SlopeBound = 2.109375f;
+  static float Value(float x)
+  {
+    const float q = std::sqrt(x), u = 1.0f - q;
+    return u * u * u * u * (1.0f + 4.0f * q);
+  }
   static float Value(float x, float& slope)
   {
     const float q = std::sqrt(x), u = 1.0f - q;
@@ -79,6 +101,11 @@ struct WendlandC2Kernel
 struct WendlandC4Kernel
 {
   static constexpr float SlopeBound = 2.5f;
+  static float Value(float x)
+  {
+    const float q = std::sqrt(x), u = 1.0f - q, u3 = u * u * u;
+    return u3 * u3 * (1.0f + 6.0f * q + 35.0f / 3.0f * x);
+  }
   static float Value(float x, float& slope)
   {
     const float q = std::sqrt(x), u = 1.0f - q, u5 = u * u * u * u * u;
@@ -94,6 +121,14 @@ void Apply(const double m[16], const double x[3], double w, double y[4])
   {
     y[r] = m[4 * r] * x[0] + m[4 * r + 1] * x[1] + m[4 * r + 2] * x[2] + m[4 * r + 3] * w;
   }
+}
+
+// A float's bits as an unsigned integer in the float's order.
+std::uint32_t SortKey(float v)
+{
+  std::uint32_t u;
+  std::memcpy(&u, &v, sizeof(u));
+  return (u & 0x80000000u) ? ~u : (u | 0x80000000u);
 }
 
 bool Finite(float v)
@@ -119,14 +154,67 @@ struct Crossing
   float Across; // the squared distance of the ray from the centre
 };
 
+// The balls whose supports hold the ray's current sample, as structure of
+// arrays so that the sums over them run in SIMD lanes: a ray's samples
+// spend most of their time in these sums where hundreds of SPH supports
+// overlap. Entries [0, N) are live; the order is arbitrary.
+struct ActiveSet
+{
+  std::vector<float> X, Y, Z, InvR2, Q, QOverR, R, Peak, Exit, Along, Across;
+  std::vector<int> Ball;
+  int N = 0;
+
+  void Reserve(int count)
+  {
+    if (this->Ball.size() < static_cast<size_t>(count))
+    {
+      for (auto* v : { &this->X,
+             &this->Y,
+             &this->Z,
+             &this->InvR2,
+             &this->Q,
+             &this->QOverR,
+             &this->R,
+             &this->Peak,
+             &this->Exit,
+             &this->Along,
+             &this->Across })
+      {
+        v->resize(count);
+      }
+      this->Ball.resize(count);
+    }
+  }
+  void Remove(int k)
+  {
+    const int last = --this->N;
+    for (auto* v : { &this->X,
+           &this->Y,
+           &this->Z,
+           &this->InvR2,
+           &this->Q,
+           &this->QOverR,
+           &this->R,
+           &this->Peak,
+           &this->Exit,
+           &this->Along,
+           &this->Across })
+    {
+      (*v)[k] = (*v)[last];
+    }
+    this->Ball[k] = this->Ball[last];
+  }
+};
+
 // Per thread: the voxel's balls as structure of arrays, a ray's crossings and
 // its active balls, and the counters.
 struct Scratch
 {
   std::vector<float> X, Y, Z, R2, InvR2, R, Q, QOverR, Perp;
   std::vector<unsigned int> Color;
-  std::vector<Crossing> Crossings;
-  std::vector<int> Active;
+  std::vector<Crossing> Crossings, Unsorted; // the ray's crossings in the voxel, by Enter
+  std::vector<std::uint64_t> Order;          // sort keys: Enter's bits, then the index
+  ActiveSet Active;
   MetaballCastStatistics Stats;
 };
 
@@ -167,90 +255,104 @@ public:
   float Threshold;
   vtkSMPThreadLocal<Scratch>& Local;
 
-  // f at t over the active crossings, with the gradient and colour when asked.
-  float Field(const Scratch& s,
-    const Ray& ray,
-    float t,
-    long long& terms,
-    float* grad = nullptr,
-    float* color = nullptr) const
+  // f at t over the active balls, in SIMD lanes.
+  float Field(const Scratch& s, const Ray& ray, float t, long long& terms) const
+  {
+    const float px = ray.Origin[0] + t * ray.Dir[0], py = ray.Origin[1] + t * ray.Dir[1],
+                pz = ray.Origin[2] + t * ray.Dir[2];
+    const ActiveSet& a = s.Active;
+    const float *X = a.X.data(), *Y = a.Y.data(), *Z = a.Z.data(), *InvR2 = a.InvR2.data(),
+                *Q = a.Q.data();
+    const int n = a.N;
+    float sum = 0.0f;
+#pragma omp simd reduction(+ : sum)
+    for (int k = 0; k < n; ++k)
+    {
+      const float dx = px - X[k], dy = py - Y[k], dz = pz - Z[k];
+      const float x = (dx * dx + dy * dy + dz * dz) * InvR2[k];
+      // Every lane computes the kernel (at x <= 1, where it is 0) and the
+      // mask picks: branch-free, so that it vectorises.
+      const float v = Q[k] * K::Value(std::min(x, 1.0f));
+      sum += x < 1.0f ? v : 0.0f;
+    }
+    terms += n;
+    return sum - this->Threshold;
+  }
+
+  // f at t with its gradient and colour, for shading a hit.
+  float Field(const Scratch& s, const Ray& ray, float t, float grad[3], float color[4]) const
   {
     const float p[3] = {
       ray.Origin[0] + t * ray.Dir[0], ray.Origin[1] + t * ray.Dir[1], ray.Origin[2] + t * ray.Dir[2]
     };
     float f = -this->Threshold;
-    for (int a : s.Active)
+    const ActiveSet& a = s.Active;
+    for (int k = 0; k < a.N; ++k)
     {
-      const int j = s.Crossings[a].Ball;
-      const float d[3] = { p[0] - s.X[j], p[1] - s.Y[j], p[2] - s.Z[j] };
-      const float x = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * s.InvR2[j];
-      ++terms;
+      const float d[3] = { p[0] - a.X[k], p[1] - a.Y[k], p[2] - a.Z[k] };
+      const float x = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * a.InvR2[k];
       if (!(x < 1.0f))
       {
         continue;
       }
       float slope;
-      const float value = s.Q[j] * K::Value(std::max(x, 0.0f), slope);
+      const float value = a.Q[k] * K::Value(x, slope);
       f += value;
-      if (grad)
-      {
-        const float g = s.Q[j] * slope * 2.0f * s.InvR2[j];
-        grad[0] += g * d[0];
-        grad[1] += g * d[1];
-        grad[2] += g * d[2];
-      }
-      if (color)
-      {
-        const float w = std::max(value, 0.0f);
-        const unsigned int c = s.Color[j];
-        color[0] += w * static_cast<float>(c & 255u) / 255.0f;
-        color[1] += w * static_cast<float>((c >> 8) & 255u) / 255.0f;
-        color[2] += w * static_cast<float>((c >> 16) & 255u) / 255.0f;
-        color[3] += w * static_cast<float>((c >> 24) & 255u) / 255.0f;
-      }
+      const float g = a.Q[k] * slope * 2.0f * a.InvR2[k];
+      grad[0] += g * d[0];
+      grad[1] += g * d[1];
+      grad[2] += g * d[2];
+      const float w = std::max(value, 0.0f);
+      const unsigned int c = s.Color[a.Ball[k]];
+      color[0] += w * static_cast<float>(c & 255u) / 255.0f;
+      color[1] += w * static_cast<float>((c >> 8) & 255u) / 255.0f;
+      color[2] += w * static_cast<float>((c >> 16) & 255u) / 255.0f;
+      color[3] += w * static_cast<float>((c >> 24) & 255u) / 255.0f;
     }
     return f;
   }
 
-  // An upper bound of f over [a, b] on the ray: the active balls and those
-  // from `next` on that begin before b, each at the point of [a, b] nearest
-  // its centre, positive strengths only.
-  float UpperBound(Scratch& s, int next, float a, float b) const
+  // An upper bound of f over [lo, hi] on the ray: the active balls and those
+  // from `next` on that begin before hi, each at the point of [lo, hi]
+  // nearest its centre, positive strengths only.
+  float UpperBound(Scratch& s, int next, float lo, float hi) const
   {
-    float u = -this->Threshold;
-    const int n = static_cast<int>(s.Crossings.size());
-    int entering = next;
-    while (entering < n && s.Crossings[entering].Enter < b)
+    const ActiveSet& a = s.Active;
+    const float *Along = a.Along.data(), *Across = a.Across.data(), *InvR2 = a.InvR2.data(),
+                *Q = a.Q.data();
+    const int n = a.N;
+    float u = 0.0f;
+#pragma omp simd reduction(+ : u)
+    for (int k = 0; k < n; ++k)
     {
-      ++entering;
+      const float along = std::min(std::max(Along[k], lo), hi) - Along[k];
+      const float x = (Across[k] + along * along) * InvR2[k];
+      const float v = Q[k] * K::Value(std::min(x, 1.0f));
+      u += x < 1.0f && v > 0.0f ? v : 0.0f;
     }
-    const size_t active = s.Active.size();
-    for (size_t i = 0; i < active + static_cast<size_t>(entering - next); ++i)
+    s.Stats.KernelTerms += n;
+    const int count = static_cast<int>(s.Crossings.size());
+    for (int i = next; i < count && s.Crossings[i].Enter < hi; ++i)
     {
-      const Crossing& c =
-        s.Crossings[i < active ? s.Active[i] : next + static_cast<int>(i - active)];
+      const Crossing& c = s.Crossings[i];
       const float q = s.Q[c.Ball];
-      if (q <= 0.0f)
-      {
-        continue;
-      }
-      const float along = std::min(std::max(c.Along, a), b) - c.Along;
+      const float along = std::min(std::max(c.Along, lo), hi) - c.Along;
       const float x = (c.Across + along * along) * s.InvR2[c.Ball];
       ++s.Stats.KernelTerms;
-      if (x < 1.0f)
+      if (x < 1.0f && q > 0.0f)
       {
-        float slope;
-        u += q * K::Value(std::max(x, 0.0f), slope);
+        u += q * K::Value(x);
       }
     }
-    return u;
+    return u - this->Threshold;
   }
 
   // Writes the hit at t of the ray through `pixel`.
   void Shade(Scratch& s, const Ray& ray, float t, int pixel) const
   {
     float grad[3] = { 0, 0, 0 }, color[4] = { 0, 0, 0, 0 };
-    this->Field(s, ray, t, s.Stats.KernelTerms, grad, color);
+    this->Field(s, ray, t, grad, color);
+    s.Stats.KernelTerms += s.Active.N;
     float n[3] = { -grad[0], -grad[1], -grad[2] };
     const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int k = 0; k < 3; ++k)
@@ -316,7 +418,7 @@ public:
       const float px = cx - b * dx, py = cy - b * dy, pz = cz - b * dz;
       perp[j] = R2[j] - (px * px + py * py + pz * pz);
     }
-    s.Crossings.clear();
+    int m = 0;
     float peaks = 0.0f;
     for (int j = 0; j < count; ++j)
     {
@@ -330,7 +432,10 @@ public:
           float slope;
           const float closest = std::min(std::max(1.0f - perp[j] * s.InvR2[j], 0.0f), 1.0f);
           const float peak = std::max(s.Q[j], 0.0f) * K::Value(closest, slope);
-          s.Crossings.push_back({ enter, exit, j, peak, b, s.R2[j] - perp[j] });
+          s.Unsorted[m] = { enter, exit, j, peak, b, s.R2[j] - perp[j] };
+          s.Order[m] =
+            (static_cast<std::uint64_t>(SortKey(enter)) << 32) | static_cast<unsigned>(m);
+          ++m;
           peaks += peak;
         }
       }
@@ -338,7 +443,7 @@ public:
     // f <= sum of the peaks - T on the whole stretch: below T, no crossing
     // here (and the ray arrives outside: whatever made f >= 0 before this
     // voxel reaches into it and would count among the peaks).
-    if (s.Crossings.empty() || peaks < this->Threshold)
+    if (m == 0 || peaks < this->Threshold)
     {
       ++s.Stats.EmptyVoxelVisits;
       ray.TA = t1;
@@ -346,18 +451,37 @@ public:
       ray.HaveA = true;
       return false;
     }
-    std::sort(s.Crossings.begin(),
-      s.Crossings.end(),
-      [](const Crossing& a, const Crossing& b) { return a.Enter < b.Enter; });
+    // Sorted as integers, then gathered.
+    std::sort(s.Order.begin(), s.Order.begin() + m);
+    s.Crossings.resize(m);
+    for (int i = 0; i < m; ++i)
+    {
+      s.Crossings[i] = s.Unsorted[s.Order[i] & 0xffffffffu];
+    }
     const int n = static_cast<int>(s.Crossings.size());
-    s.Active.clear();
+    ActiveSet& active = s.Active;
+    active.Reserve(n);
+    active.N = 0;
     int next = 0;
     float t = s.Crossings[0].Enter;
     while (true)
     {
       while (next < n && s.Crossings[next].Enter <= t)
       {
-        s.Active.push_back(next++);
+        const Crossing& c = s.Crossings[next++];
+        const int j = c.Ball, k = active.N++;
+        active.X[k] = s.X[j];
+        active.Y[k] = s.Y[j];
+        active.Z[k] = s.Z[j];
+        active.InvR2[k] = s.InvR2[j];
+        active.Q[k] = s.Q[j];
+        active.QOverR[k] = s.QOverR[j];
+        active.R[k] = s.R[j];
+        active.Peak[k] = c.Peak;
+        active.Exit[k] = c.Exit;
+        active.Along[k] = c.Along;
+        active.Across[k] = c.Across;
+        active.Ball[k] = j;
       }
       const float f = this->Field(s, ray, t, s.Stats.KernelTerms);
       ++s.Stats.Samples;
@@ -397,24 +521,31 @@ public:
         return false;
       }
       // Drop the supports the ray has left; the step bounds over the rest.
-      float lipschitz = 0.0f, smallest = std::numeric_limits<float>::max(), reach = t, bound = 0.0f;
-      for (size_t k = 0; k < s.Active.size();)
+      for (int k = 0; k < active.N;)
       {
-        const Crossing& c = s.Crossings[s.Active[k]];
-        if (c.Exit <= t)
+        if (active.Exit[k] <= t)
         {
-          s.Active[k] = s.Active.back();
-          s.Active.pop_back();
+          active.Remove(k);
           continue;
         }
-        lipschitz += s.QOverR[c.Ball];
-        bound += c.Peak;
-        smallest = std::min(smallest, s.R[c.Ball]);
-        reach = std::max(reach, c.Exit);
         ++k;
       }
+      float lipschitz = 0.0f, smallest = std::numeric_limits<float>::max(), reach = t, bound = 0.0f;
+      {
+        const float *QOverR = active.QOverR.data(), *Peak = active.Peak.data(),
+                    *R = active.R.data(), *Exit = active.Exit.data();
+        const int m = active.N;
+#pragma omp simd reduction(+ : lipschitz, bound) reduction(min : smallest) reduction(max : reach)
+        for (int k = 0; k < m; ++k)
+        {
+          lipschitz += QOverR[k];
+          bound += Peak[k];
+          smallest = std::min(smallest, R[k]);
+          reach = std::max(reach, Exit[k]);
+        }
+      }
       float tNext;
-      if (s.Active.empty() || bound < this->Threshold)
+      if (active.N == 0 || bound < this->Threshold)
       {
         // f <= sum of the active peaks - T < 0 until another support begins.
         if (next >= n)
@@ -463,27 +594,31 @@ public:
   {
     // A margin for float sums taken in another order than Field's.
     const float target = this->Threshold * std::max(1.0f - 1e-6f * static_cast<float>(count), 0.9f);
+    // In chunks of SIMD sums, stopping at the first chunk that reaches it.
+    constexpr int Chunk = 32;
+    const float *X = s.X.data(), *Y = s.Y.data(), *Z = s.Z.data(), *InvR2 = s.InvR2.data(),
+                *Q = s.Q.data();
+    const float lx = lo[0], ly = lo[1], lz = lo[2], hx = hi[0], hy = hi[1], hz = hi[2];
     float sum = 0.0f;
-    for (int j = 0; j < count; ++j)
+    for (int begin = 0; begin < count; begin += Chunk)
     {
-      const float q = s.Q[j];
-      if (q <= 0.0f)
+      const int end = std::min(begin + Chunk, count);
+      float part = 0.0f;
+#pragma omp simd reduction(+ : part)
+      for (int j = begin; j < end; ++j)
       {
-        continue;
+        const float dx = std::max(std::max(lx - X[j], X[j] - hx), 0.0f);
+        const float dy = std::max(std::max(ly - Y[j], Y[j] - hy), 0.0f);
+        const float dz = std::max(std::max(lz - Z[j], Z[j] - hz), 0.0f);
+        const float x = (dx * dx + dy * dy + dz * dz) * InvR2[j];
+        const float v = Q[j] * K::Value(std::min(x, 1.0f));
+        part += x < 1.0f && v > 0.0f ? v : 0.0f;
       }
-      const float dx = std::max(std::max(lo[0] - s.X[j], s.X[j] - hi[0]), 0.0f);
-      const float dy = std::max(std::max(lo[1] - s.Y[j], s.Y[j] - hi[1]), 0.0f);
-      const float dz = std::max(std::max(lo[2] - s.Z[j], s.Z[j] - hi[2]), 0.0f);
-      const float x = (dx * dx + dy * dy + dz * dz) * s.InvR2[j];
-      if (x < 1.0f)
+      sum += part;
+      if (sum >= target)
       {
-        float slope;
-        sum += q * K::Value(x, slope);
-        if (sum >= target)
-        {
-          s.Stats.KernelTerms += j + 1;
-          return true;
-        }
+        s.Stats.KernelTerms += end;
+        return true;
       }
     }
     s.Stats.KernelTerms += count;
@@ -747,17 +882,23 @@ public:
     groups.push_back(blocks.size());
     s.Stats.Rays += static_cast<long long>(rays.size());
     const int slabs = this->S.Slabs;
-    for (int slab = 0; slab < slabs; ++slab)
+    // Empty voxels touch no ray: a run of them only moves each searching
+    // ray's last sample (outside) to the run's end, which is done once,
+    // before the next voxel with balls. Sparse sets are mostly such runs.
+    auto countSearching = [&rays]()
     {
-      bool any = false;
+      long long n = 0;
       for (const Ray& ray : rays)
       {
-        any = any || ray.Searching;
+        n += ray.Searching ? 1 : 0;
       }
-      if (!any)
-      {
-        break;
-      }
+      return n;
+    };
+    long long searching = countSearching();
+    int emptyRun = 0;
+    float emptyEnd = 0.0f;
+    for (int slab = 0; slab < slabs && searching > 0; ++slab)
+    {
       const size_t voxel = static_cast<size_t>(tile) * slabs + slab;
       const size_t first = this->Offsets[voxel];
       const int count = static_cast<int>(this->Offsets[voxel + 1] - first);
@@ -765,18 +906,24 @@ public:
       const float d1 = static_cast<float>(this->Planes[slab + 1]);
       if (count == 0)
       {
+        ++emptyRun;
+        emptyEnd = d1;
+        continue;
+      }
+      if (emptyRun > 0)
+      {
         for (Ray& ray : rays)
         {
           if (ray.Searching)
           {
-            ++s.Stats.VoxelVisits;
-            ++s.Stats.EmptyVoxelVisits;
-            ray.TA = d1 / ray.PerDistance;
+            ray.TA = emptyEnd / ray.PerDistance;
             ray.FA = -this->Threshold;
             ray.HaveA = true;
           }
         }
-        continue;
+        s.Stats.VoxelVisits += emptyRun * searching;
+        s.Stats.EmptyVoxelVisits += emptyRun * searching;
+        emptyRun = 0;
       }
       this->Load(s, first, count);
       for (size_t g = 0; g + 1 < groups.size(); ++g)
@@ -784,7 +931,10 @@ public:
         this->MarchGroup(
           s, rays, pixels, blocks, groups[g], groups[g + 1], count, d0, d1, slab == 0);
       }
+      searching = countSearching();
     }
+    s.Stats.VoxelVisits += emptyRun * searching;
+    s.Stats.EmptyVoxelVisits += emptyRun * searching;
   }
 
   // The voxel's balls into the thread's structure of arrays.
@@ -797,6 +947,8 @@ public:
         v->resize(count);
       }
       s.Color.resize(count);
+      s.Unsorted.resize(count);
+      s.Order.resize(count);
     }
     for (int j = 0; j < count; ++j)
     {
