@@ -17,7 +17,9 @@
  *   against them are one vectorisable loop);
  * - per ray and voxel, the stretches of the ray inside some ball's support:
  *   the field is -T everywhere else, so nothing else is sampled, and each
- *   sample sums only the balls whose support the ray crosses there;
+ *   sample sums only the balls whose support the ray crosses there, held
+ *   as a structure of arrays and summed in SIMD lanes (a branch-free kernel
+ *   in every lane, masked to the balls in reach);
  * - stretches, whole voxels included, where the balls in reach cannot lift f
  *   to 0 even at their closest approach to the ray (the sum of
  *   max(q_i, 0) K(d_i^2 / R_i^2) is below T) are skipped: a dense SPH medium

@@ -113,8 +113,13 @@ def load(name, smoke):
         reader = vtkPDBReader()
         reader.SetFileName(os.path.join(TEST_DATA, "adk_solvated_2k.pdb") if smoke
                            else os.path.join(SHARED, "molecules", "adk_solvated.pdb"))
-        reader.Update()
-        out = reader.GetOutput()
+        # vtkPDBReader leaves the water and ions of a simulation without a
+        # radius; vtkAtomRadii gives them their element's.
+        from pointsurfaces import vtkAtomRadii
+        radii = vtkAtomRadii()
+        radii.SetInputConnection(reader.GetOutputPort())
+        radii.Update()
+        out = radii.GetOutput()
         xyz = vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64)
         radius = vtk_to_numpy(out.GetPointData().GetArray("radius")).astype(np.float64)
         radius = 2.0 * (radius[:, 0] if radius.ndim > 1 else radius)  # vtkPDBReader: 3 components
