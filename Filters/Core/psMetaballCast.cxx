@@ -103,8 +103,8 @@ struct WendlandC4Kernel
   static constexpr float SlopeBound = 2.5f;
   static float Value(float x)
   {
-    const float q = std::sqrt(x), u = 1.0f - q, u3 = u * u * u;
-    return u3 * u3 * (1.0f + 6.0f * q + 35.0f / 3.0f * x);
+    const float q = std::sqrt(x), u = 1.0f - q, u5 = u * u * u * u * u;
+    return u5 * u * (1.0f + 6.0f * q + 35.0f / 3.0f * x); // as below, to the last bit
   }
   static float Value(float x, float& slope)
   {
@@ -339,10 +339,8 @@ public:
       const float along = std::min(std::max(c.Along, lo), hi) - c.Along;
       const float x = (c.Across + along * along) * s.InvR2[c.Ball];
       ++s.Stats.KernelTerms;
-      if (x < 1.0f && q > 0.0f)
-      {
-        u += q * K::Value(x);
-      }
+      const float v = x < 1.0f ? q * K::Value(x) : 0.0f;
+      u += v > 0.0f ? v : 0.0f; // positive terms only, as in the lanes above
     }
     return u - this->Threshold;
   }
