@@ -6,6 +6,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -164,21 +165,25 @@ struct ActiveSet
   std::vector<int> Ball;
   int N = 0;
 
+  std::array<std::vector<float>*, 11> Columns()
+  {
+    return { &this->X,
+      &this->Y,
+      &this->Z,
+      &this->InvR2,
+      &this->Q,
+      &this->QOverR,
+      &this->R,
+      &this->Peak,
+      &this->Exit,
+      &this->Along,
+      &this->Across };
+  }
   void Reserve(int count)
   {
     if (this->Ball.size() < static_cast<size_t>(count))
     {
-      for (auto* v : { &this->X,
-             &this->Y,
-             &this->Z,
-             &this->InvR2,
-             &this->Q,
-             &this->QOverR,
-             &this->R,
-             &this->Peak,
-             &this->Exit,
-             &this->Along,
-             &this->Across })
+      for (auto* v : this->Columns())
       {
         v->resize(count);
       }
@@ -188,17 +193,7 @@ struct ActiveSet
   void Remove(int k)
   {
     const int last = --this->N;
-    for (auto* v : { &this->X,
-           &this->Y,
-           &this->Z,
-           &this->InvR2,
-           &this->Q,
-           &this->QOverR,
-           &this->R,
-           &this->Peak,
-           &this->Exit,
-           &this->Along,
-           &this->Across })
+    for (auto* v : this->Columns())
     {
       (*v)[k] = (*v)[last];
     }
@@ -444,9 +439,7 @@ public:
     if (m == 0 || peaks < this->Threshold)
     {
       ++s.Stats.EmptyVoxelVisits;
-      ray.TA = t1;
-      ray.FA = -this->Threshold;
-      ray.HaveA = true;
+      this->Outside(ray, t1);
       return false;
     }
     // Sorted as integers, then gathered.
@@ -661,14 +654,20 @@ public:
     }
   }
 
+  // The ray's last sample is at t, outside the surface (f = -T there).
+  void Outside(Ray& ray, float t) const
+  {
+    ray.TA = t;
+    ray.FA = -this->Threshold;
+    ray.HaveA = true;
+  }
+
   // A ray's visit of a voxel where f < 0 throughout: nothing to sample.
   void PassEmpty(Scratch& s, Ray& ray, float t1) const
   {
     ++s.Stats.VoxelVisits;
     ++s.Stats.EmptyVoxelVisits;
-    ray.TA = t1;
-    ray.FA = -this->Threshold;
-    ray.HaveA = true;
+    this->Outside(ray, t1);
   }
 
   // The rays of `blocks` [begin, end) (a group of up to 2 x 2 blocks)
@@ -785,9 +784,7 @@ public:
         if (first > 0)
         {
           // f < 0 before `from`: the ray arrives there outside.
-          ray.TA = from / ray.PerDistance;
-          ray.FA = -this->Threshold;
-          ray.HaveA = true;
+          this->Outside(ray, from / ray.PerDistance);
         }
         if (!this->MarchVoxel(s,
               ray,
@@ -798,9 +795,7 @@ public:
               pixels[r]) &&
           last + 1 < BoundParts)
         {
-          ray.TA = d1 / ray.PerDistance; // and f < 0 after `to`
-          ray.FA = -this->Threshold;
-          ray.HaveA = true;
+          this->Outside(ray, d1 / ray.PerDistance); // and f < 0 after `to`
         }
       }
     }
@@ -893,7 +888,7 @@ public:
       return n;
     };
     long long searching = countSearching();
-    int emptyRun = 0;
+    bool emptyRun = false; // empty voxels passed since the last one with balls
     float emptyEnd = 0.0f;
     for (int slab = 0; slab < slabs && searching > 0; ++slab)
     {
@@ -904,24 +899,22 @@ public:
       const float d1 = static_cast<float>(this->Planes[slab + 1]);
       if (count == 0)
       {
-        ++emptyRun;
+        emptyRun = true;
         emptyEnd = d1;
+        s.Stats.VoxelVisits += searching; // no ray stops in it
+        s.Stats.EmptyVoxelVisits += searching;
         continue;
       }
-      if (emptyRun > 0)
+      if (emptyRun)
       {
         for (Ray& ray : rays)
         {
           if (ray.Searching)
           {
-            ray.TA = emptyEnd / ray.PerDistance;
-            ray.FA = -this->Threshold;
-            ray.HaveA = true;
+            this->Outside(ray, emptyEnd / ray.PerDistance);
           }
         }
-        s.Stats.VoxelVisits += emptyRun * searching;
-        s.Stats.EmptyVoxelVisits += emptyRun * searching;
-        emptyRun = 0;
+        emptyRun = false;
       }
       this->Load(s, first, count);
       for (size_t g = 0; g + 1 < groups.size(); ++g)
@@ -931,8 +924,6 @@ public:
       }
       searching = countSearching();
     }
-    s.Stats.VoxelVisits += emptyRun * searching;
-    s.Stats.EmptyVoxelVisits += emptyRun * searching;
   }
 
   // The voxel's balls into the thread's structure of arrays.
