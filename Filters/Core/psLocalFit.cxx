@@ -40,6 +40,49 @@ bool AllFinite(const double* p, int n)
   }
   return true;
 }
+// The least-squares solution of A c = rhs through the normal equations, with
+// the columns scaled to unit norm: a quarter of the QR's work on the tall,
+// narrow systems of a splat fit. Refuses (returns false) unless the scaled
+// system is well conditioned (smallest pivot over largest above 1e-8, so
+// that squaring the condition number costs at most 8 of 16 digits); the
+// caller then takes the rank-revealing QR.
+bool SolveNormal(const Eigen::MatrixXd& A, const Eigen::VectorXd& rhs, Eigen::VectorXd& c)
+{
+  constexpr int Max = MonomialCount(MaximumDegree);
+  using Square = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, Max, Max>;
+  using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, Max, 1>;
+  const Eigen::Index m = A.cols();
+  if (m > Max || A.rows() < m)
+  {
+    return false;
+  }
+  Square normal(m, m);
+  normal.noalias() = A.transpose() * A;
+  Column scale(m);
+  for (Eigen::Index j = 0; j < m; ++j)
+  {
+    if (!(normal(j, j) > 0.0) || !std::isfinite(normal(j, j)))
+    {
+      return false;
+    }
+    scale(j) = 1.0 / std::sqrt(normal(j, j));
+  }
+  normal = scale.asDiagonal() * normal * scale.asDiagonal();
+  const Eigen::LDLT<Square> ldlt(normal);
+  if (ldlt.info() != Eigen::Success)
+  {
+    return false;
+  }
+  const auto d = ldlt.vectorD();
+  if (!(d.minCoeff() > 1e-8 * d.maxCoeff()))
+  {
+    return false;
+  }
+  Column b(m);
+  b.noalias() = A.transpose() * rhs;
+  c = scale.asDiagonal() * ldlt.solve(scale.asDiagonal() * b);
+  return c.allFinite();
+}
 } // namespace
 
 FitStatus FitReferencePlane(const double* points,
@@ -142,8 +185,14 @@ PolynomialFit FitPolynomial(const double* points,
     return fit;
   }
   // Local coordinates and square-root weights, once for all degrees tried.
-  Eigen::MatrixXd uvh(n, 3);
-  Eigen::VectorXd sw(n);
+  // The work arrays are kept per thread: a fitter calls this several times
+  // per splat with the same sizes, and reallocating them cost more than the
+  // QR itself on small neighbourhoods.
+  thread_local Eigen::MatrixXd uvh, A;
+  thread_local Eigen::VectorXd sw, rhs, c;
+  thread_local Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
+  uvh.resize(n, 3);
+  sw.resize(n);
   int active = 0;
   for (int i = 0; i < n; ++i)
   {
@@ -164,8 +213,8 @@ PolynomialFit FitPolynomial(const double* points,
     {
       continue;
     }
-    Eigen::MatrixXd A(n, m);
-    Eigen::VectorXd rhs(n);
+    A.resize(n, m);
+    rhs.resize(n);
     double row[MonomialCount(MaximumDegree)];
     for (int i = 0; i < n; ++i)
     {
@@ -176,13 +225,17 @@ PolynomialFit FitPolynomial(const double* points,
       }
       rhs(i) = sw(i) * uvh(i, 2);
     }
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
-    qr.setThreshold(1e-10);
-    if (qr.rank() < m)
+    if (!SolveNormal(A, rhs, c))
     {
-      continue; // e.g. points on a line in (u, v): no well-posed fit of this degree
+      // Ill-conditioned or rank-deficient: the rank-revealing QR decides.
+      qr.compute(A);
+      qr.setThreshold(1e-10);
+      if (qr.rank() < m)
+      {
+        continue; // e.g. points on a line in (u, v): no well-posed fit of this degree
+      }
+      c = qr.solve(rhs);
     }
-    const Eigen::VectorXd c = qr.solve(rhs);
     if (!c.allFinite())
     {
       continue;

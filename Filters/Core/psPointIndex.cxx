@@ -53,7 +53,9 @@ PointIndex::PointIndex(const double* xyz, long long n)
     p.y = static_cast<float>((xyz[3 * i + 1] - this->Centre[1]) * this->InvScale);
     p.z = static_cast<float>((xyz[3 * i + 2] - this->Centre[2]) * this->InvScale);
   }
-  this->Impl->KdTree.setSortedResults(true);
+  // Radius results are sorted here, in double, and only when asked for;
+  // kNN results come sorted from FLANN's small-k result set either way.
+  this->Impl->KdTree.setSortedResults(false);
   this->Impl->KdTree.setInputCloud(cloud);
 }
 
@@ -62,26 +64,36 @@ PointIndex::~PointIndex() = default;
 void PointIndex::Finish(const double q[3], std::vector<int>& ids, std::vector<double>& d2) const
 {
   // Distances in double from the original coordinates, then re-sorted: the
-  // float tree may order near-ties differently.
+  // float tree may order near-ties differently (and leaves radius results
+  // unsorted). Most kNN answers are in order already and are left as they are.
   d2.resize(ids.size());
+  bool ordered = true;
   for (size_t j = 0; j < ids.size(); ++j)
   {
     const double* p = this->Point(ids[j]);
     const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
     d2[j] = dx * dx + dy * dy + dz * dz;
+    ordered = ordered && (j == 0 || d2[j - 1] <= d2[j]);
   }
-  std::vector<size_t> order(ids.size());
-  std::iota(order.begin(), order.end(), size_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return d2[a] < d2[b]; });
-  std::vector<int> sortedIds(ids.size());
-  std::vector<double> sortedD2(ids.size());
-  for (size_t j = 0; j < order.size(); ++j)
+  if (ordered)
   {
-    sortedIds[j] = ids[order[j]];
-    sortedD2[j] = d2[order[j]];
+    return;
   }
-  ids.swap(sortedIds);
-  d2.swap(sortedD2);
+  thread_local std::vector<std::pair<double, int>> pairs;
+  pairs.resize(ids.size());
+  for (size_t j = 0; j < ids.size(); ++j)
+  {
+    pairs[j] = std::make_pair(d2[j], ids[j]);
+  }
+  std::stable_sort(pairs.begin(),
+    pairs.end(),
+    [](const std::pair<double, int>& a, const std::pair<double, int>& b)
+    { return a.first < b.first; });
+  for (size_t j = 0; j < pairs.size(); ++j)
+  {
+    d2[j] = pairs[j].first;
+    ids[j] = pairs[j].second;
+  }
 }
 
 void PointIndex::Nearest(const double q[3],
@@ -100,8 +112,10 @@ void PointIndex::Nearest(const double q[3],
   p.x = static_cast<float>((q[0] - this->Centre[0]) * this->InvScale);
   p.y = static_cast<float>((q[1] - this->Centre[1]) * this->InvScale);
   p.z = static_cast<float>((q[2] - this->Centre[2]) * this->InvScale);
-  pcl::Indices found(k);
-  std::vector<float> fd2(k);
+  thread_local pcl::Indices found;
+  thread_local std::vector<float> fd2;
+  found.resize(k);
+  fd2.resize(k);
   const int got = this->Impl->KdTree.nearestKSearch(p, static_cast<unsigned int>(k), found, fd2);
   ids.assign(found.begin(), found.begin() + std::max(got, 0));
   this->Finish(q, ids, d2);
@@ -123,8 +137,8 @@ void PointIndex::Within(const double q[3],
   p.x = static_cast<float>((q[0] - this->Centre[0]) * this->InvScale);
   p.y = static_cast<float>((q[1] - this->Centre[1]) * this->InvScale);
   p.z = static_cast<float>((q[2] - this->Centre[2]) * this->InvScale);
-  pcl::Indices found;
-  std::vector<float> fd2;
+  thread_local pcl::Indices found;
+  thread_local std::vector<float> fd2;
   // A relative margin covers the float rounding of the scaled coordinates;
   // the exact test is done in double below.
   this->Impl->KdTree.radiusSearch(p, radius * this->InvScale * (1.0 + 1e-5) + 1e-6, found, fd2);

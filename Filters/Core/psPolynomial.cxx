@@ -19,38 +19,6 @@ int DegreeFromMonomialCount(int count)
   return -1;
 }
 
-void Monomials(double u, double v, int degree, double* out)
-{
-  double upow[MaximumDegree + 1];
-  double vpow[MaximumDegree + 1];
-  upow[0] = vpow[0] = 1.0;
-  for (int k = 1; k <= degree; ++k)
-  {
-    upow[k] = upow[k - 1] * u;
-    vpow[k] = vpow[k - 1] * v;
-  }
-  int i = 0;
-  for (int total = 0; total <= degree; ++total)
-  {
-    for (int pu = total; pu >= 0; --pu)
-    {
-      out[i++] = upow[pu] * vpow[total - pu];
-    }
-  }
-}
-
-double Evaluate(const double* c, int degree, double u, double v)
-{
-  double m[MonomialCount(MaximumDegree)];
-  Monomials(u, v, degree, m);
-  double sum = 0.0;
-  for (int i = 0; i < MonomialCount(degree); ++i)
-  {
-    sum += c[i] * m[i];
-  }
-  return sum;
-}
-
 double EvaluateWithGradient(const double* c, int degree, double u, double v, double& du, double& dv)
 {
   double upow[MaximumDegree + 1];

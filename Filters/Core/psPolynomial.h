@@ -28,11 +28,42 @@ constexpr int MonomialCount(int degree)
 /** The degree whose monomial count is `count`, or -1 when no degree 1..4 has it. */
 POINTSURFACESFILTERS_EXPORT int DegreeFromMonomialCount(int count);
 
-/** Write the MonomialCount(degree) monomials at (u, v) to `out`. */
-POINTSURFACESFILTERS_EXPORT void Monomials(double u, double v, int degree, double* out);
+/**
+ * Write the MonomialCount(degree) monomials at (u, v) to `out`. Inline: the
+ * fitter and the disc bounds call it for every neighbour of every splat.
+ */
+inline void Monomials(double u, double v, int degree, double* out)
+{
+  double upow[MaximumDegree + 1];
+  double vpow[MaximumDegree + 1];
+  upow[0] = vpow[0] = 1.0;
+  for (int k = 1; k <= degree; ++k)
+  {
+    upow[k] = upow[k - 1] * u;
+    vpow[k] = vpow[k - 1] * v;
+  }
+  int i = 0;
+  for (int total = 0; total <= degree; ++total)
+  {
+    for (int pu = total; pu >= 0; --pu)
+    {
+      out[i++] = upow[pu] * vpow[total - pu];
+    }
+  }
+}
 
 /** g(u, v) for coefficients `c` in monomial order. */
-POINTSURFACESFILTERS_EXPORT double Evaluate(const double* c, int degree, double u, double v);
+inline double Evaluate(const double* c, int degree, double u, double v)
+{
+  double m[MonomialCount(MaximumDegree)];
+  Monomials(u, v, degree, m);
+  double sum = 0.0;
+  for (int i = 0; i < MonomialCount(degree); ++i)
+  {
+    sum += c[i] * m[i];
+  }
+  return sum;
+}
 
 /** g(u, v) and its partial derivatives. */
 POINTSURFACESFILTERS_EXPORT double EvaluateWithGradient(const double* c,

@@ -40,27 +40,39 @@ SplatBound BoundSplat(const Splat& splat,
   const double tol = params.Tolerance;
   const double reach = std::max(radius, 3.0 * spacing); // the border test looks this far
 
-  // In-plane position (world units), in-plane distance and deviation of each candidate.
+  // In-plane position (world units), in-plane distance and deviation of each
+  // candidate within reach (the patch is evaluated only there). Candidates
+  // farther than BoundSearchRadius from the origin are left out, so that
+  // the result does not depend on how many more the caller passed.
   struct Candidate
   {
     double U, V, Rho, E;
     int Index;
   };
-  std::vector<Candidate> on, off;
-  on.reserve(n);
+  thread_local std::vector<Candidate> on, off;
+  on.clear();
+  off.clear();
+  const double search2 = 2.0 * reach * reach;
   for (int j = 0; j < n; ++j)
   {
-    double uvh[3];
-    ToLocal(f, points + 3 * j, uvh);
-    const Candidate c{ uvh[0] * h,
-      uvh[1] * h,
-      std::hypot(uvh[0], uvh[1]) * h,
-      std::abs(uvh[2] - Evaluate(splat.Fit.Coefficients, splat.Fit.Degree, uvh[0], uvh[1])) * h,
-      j };
-    if (c.Rho > reach)
+    const double* p = points + 3 * j;
+    const double d[3] = { p[0] - f.Origin[0], p[1] - f.Origin[1], p[2] - f.Origin[2] };
+    if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > search2)
     {
       continue;
     }
+    double uvh[3];
+    ToLocal(f, p, uvh);
+    const double rhoJ = std::sqrt(uvh[0] * uvh[0] + uvh[1] * uvh[1]) * h;
+    if (rhoJ > reach)
+    {
+      continue;
+    }
+    const Candidate c{ uvh[0] * h,
+      uvh[1] * h,
+      rhoJ,
+      std::abs(uvh[2] - Evaluate(splat.Fit.Coefficients, splat.Fit.Degree, uvh[0], uvh[1])) * h,
+      j };
     if (params.MeasureOnly)
     {
       // The unbounded disc of [Bolla 2010] covers its cylinder of height R.
@@ -98,50 +110,93 @@ SplatBound BoundSplat(const Splat& splat,
     return finish(radius);
   }
 
+  // The points on or near the patch (within twice the tolerance), binned by
+  // in-plane distance (a counting sort into bins an adjacency wide): two
+  // points closer than d in space differ by at most d in rho, so each
+  // nearness test below looks only at the bins of a band of rho.
+  const double adjacency = params.Adjacency * spacing;
+  const double binWidth = std::max(adjacency, 1e-3 * reach);
+  const int bins = static_cast<int>(reach / binWidth) + 1;
+  auto binOf = [&](double value)
+  { return std::min(bins - 1, std::max(0, static_cast<int>(value / binWidth))); };
+  thread_local std::vector<const double*> near;
+  thread_local std::vector<int> binStart;
+  binStart.assign(static_cast<size_t>(bins) + 1, 0);
+  auto isNear = [&](const Candidate& c) { return c.E <= 2.0 * tol; };
+  for (const Candidate& c : on)
+  {
+    ++binStart[binOf(c.Rho) + 1];
+  }
+  for (const Candidate& c : off)
+  {
+    binStart[binOf(c.Rho) + 1] += isNear(c) ? 1 : 0;
+  }
+  for (int b = 0; b < bins; ++b)
+  {
+    binStart[b + 1] += binStart[b];
+  }
+  near.resize(static_cast<size_t>(binStart[bins]));
+  {
+    thread_local std::vector<int> fill;
+    fill.assign(binStart.begin(), binStart.end() - 1);
+    for (const Candidate& c : on)
+    {
+      near[fill[binOf(c.Rho)]++] = points + 3 * c.Index;
+    }
+    for (const Candidate& c : off)
+    {
+      if (isNear(c))
+      {
+        near[fill[binOf(c.Rho)]++] = points + 3 * c.Index;
+      }
+    }
+  }
+  // The near points whose rho may lie in [lo, hi] (a superset: whole bins).
+  auto nearBand = [&](double lo, double hi)
+  {
+    return std::make_pair(near.begin() + binStart[binOf(lo) > 0 ? binOf(lo) - 1 : 0],
+      near.begin() + binStart[std::min(bins, binOf(hi) + 2)]);
+  };
+
   // Where the surface bends away: the nearest point off the patch that
-  // continues the points on or near it (within twice the tolerance). A
-  // point barely off (under twice the tolerance) is noise as often as it is
-  // a bend: it is not covered, but does not stop the disc; nor does a point
-  // within a spacing of the centre, where the fit itself is within the
-  // tolerance (so that the disc always covers its own centre).
+  // continues the points on or near it. A point barely off (under twice
+  // the tolerance) is noise as often as it is a bend: it is not covered,
+  // but does not stop the disc; nor does a point within a spacing of the
+  // centre, where the fit itself is within the tolerance (so that the disc
+  // always covers its own centre).
   double r = radius;
-  std::sort(
-    off.begin(), off.end(), [](const Candidate& a, const Candidate& b) { return a.Rho < b.Rho; });
-  std::vector<const double*> near;
-  near.reserve(on.size() + off.size());
-  for (const Candidate& m : on)
-  {
-    near.push_back(points + 3 * m.Index);
-  }
+  thread_local std::vector<const Candidate*> stoppers;
+  stoppers.clear();
   for (const Candidate& c : off)
   {
-    if (c.E <= 2.0 * tol)
+    if (c.Rho < r && c.E > 2.0 * tol && c.Rho >= spacing)
     {
-      near.push_back(points + 3 * c.Index);
+      stoppers.push_back(&c);
     }
   }
-  const double adjacent2 = (params.Adjacency * spacing) * (params.Adjacency * spacing);
-  for (const Candidate& c : off)
+  std::sort(stoppers.begin(),
+    stoppers.end(),
+    [](const Candidate* a, const Candidate* b) { return a->Rho < b->Rho; });
+  const double adjacent2 = adjacency * adjacency;
+  for (const Candidate* c : stoppers)
   {
-    if (c.Rho >= r || bound.BentAway)
+    const double* p = points + 3 * c->Index;
+    const auto range = nearBand(c->Rho - adjacency, c->Rho + adjacency);
+    for (auto it = range.first; it != range.second; ++it)
     {
-      break;
-    }
-    if (c.E <= 2.0 * tol || c.Rho < spacing)
-    {
-      continue; // noise, or a bend closer to the centre than the patch can resolve
-    }
-    const double* p = points + 3 * c.Index;
-    for (const double* q : near)
-    {
+      const double* q = *it;
       const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
         (p[2] - q[2]) * (p[2] - q[2]);
       if (d2 <= adjacent2)
       {
-        r = c.Rho;
+        r = c->Rho;
         bound.BentAway = true;
         break;
       }
+    }
+    if (bound.BentAway)
+    {
+      break;
     }
   }
 
@@ -195,6 +250,9 @@ SplatBound BoundSplat(const Splat& splat,
   for (int step = 0; step < 8 && r > 0.0; ++step)
   {
     bool inside = true;
+    // A rim sample lies at rho = r: a point within `along` of it in the
+    // plane has rho within `along` of r.
+    const auto range = nearBand(r - along, r + along);
     for (int k = 0; k < Directions && inside; ++k)
     {
       const double u = r * cosine[k] / h, v = r * sine[k] / h;
@@ -205,9 +263,9 @@ SplatBound BoundSplat(const Splat& splat,
         p[c] = f.Origin[c] + h * (u * f.Tangent[c] + v * f.Bitangent[c] + g * f.Normal[c]);
       }
       inside = false;
-      for (size_t j = 0; j < near.size() && !inside; ++j)
+      for (auto j = range.first; j != range.second && !inside; ++j)
       {
-        const double* q = near[j];
+        const double* q = *j;
         const double d[3] = { p[0] - q[0], p[1] - q[1], p[2] - q[2] };
         const double dn = d[0] * f.Normal[0] + d[1] * f.Normal[1] + d[2] * f.Normal[2];
         const double dt2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - dn * dn;

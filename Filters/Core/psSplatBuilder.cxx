@@ -10,6 +10,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -236,6 +237,9 @@ BuildResult BuildSplats(const double* xyz,
   const int kAll = std::max(fit.NumberOfNeighbors, fit.FeatureSizeNeighbors + 1);
 
   const bool bounded = fit.MaximumDeviation > 0.0;
+  // Tells this call's cached searches (see `bound`) from an earlier call's.
+  static std::atomic<unsigned long long> builds{ 0 };
+  const unsigned long long buildId = ++builds;
   // The neighbours of point i and its plane with h (Normal and Scale).
   auto planeOf = [&](long long i,
                    LocalFrame& frame,
@@ -259,7 +263,9 @@ BuildResult BuildSplats(const double* xyz,
   // in-plane distances.
   // `nearest` (ids, sorted by distance, and their squared distances from the
   // splat's point `from`), when they reach far enough, stand in for a
-  // search of the index.
+  // search of the index. Otherwise the search is made around `from` and
+  // kept: a second bound of the same point (the narrow refit below) whose
+  // disc it reaches uses it again.
   auto bound = [&](BuiltSplat& b,
                  double tolerance,
                  std::vector<int>* cover,
@@ -271,6 +277,9 @@ BuildResult BuildSplats(const double* xyz,
     thread_local std::vector<int> found;
     thread_local std::vector<double> d2, coords;
     thread_local std::vector<int> local;
+    thread_local const double* foundFrom = nullptr;
+    thread_local double foundRadius = 0.0;
+    thread_local unsigned long long foundBuild = 0;
     const Splat& sp = b.Fitted;
     BoundParameters bp;
     bp.Spacing = sp.Spacing;
@@ -279,15 +288,27 @@ BuildResult BuildSplats(const double* xyz,
       std::max(bp.MaximumReach, 2.0 * tolerance); // a looser patch may stray farther
     bp.MeasureOnly = !bounded;
     const double search = BoundSearchRadius(b.Radius, sp.Spacing);
+    const double offset =
+      from ? std::sqrt(vtkMath::Distance2BetweenPoints(from, sp.Frame.Origin)) : 0.0;
     const std::vector<int>* candidates = &found;
-    if (nearest && !nearest->empty() &&
-      std::sqrt(nearestD2->back()) >=
-        search + std::sqrt(vtkMath::Distance2BetweenPoints(from, sp.Frame.Origin)))
+    if (nearest && !nearest->empty() && std::sqrt(nearestD2->back()) >= search + offset)
     {
       candidates = nearest; // a superset of the points within `search` of the origin
     }
+    else if (from)
+    {
+      // A superset of the points within `search` of the origin.
+      if (from != foundFrom || foundBuild != buildId || foundRadius < search + offset)
+      {
+        foundRadius = search + 2.0 * offset + 0.25 * sp.Spacing;
+        foundFrom = from;
+        foundBuild = buildId;
+        index.Within(from, foundRadius, found, d2, false);
+      }
+    }
     else
     {
+      foundFrom = nullptr;
       index.Within(sp.Frame.Origin, search, found, d2, false);
     }
     const std::vector<int>& ids = *candidates;
@@ -346,7 +367,8 @@ BuildResult BuildSplats(const double* xyz,
         static_cast<int>(ids.size()),
         levelFit,
         normals ? normals + 3 * i : nullptr,
-        params.KeepWeights ? &w : nullptr);
+        params.KeepWeights ? &w : nullptr,
+        &c->Plane);
       if (b->Fitted.Fit.Degree <= 0)
       {
         return false;
@@ -377,7 +399,8 @@ BuildResult BuildSplats(const double* xyz,
           static_cast<int>(ids.size()),
           narrow,
           normals ? normals + 3 * i : nullptr,
-          params.KeepWeights ? &w : nullptr);
+          params.KeepWeights ? &w : nullptr,
+          &c->Plane);
         if (n2->Fitted.Fit.Degree > 0)
         {
           n2->Radius = nominalRadius;

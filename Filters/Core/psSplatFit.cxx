@@ -158,7 +158,8 @@ Splat FitSplat(const double q[3],
   int n,
   const SplatFitParameters& params,
   const double* orientation,
-  std::vector<double>* weights)
+  std::vector<double>* weights,
+  const LocalFrame* given)
 {
   Splat splat;
   const int m = std::max(0, std::min(n, params.NumberOfNeighbors));
@@ -169,14 +170,23 @@ Splat FitSplat(const double q[3],
   }
   // 1. Parametric domain: the plane of the fit neighbourhood, unweighted.
   LocalFrame domain;
-  FitStatus status = FitReferencePlane(nbrs, nullptr, m, domain, orientation);
+  FitStatus status = FitStatus::Ok;
+  if (given)
+  {
+    domain = *given;
+  }
+  else
+  {
+    status = FitReferencePlane(nbrs, nullptr, m, domain, orientation);
+  }
   if (status != FitStatus::Ok)
   {
     splat.Fit.Status = status;
     return splat;
   }
   // 2. Feature size in that domain.
-  const double h = FeatureSize(q, domain, nbrs, n, params.FeatureSizeNeighbors);
+  const double h =
+    given ? given->Scale : FeatureSize(q, domain, nbrs, n, params.FeatureSizeNeighbors);
   if (!(h > 0.0) || !std::isfinite(h))
   {
     splat.Fit.Status = FitStatus::Degenerate;

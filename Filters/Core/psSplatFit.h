@@ -93,14 +93,18 @@ struct Splat
  * distance to q; q itself may be among them). `orientation`, when given,
  * orients the normal. `weights`, when given, receives the Gaussian weight of
  * each of the first min(n, NumberOfNeighbors) neighbours, for carrying
- * attributes over. Never returns NaN: failures are in splat.Fit.Status.
+ * attributes over. `domain`, when given, is steps 1 and 2 done already by
+ * the caller with the same neighbours and orientation (the unweighted plane
+ * of the first NumberOfNeighbors, with Scale = h): they are not repeated.
+ * Never returns NaN: failures are in splat.Fit.Status.
  */
 POINTSURFACESFILTERS_EXPORT Splat FitSplat(const double q[3],
   const double* nbrs,
   int n,
   const SplatFitParameters& params,
   const double* orientation = nullptr,
-  std::vector<double>* weights = nullptr);
+  std::vector<double>* weights = nullptr,
+  const LocalFrame* domain = nullptr);
 
 /**
  * Feature size: mean distance from q to the first `k` neighbours measured in
