@@ -7,9 +7,13 @@
                                                           (unbounded fit; the error-bounded default beside it)
     bench_splat_fit.py million   [--out DIR] [--points N] 1M points (sampled on the Bunny's mesh) at s = 1
     bench_splat_fit.py tradeoff  [--out DIR]              error against time over degree, s, k, fit mode
+    bench_splat_fit.py fittime   [--out DIR] [--runs N] [--label L] [scans...]
+                                                          the error-bounded fit's time against the
+                                                          unbounded fit's in the same process, s = 2, 1, 0.5
     add --smoke for a few-second run on a subset (what ctest runs)
 
-Scans default to ../shared/data/scans/{bunny.ply,igea.xyz,horse.ply}. Times
+Scans default to ../shared/data/scans/{bunny.ply,igea.xyz,horse.ply}
+(fittime: bunny.ply, horse.ply, lucy_50k.ply). Times
 are wall-clock seconds of vtkAlgebraicSplatFitter.Update() on this machine,
 with every core vtkSMPTools uses; compare them only within one run.
 
@@ -143,12 +147,72 @@ def million(args):
     sample = sample_surface(mesh, n)
     pd = points(sample)
     rows = []
-    for order, name in ((0, "random"), (2, "front")):
-        r = fit(pd, SelectionOrder=order)
+    # The error-bounded default in both orders, and the unbounded fit of
+    # [Bolla 2010] as the peer in the same process.
+    for order, name, bound in ((0, "random", None), (2, "front", None), (0, "random, unbounded", 0.0)):
+        r = fit(pd, SelectionOrder=order) if bound is None else fit(
+            pd, SelectionOrder=order, MaximumDeviation=bound)
         rows.append({"points": n, "order": name, "splats": r["splats"],
                      "seconds": round(r["seconds"], 3), "rms_rel": "%.3e" % r["rms_rel"],
                      "max_rel": "%.3e" % r["max_rel"]})
     write(rows, args.out, "million")
+
+
+def fittime(args):
+    """Fit time of the error-bounded default against the unbounded fit, both
+    in this process, runs interleaved; the median of --runs each. Run it
+    once per build (e.g. with LD_LIBRARY_PATH at another build's libraries)
+    and --label each to compare builds."""
+    scans = args.scans or [os.path.join(SCANS, s) for s in ("bunny.ply", "horse.ply", "lucy_50k.ply")]
+    qualities = (2.0, 1.0, 0.5)
+    runs = max(1, args.runs)
+    if args.smoke:
+        scans = [os.path.join(ROOT, "Testing", "Data", "bunny.vtp")]
+        qualities = (1.0,)
+        runs = 1
+    rows = []
+    for path in scans:
+        model = os.path.basename(path).split(".")[0]
+        pd = load(path)
+        for s in qualities:
+            seconds = {0.0: [], None: []}
+            splats = {}
+            for _ in range(runs):
+                for bound in (0.0, None):
+                    fitter = pointsurfaces.vtkAlgebraicSplatFitter()
+                    fitter.SetInputData(pd)
+                    fitter.SetQualityFactor(s)
+                    if bound is not None:
+                        fitter.SetMaximumDeviation(bound)
+                    start = time.perf_counter()
+                    fitter.Update()
+                    seconds[bound].append(time.perf_counter() - start)
+                    splats[bound] = fitter.GetOutput().GetNumberOfPoints()
+            unbounded = float(np.median(seconds[0.0]))
+            probe = pointsurfaces.vtkAlgebraicSplatFitter()
+            for bound in (0.0, None):
+                median = float(np.median(seconds[bound]))
+                rows.append({"label": args.label, "model": model, "points": pd.GetNumberOfPoints(),
+                             "s": s,
+                             "maximum_deviation": bound if bound is not None else probe.GetMaximumDeviation(),
+                             "splats": splats[bound], "runs": runs, "seconds": round(median, 4),
+                             "ratio_to_unbounded": round(median / unbounded, 3)})
+    path = write(rows, args.out, "fit_time" + ("_" + args.label if args.label else ""))
+    pyplot = plt()
+    fig, ax = pyplot.subplots(figsize=(6, 4))
+    for i, model in enumerate(sorted({r["model"] for r in rows})):
+        sel = [r for r in rows if r["model"] == model and r["maximum_deviation"] != 0.0]
+        ax.plot([r["s"] for r in sel], [r["ratio_to_unbounded"] for r in sel], "o-", color="C%d" % i,
+                label=model)
+    ax.axhline(1.5, color="grey", ls="--", lw=1, label="1.5x")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("s")
+    ax.set_ylabel("bounded fit time / unbounded fit time")
+    ax.legend()
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.splitext(path)[0] + ".png", dpi=100)
 
 
 def tradeoff(args):
@@ -190,13 +254,15 @@ def tradeoff(args):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("bench", choices=("counts", "million", "tradeoff"))
+    parser.add_argument("bench", choices=("counts", "million", "tradeoff", "fittime"))
     parser.add_argument("scans", nargs="*")
     parser.add_argument("--out", default="bench-results")
     parser.add_argument("--points", type=int, default=1000000)
+    parser.add_argument("--runs", type=int, default=3, help="fittime: runs per setting")
+    parser.add_argument("--label", default="", help="fittime: names the build in the CSV")
     parser.add_argument("--smoke", action="store_true")
     args = parser.parse_args()
-    {"counts": counts, "million": million, "tradeoff": tradeoff}[args.bench](args)
+    {"counts": counts, "million": million, "tradeoff": tradeoff, "fittime": fittime}[args.bench](args)
 
 
 if __name__ == "__main__":
