@@ -297,6 +297,81 @@ void TestCoveredWithinTolerance()
   Check(!covered.empty() && std::abs(worst - b.MaxDeviation) <= 1e-12 * s.Frame.Scale,
     "the reported deviation is that of the covered points");
   Check(worst <= bp.Tolerance, "every covered point is within the tolerance");
+
+  // More candidates than the search radius holds (here every point of the
+  // cloud, as when a fit's nearest neighbours reach farther) give the same
+  // disc and the same cover.
+  std::vector<int> coveredAll;
+  std::vector<double> rhoAll;
+  const SplatBound all = BoundSplat(s, nominal, pts.data(), 3000, bp, &coveredAll, &rhoAll);
+  std::vector<int> globalCovered;
+  for (int j : covered)
+  {
+    globalCovered.push_back(ids[j]);
+  }
+  std::sort(globalCovered.begin(), globalCovered.end());
+  std::sort(coveredAll.begin(), coveredAll.end());
+  Check(all.Radius == b.Radius && all.MaxDeviation == b.MaxDeviation &&
+      all.BentAway == b.BentAway && all.Border == b.Border,
+    "a superset of the candidates gives the same disc");
+  Check(coveredAll == globalCovered, "a superset of the candidates gives the same cover");
+}
+
+// A bound depends only on the candidates within BoundSearchRadius of the
+// splat's origin, however many more the caller passes: a steep patch
+// (g = 3 u^2) sampled exactly over [-1, 1]^2 climbs out of the search
+// sphere within its nominal disc. Passed every sample, the bound still
+// sees only those inside the sphere.
+void TestCandidatesBeyondSearch()
+{
+  Splat splat;
+  splat.Fit.Degree = 2;
+  splat.Fit.Status = FitStatus::Ok;
+  splat.Fit.Coefficients[3] = 3.0; // u^2
+  splat.Spacing = 0.1;
+  const double nominal = 1.0;
+  const double search = BoundSearchRadius(nominal, splat.Spacing);
+  std::vector<double> every, inside;
+  std::vector<int> insideId;
+  for (int i = -10; i <= 10; ++i)
+  {
+    for (int j = -10; j <= 10; ++j)
+    {
+      const double u = 0.1 * i, v = 0.1 * j, p[3] = { u, v, 3.0 * u * u };
+      if (p[0] * p[0] + p[1] * p[1] + p[2] * p[2] <= search * search)
+      {
+        inside.insert(inside.end(), p, p + 3);
+        insideId.push_back(static_cast<int>(every.size() / 3));
+      }
+      every.insert(every.end(), p, p + 3);
+    }
+  }
+  Check(inside.size() < every.size(), "some samples lie beyond the search sphere");
+  BoundParameters bp;
+  bp.Spacing = splat.Spacing;
+  bp.Tolerance = 0.05;
+  std::vector<int> coveredInside, coveredEvery;
+  std::vector<double> rho;
+  const SplatBound a = BoundSplat(
+    splat, nominal, inside.data(), static_cast<int>(inside.size() / 3), bp, &coveredInside, &rho);
+  const SplatBound b = BoundSplat(
+    splat, nominal, every.data(), static_cast<int>(every.size() / 3), bp, &coveredEvery, &rho);
+  for (int& j : coveredInside)
+  {
+    j = insideId[j];
+  }
+  std::sort(coveredInside.begin(), coveredInside.end());
+  std::sort(coveredEvery.begin(), coveredEvery.end());
+  std::printf("steep patch: radius %.3f (%zu covered) from the sphere's samples, %.3f (%zu) "
+              "from all %zu\n",
+    a.Radius,
+    coveredInside.size(),
+    b.Radius,
+    coveredEvery.size(),
+    every.size() / 3);
+  Check(a.Radius == b.Radius && a.MaxDeviation == b.MaxDeviation && a.Border == b.Border,
+    "candidates beyond the search radius do not change the disc");
+  Check(coveredInside == coveredEvery, "candidates beyond the search radius are not covered");
 }
 } // namespace
 
@@ -363,5 +438,6 @@ int TestSplatBound(int, char*[])
       2.0);
   }
   TestCoveredWithinTolerance();
+  TestCandidatesBeyondSearch();
   return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
