@@ -23,12 +23,7 @@ double EvaluateWithGradient(const double* c, int degree, double u, double v, dou
 {
   double upow[MaximumDegree + 1];
   double vpow[MaximumDegree + 1];
-  upow[0] = vpow[0] = 1.0;
-  for (int k = 1; k <= degree; ++k)
-  {
-    upow[k] = upow[k - 1] * u;
-    vpow[k] = vpow[k - 1] * v;
-  }
+  Powers(u, v, degree, upow, vpow);
   double g = 0.0;
   du = dv = 0.0;
   int i = 0;

@@ -28,6 +28,17 @@ constexpr int MonomialCount(int degree)
 /** The degree whose monomial count is `count`, or -1 when no degree 1..4 has it. */
 POINTSURFACESFILTERS_EXPORT int DegreeFromMonomialCount(int count);
 
+/** u^0 .. u^degree and v^0 .. v^degree. */
+inline void Powers(double u, double v, int degree, double* upow, double* vpow)
+{
+  upow[0] = vpow[0] = 1.0;
+  for (int k = 1; k <= degree; ++k)
+  {
+    upow[k] = upow[k - 1] * u;
+    vpow[k] = vpow[k - 1] * v;
+  }
+}
+
 /**
  * Write the MonomialCount(degree) monomials at (u, v) to `out`. Inline: the
  * fitter and the disc bounds call it for every neighbour of every splat.
@@ -36,12 +47,7 @@ inline void Monomials(double u, double v, int degree, double* out)
 {
   double upow[MaximumDegree + 1];
   double vpow[MaximumDegree + 1];
-  upow[0] = vpow[0] = 1.0;
-  for (int k = 1; k <= degree; ++k)
-  {
-    upow[k] = upow[k - 1] * u;
-    vpow[k] = vpow[k - 1] * v;
-  }
+  Powers(u, v, degree, upow, vpow);
   int i = 0;
   for (int total = 0; total <= degree; ++total)
   {
