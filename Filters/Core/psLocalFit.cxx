@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -42,10 +43,12 @@ bool AllFinite(const double* p, int n)
 }
 // The least-squares solution of A c = rhs through the normal equations, with
 // the columns scaled to unit norm: a quarter of the QR's work on the tall,
-// narrow systems of a splat fit. Refuses (returns false) unless the scaled
-// system is well conditioned (smallest pivot over largest above 1e-8, so
-// that squaring the condition number costs at most 8 of 16 digits); the
-// caller then takes the rank-revealing QR.
+// narrow systems of a splat fit. Refuses (returns false) unless the column
+// norms are within 1e4 of each other and the scaled system is well
+// conditioned (smallest LDLT pivot over largest above 1e-8, so that
+// squaring the condition number costs about 8 of 16 digits): every system
+// it accepts is one the rank-revealing QR (threshold 1e-10) accepts too.
+// The caller takes that QR otherwise.
 bool SolveNormal(const Eigen::MatrixXd& A, const Eigen::VectorXd& rhs, Eigen::VectorXd& c)
 {
   constexpr int Max = MonomialCount(MaximumDegree);
@@ -59,13 +62,23 @@ bool SolveNormal(const Eigen::MatrixXd& A, const Eigen::VectorXd& rhs, Eigen::Ve
   Square normal(m, m);
   normal.noalias() = A.transpose() * A;
   Column scale(m);
+  double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
   for (Eigen::Index j = 0; j < m; ++j)
   {
     if (!(normal(j, j) > 0.0) || !std::isfinite(normal(j, j)))
     {
       return false;
     }
+    smallest = std::min(smallest, normal(j, j));
+    largest = std::max(largest, normal(j, j));
     scale(j) = 1.0 / std::sqrt(normal(j, j));
+  }
+  // Columns of very different norms (a strip of points thin in v, whose v^2
+  // column is tiny) are the QR's to judge: the scaling below would hide
+  // what its rank test, on the unscaled columns, rejects.
+  if (largest > 1e8 * smallest)
+  {
+    return false;
   }
   normal = scale.asDiagonal() * normal * scale.asDiagonal();
   const Eigen::LDLT<Square> ldlt(normal);

@@ -63,9 +63,10 @@ PointIndex::~PointIndex() = default;
 
 void PointIndex::Finish(const double q[3], std::vector<int>& ids, std::vector<double>& d2) const
 {
-  // Distances in double from the original coordinates, then re-sorted: the
-  // float tree may order near-ties differently (and leaves radius results
-  // unsorted). Most kNN answers are in order already and are left as they are.
+  // Distances in double from the original coordinates, then re-sorted by
+  // (distance, id): the float tree may order near-ties differently (and
+  // leaves radius results unsorted). Most kNN answers are in order already
+  // and are left as they are.
   d2.resize(ids.size());
   bool ordered = true;
   for (size_t j = 0; j < ids.size(); ++j)
@@ -85,10 +86,8 @@ void PointIndex::Finish(const double q[3], std::vector<int>& ids, std::vector<do
   {
     pairs[j] = std::make_pair(d2[j], ids[j]);
   }
-  std::stable_sort(pairs.begin(),
-    pairs.end(),
-    [](const std::pair<double, int>& a, const std::pair<double, int>& b)
-    { return a.first < b.first; });
+  // Ties (common on grids) by id, as FLANN's own sort ordered them.
+  std::sort(pairs.begin(), pairs.end());
   for (size_t j = 0; j < pairs.size(); ++j)
   {
     d2[j] = pairs[j].first;

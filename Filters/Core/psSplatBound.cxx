@@ -32,7 +32,7 @@ SplatBound BoundSplat(const Splat& splat,
   }
   const LocalFrame& f = splat.Frame;
   const double h = f.Scale;
-  if (splat.Fit.Degree <= 0 || !(h > 0.0) || !(radius > 0.0))
+  if (splat.Fit.Degree <= 0 || !(h > 0.0) || !(radius > 0.0) || !std::isfinite(radius))
   {
     return bound;
   }
@@ -49,6 +49,9 @@ SplatBound BoundSplat(const Splat& splat,
     double U, V, Rho, E;
     int Index;
   };
+  // Per-thread scratch, kept between calls: BoundSplat calls back into
+  // nothing and starts no parallel work, so no thread re-enters it while
+  // these are in use.
   thread_local std::vector<Candidate> on, off;
   on.clear();
   off.clear();
@@ -114,11 +117,14 @@ SplatBound BoundSplat(const Splat& splat,
   // in-plane distance (a counting sort into bins an adjacency wide): two
   // points closer than d in space differ by at most d in rho, so each
   // nearness test below looks only at the bins of a band of rho.
-  const double adjacency = params.Adjacency * spacing;
-  const double binWidth = std::max(adjacency, 1e-3 * reach);
+  const double adjacency = std::abs(params.Adjacency * spacing);
+  const double binWidth = std::max(1e-3 * reach, adjacency); // NaN gives way to the first
   const int bins = static_cast<int>(reach / binWidth) + 1;
   auto binOf = [&](double value)
-  { return std::min(bins - 1, std::max(0, static_cast<int>(value / binWidth))); };
+  {
+    const double x = value / binWidth;
+    return x > 0.0 ? (x < bins - 1 ? static_cast<int>(x) : bins - 1) : 0;
+  };
   thread_local std::vector<const double*> near;
   thread_local std::vector<int> binStart;
   binStart.assign(static_cast<size_t>(bins) + 1, 0);
@@ -245,7 +251,7 @@ SplatBound BoundSplat(const Splat& splat,
   // along the plane and twice the tolerance (at least half a spacing) across
   // it. A patch fitted on one side of a border can turn steeply past it.
   // Shrink until it does.
-  const double along = params.MaximumReach / std::sqrt(std::max(density, 1e-300));
+  const double along = std::abs(params.MaximumReach) / std::sqrt(std::max(density, 1e-300));
   const double across = std::max(2.0 * tol, 0.5 * spacing);
   for (int step = 0; step < 8 && r > 0.0; ++step)
   {

@@ -287,7 +287,9 @@ BuildResult BuildSplats(const double* xyz,
     bp.MaximumReach =
       std::max(bp.MaximumReach, 2.0 * tolerance); // a looser patch may stray farther
     bp.MeasureOnly = !bounded;
-    const double search = BoundSearchRadius(b.Radius, sp.Spacing);
+    // BoundSplat's own fallback when the spacing is unknown: h.
+    const double search =
+      BoundSearchRadius(b.Radius, sp.Spacing > 0.0 ? sp.Spacing : sp.Frame.Scale);
     const double offset =
       from ? std::sqrt(vtkMath::Distance2BetweenPoints(from, sp.Frame.Origin)) : 0.0;
     const std::vector<int>* candidates = &found;
@@ -300,10 +302,11 @@ BuildResult BuildSplats(const double* xyz,
       // A superset of the points within `search` of the origin.
       if (from != foundFrom || foundBuild != buildId || foundRadius < search + offset)
       {
+        foundFrom = nullptr;
         foundRadius = search + 2.0 * offset + 0.25 * sp.Spacing;
+        index.Within(from, foundRadius, found, d2, false);
         foundFrom = from;
         foundBuild = buildId;
-        index.Within(from, foundRadius, found, d2, false);
       }
     }
     else
