@@ -206,6 +206,21 @@ void TestDegenerate()
   Check(finite && fit.Status == FitStatus::Degenerate,
     "points on a line give a reported degeneracy and finite coefficients");
 
+  // A strip 1e-7 wide in v: its v^2 column is 1e-14 of the others, below
+  // the rank test's 1e-10, so the quadratic is not well posed there and the
+  // fit falls back to degree 1 (however the least squares are solved).
+  std::vector<double> strip;
+  std::mt19937 stripGen(5u);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (int i = 0; i < 40; ++i)
+  {
+    const double u = uniform(stripGen), v = 1e-7 * uniform(stripGen);
+    strip.insert(strip.end(), { u, v, 0.5 * u * u });
+  }
+  const PolynomialFit thin = FitPolynomial(strip.data(), nullptr, 40, LocalFrame(), 2);
+  Check(thin.Status == FitStatus::ReducedDegree && thin.Degree == 1,
+    "a strip too thin for a quadratic falls back to degree 1");
+
   // Five points cannot determine six quadratic coefficients: degree 1 is used.
   const double c[3] = { 0.1, 0.2, -0.3 };
   const auto few = Sample(TiltedFrame(0, 1), c, 1, 5, 9u);
