@@ -123,7 +123,10 @@ int psSolveCubic(float c0, float c1, float c2, float c3, out vec3 r)
   }
   else
   {
-    float A = (R > 0.0 ? -1.0 : 1.0) * pow(abs(R) + sqrt(R * R - Q3), 1.0 / 3.0);
+    // R^2 >= Q^3 here, but a GPU may fuse R * R - Q3 into one rounding
+    // (NVIDIA does) and take it below zero next to a double root: the square
+    // root of that was NaN, and the quartic's resolvent lost every root.
+    float A = (R > 0.0 ? -1.0 : 1.0) * pow(abs(R) + sqrt(max(R * R - Q3, 0.0)), 1.0 / 3.0);
     float B = A != 0.0 ? Q / A : 0.0;
     r = vec3(A + B - a / 3.0);
     n = 1;
