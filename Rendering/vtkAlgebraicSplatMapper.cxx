@@ -308,16 +308,31 @@ void vtkAlgebraicSplatMapper::SetCameraShaderParameters(vtkOpenGLHelper& cellBO,
   {
     program->SetUniformi("cameraParallel", cam->GetParallelProjection());
   }
-  if (program->IsUniformUsed("splatPixelStep"))
+  if (program->IsUniformUsed("splatPixelStep") || program->IsUniformUsed("splatPixelToView"))
   {
-    // NDC spans 2 over the viewport; x_ndc = P00 x / -z (perspective) or
-    // P00 x + c (parallel): a pixel is 2 / (P00 width) on the plane z = -1,
-    // or in view units.
-    int width = 1, height = 1;
-    ren->GetTiledSize(&width, &height);
-    const float step[2] = { static_cast<float>(2.0 / (vcdc->GetElement(0, 0) * std::max(width, 1))),
-      static_cast<float>(2.0 / (vcdc->GetElement(1, 1) * std::max(height, 1))) };
+    // The viewport in force (a pass into a framebuffer of its own, such as
+    // a shadow map's, sets its own; the renderer's tiled size is not it).
+    // Window x to NDC: 2 (x - x0) / width - 1. NDC to the view plane, with P
+    // the projection (vcdc is its transpose): x = (ndc + P02 - P03) / P00 at
+    // z = -1 (perspective, w = -z = 1), x = (ndc - P02 z - P03) / P00
+    // (parallel, in view units); y likewise. A pixel is 2 / (P00 width).
+    GLint viewport[4] = { 0, 0, 1, 1 };
+    glGetIntegerv(
+      GL_VIEWPORT, viewport); // GL itself: not every pass sets it through vtkOpenGLState
+    const bool parallel = cam->GetParallelProjection() != 0;
+    float step[2], toView[4];
+    for (int k = 0; k < 2; ++k)
+    {
+      const double scale = vcdc->GetElement(k, k);
+      const double size = std::max(viewport[2 + k], 1);
+      const double shear = vcdc->GetElement(2, k), shift = vcdc->GetElement(3, k);
+      step[k] = static_cast<float>(2.0 / (scale * size));
+      toView[k] = static_cast<float>(
+        ((-2.0 * viewport[k] / size - 1.0) + (parallel ? 0.0 : shear) - shift) / scale);
+      toView[2 + k] = static_cast<float>(parallel ? -shear / scale : 0.0);
+    }
     program->SetUniform2f("splatPixelStep", step);
+    program->SetUniform4f("splatPixelToView", toView);
   }
 }
 

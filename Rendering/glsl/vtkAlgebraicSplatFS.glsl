@@ -57,6 +57,13 @@ uniform float splatDepthTolerance;   // its rounding: a step of a fixed-point fo
 // A pixel's width and height on the view plane z = -1 (perspective camera)
 // or in view units (parallel camera).
 uniform vec2 splatPixelStep;
+// The view-plane point of window position (0, 0): a pixel's ray goes through
+// xy + gl_FragCoord.xy * splatPixelStep (plus zw times its view depth, for a
+// parallel camera with an oblique projection). The rays come from the exact
+// pixel centres, not from the quad's interpolated position, which a GPU
+// computes from vertices snapped to its sub-pixel grid (NVIDIA: up to 1/512
+// of a pixel off, 1e-5 of the model's size in depth).
+uniform vec4 splatPixelToView;
 uniform float splatBlendSharpness;
 uniform float splatSilhouetteCos;
 flat in vec3 splatCenterVCVSOutput;
@@ -333,16 +340,21 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
   // of the bounding face it was drawn on; the pixel's steps there (from the
   // projection, not from derivatives, which a face seen edge-on spoils)
   // offset the sub-pixel rays, and its size is the footprint.
-  vec3 viewPlane = cameraParallel != 0 ? vec3(vertexVCVSOutput.xy, 0.0)
-                                       : vertexVCVSOutput.xyz / max(-vertexVCVSOutput.z, 1e-30);
+  vec2 pixelPlane = splatPixelToView.xy + gl_FragCoord.xy * splatPixelStep;
+  // The pixel's point on the bounding face (parallel camera: any point of
+  // the ray will do) or on the view plane z = -1 (perspective).
+  vec3 pixelVC = cameraParallel != 0
+    ? vec3(pixelPlane + splatPixelToView.zw * vertexVCVSOutput.z, vertexVCVSOutput.z)
+    : vec3(pixelPlane, -1.0);
+  vec3 viewPlane = cameraParallel != 0 ? vec3(pixelVC.xy, 0.0) : pixelVC;
   vec3 pixelDX = vec3(splatPixelStep.x, 0.0, 0.0);
   vec3 pixelDY = vec3(0.0, splatPixelStep.y, 0.0);
   float pixelSize = max(length(pixelDX), length(pixelDY));
   vec2 footprint = cameraParallel != 0
     ? vec2(pixelSize / splatH, 0.0)
     : vec2(0.0, pixelSize / (length(viewPlane) * splatH));
-  vec3 rayO = cameraParallel != 0 ? vertexVC.xyz : vec3(0.0);
-  vec3 rayD = cameraParallel != 0 ? vec3(0.0, 0.0, -1.0) : normalize(vertexVC.xyz);
+  vec3 rayO = cameraParallel != 0 ? pixelVC : vec3(0.0);
+  vec3 rayD = cameraParallel != 0 ? vec3(0.0, 0.0, -1.0) : normalize(pixelVC);
   const bool probe = SPLAT_SAMPLES > 1 || SPLAT_SHOW_SILHOUETTE != 0;
   vec3 local;
   bool splatSilhouette;
@@ -365,7 +377,7 @@ vec3 psSplatNormal(vec3 local, mat3 Minv, vec3 rayD)
       for (int j = 0; j < SPLAT_SAMPLES; ++j)
       {
         vec2 offset = (vec2(i, j) + 0.5) / float(SPLAT_SAMPLES) - 0.5;
-        vec3 q = (cameraParallel != 0 ? vertexVCVSOutput.xyz : viewPlane) + offset.x * pixelDX +
+        vec3 q = pixelVC + offset.x * pixelDX +
           offset.y * pixelDY;
         vec3 subO = cameraParallel != 0 ? q : vec3(0.0);
         vec3 subD = cameraParallel != 0 ? vec3(0.0, 0.0, -1.0) : normalize(q);
