@@ -61,6 +61,14 @@ pointsurfaces::BallArrays vtkMetaballField::ExtractBalls(vtkPointSet* input, dou
 }
 
 //------------------------------------------------------------------------------
+void vtkMetaballField::ExtractBalls(vtkPointSet* input,
+  double scale,
+  pointsurfaces::BallArrays& out) const
+{
+  pointsurfaces::ExtractBalls(input, this->GetRule(), scale, out);
+}
+
+//------------------------------------------------------------------------------
 double vtkMetaballField::GetLargestRadius(vtkPointSet* input)
 {
   return pointsurfaces::LargestSupportRadius(input, this->GetRule());

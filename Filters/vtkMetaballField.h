@@ -136,6 +136,8 @@ public:
 
   /** The balls of `input` (radii times `scale` on top of the rule). */
   pointsurfaces::BallArrays ExtractBalls(vtkPointSet* input, double scale = 1.0) const;
+  /** The same into `out`, keeping its storage (for every frame of a series). */
+  void ExtractBalls(vtkPointSet* input, double scale, pointsurfaces::BallArrays& out) const;
 #endif
 
 protected:

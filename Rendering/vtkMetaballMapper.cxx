@@ -152,7 +152,10 @@ struct vtkMetaballMapper::Internals
   double Shift[3] = { 0.0, 0.0, 0.0 };
   vtkIdType Count = 0;
   bool HasStrengths = false;
-  // What went to the GPU, kept for the CPU ray caster; its last images.
+  // The input's balls in double, and what went to the GPU (kept for the CPU
+  // ray caster); reused frame after frame, so that a series of 10M balls
+  // does not allocate and fault in half a gigabyte a frame. Its last images.
+  pointsurfaces::BallArrays Extracted;
   std::vector<float> HostBalls, HostStrengths;
   std::vector<unsigned int> HostColors;
   pointsurfaces::MetaballCastImages CastImages;
@@ -332,7 +335,8 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
           m->GetElement(1, a) * m->GetElement(1, a) + m->GetElement(2, a) * m->GetElement(2, a)));
     }
   }
-  const pointsurfaces::BallArrays extracted = this->Field->ExtractBalls(input, scale);
+  const pointsurfaces::BallArrays& extracted = in.Extracted;
+  this->Field->ExtractBalls(input, scale, in.Extracted);
   const std::string strengthWarning =
     pointsurfaces::MissingStrengthsWarning(extracted, this->Field->GetStrengthArrayName());
   if (!strengthWarning.empty())
@@ -350,8 +354,10 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
   }
   // Float, relative to the centre; an invalid ball gets radius 0, which the
   // grid skips.
-  std::vector<float> balls(4 * n);
-  std::vector<float> q(strengths ? n : 1, 1.0f);
+  std::vector<float>& balls = in.HostBalls;
+  std::vector<float>& q = in.HostStrengths;
+  balls.resize(4 * n);
+  q.assign(strengths ? n : 1, 1.0f);
   std::atomic<vtkIdType> invalidCount(0);
   struct Smallest
   {
@@ -402,32 +408,31 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
     vtkWarningMacro(<< pointsurfaces::InvalidBallsWarning(invalid, n));
   }
   // Colours: the usual scalar colouring, or the actor's colour.
-  std::vector<unsigned int> colors(std::max<vtkIdType>(n, 1));
+  std::vector<unsigned int>& colors = in.HostColors;
+  colors.resize(std::max<vtkIdType>(n, 1));
   vtkUnsignedCharArray* mapped = this->MapScalars(input, 1.0);
+  const unsigned char* rgba =
+    mapped && mapped->GetNumberOfComponents() == 4 ? mapped->GetPointer(0) : nullptr;
   double* diffuse = act->GetProperty()->GetDiffuseColor();
   const unsigned int plain = static_cast<unsigned int>(vtkMath::Round(255 * diffuse[0])) |
     (static_cast<unsigned int>(vtkMath::Round(255 * diffuse[1])) << 8) |
     (static_cast<unsigned int>(vtkMath::Round(255 * diffuse[2])) << 16) | (255u << 24);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    if (mapped && mapped->GetNumberOfComponents() == 4)
+  vtkSMPTools::For(0,
+    n,
+    [&](vtkIdType begin, vtkIdType end)
     {
-      const unsigned char* c = mapped->GetPointer(4 * i);
-      colors[i] = c[0] | (c[1] << 8) | (c[2] << 16) | (static_cast<unsigned int>(c[3]) << 24);
-    }
-    else
-    {
-      colors[i] = plain;
-    }
-  }
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const unsigned char* c = rgba ? rgba + 4 * i : nullptr;
+        colors[i] =
+          c ? c[0] | (c[1] << 8) | (c[2] << 16) | (static_cast<unsigned int>(c[3]) << 24) : plain;
+      }
+    });
   bool ok = in.Balls->Upload(balls.data(), std::max<size_t>(balls.size(), 4) * sizeof(float));
   ok = ok && in.Colors->Upload(colors.data(), colors.size() * sizeof(unsigned int));
   ok = ok && in.Strengths->Upload(q.data(), q.size() * sizeof(float));
   in.HasStrengths = strengths;
   in.Count = ok ? n : 0;
-  in.HostBalls.swap(balls);
-  in.HostStrengths.swap(q);
-  in.HostColors.swap(colors);
   this->NumberOfInvalidBalls = invalid;
   ++this->NumberOfUploads;
   in.UploadTime.Modified();

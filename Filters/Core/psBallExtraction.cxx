@@ -51,6 +51,15 @@ double LargestSupportRadius(vtkPointSet* input, const BallRule& rule)
 BallArrays ExtractBalls(vtkPointSet* input, const BallRule& rule, double scale)
 {
   BallArrays b;
+  ExtractBalls(input, rule, scale, b);
+  return b;
+}
+
+//------------------------------------------------------------------------------
+void ExtractBalls(vtkPointSet* input, const BallRule& rule, double scale, BallArrays& b)
+{
+  b.MissingStrengths = b.MissingRadii = false;
+  b.MissingDensityName.clear();
   const vtkIdType n = input && input->GetPoints() ? input->GetNumberOfPoints() : 0;
   vtkDataArray* radii = RadiusArray(input, rule);
   vtkDataArray* strengths = StrengthArray(input, rule);
@@ -108,8 +117,8 @@ BallArrays ExtractBalls(vtkPointSet* input, const BallRule& rule, double scale)
   b.Set.Count = n;
   b.Set.Kernel = rule.Kernel;
   b.Set.Threshold = rule.Threshold;
-  return b;
 }
+
 //------------------------------------------------------------------------------
 std::string MissingStrengthsWarning(const BallArrays& balls, const std::string& strengthName)
 {

@@ -92,6 +92,16 @@ POINTSURFACESFILTERS_EXPORT BallArrays ExtractBalls(vtkPointSet* input,
   const BallRule& rule,
   double scale = 1.0);
 
+/**
+ * The same into `out`, whose storage is kept: a caller that extracts every
+ * frame (a mapper of a time series) allocates and touches its arrays once,
+ * not once a frame (at 10M balls the fresh pages cost more than the copy).
+ */
+POINTSURFACESFILTERS_EXPORT void ExtractBalls(vtkPointSet* input,
+  const BallRule& rule,
+  double scale,
+  BallArrays& out);
+
 ///@{
 /**
  * The warnings every reader of balls gives, worded once: a strength array
