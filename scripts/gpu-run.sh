@@ -39,7 +39,7 @@ echo "== EGL render tests (ctest -L egl)"
 mkdir -p "$out/ctest" "$out/ctest/Testing/Temporary" "$out/ctest/work"
 sed -e "s#@BUNDLE@#$here#g" -e "s#@OUT@#$out/ctest#g" \
   "$here/tests/CTestTestfile.cmake.in" > "$out/ctest/CTestTestfile.cmake"
-"$here/bin/ctest" --test-dir "$out/ctest" -L egl --output-on-failure
+"$here/bin/ctest" --test-dir "$out/ctest" -L egl --output-on-failure --timeout 180
 tests=$?
 
 echo "== benchmarks"

@@ -13,7 +13,8 @@
 // - Metaballs: N balls uniform in a cube, radius two mean spacings, every
 //   frame dynamic (the points are marked modified, so they are uploaded and
 //   the grid rebuilt); the grid build and ray cast times are the mapper's
-//   GPU timer queries. The peer: vtkOpenGLSphereMapper on the same balls at
+//   GPU timer queries, and upload_ms the wall time of the last frame's
+//   upload of the balls. The peer: vtkOpenGLSphereMapper on the same balls at
 //   the radius of a lone ball's surface.
 //
 // A frame is Render() plus a one-pixel depth read-back (which waits for the
@@ -87,7 +88,7 @@ struct Row
 {
   std::string Scene, Method, Setting;
   long long Primitives = 0;
-  double FrameMs = 0.0, GridMs = -1.0, CastMs = -1.0, FitSeconds = -1.0;
+  double FrameMs = 0.0, GridMs = -1.0, CastMs = -1.0, UploadMs = -1.0, FitSeconds = -1.0;
   std::string Note;
 };
 
@@ -261,7 +262,7 @@ struct Bench
     os << r.Scene << "," << r.Method << ",\"" << r.Setting << "\"," << r.Primitives << ","
        << this->Opt.Width << "," << this->Opt.Height << "," << Fixed(r.FrameMs, 2) << ","
        << Fixed(fps, 1) << "," << Fixed(r.GridMs, 3) << "," << Fixed(r.CastMs, 3) << ","
-       << Fixed(r.FitSeconds, 2) << ",\"" << r.Note << "\"\n";
+       << Fixed(r.UploadMs, 3) << "," << Fixed(r.FitSeconds, 2) << ",\"" << r.Note << "\"\n";
   }
 
   void Record(const Row& r)
@@ -428,6 +429,7 @@ struct Bench
     r.FrameMs = MedianFrameMs(this->Window, this->Opt.Frames, [&points]() { points->Modified(); });
     r.GridMs = mapper->GetGridBuildTime();
     r.CastMs = mapper->GetRayCastTime();
+    r.UploadMs = mapper->GetUploadTime();
     if (this->Errors > errorsBefore)
     {
       // Too many balls for this GPU's buffers: reported, not a failure.
@@ -561,14 +563,15 @@ int main(int argc, char* argv[])
     std::cout << "# " << caps << "\n";
   }
   std::cout << "scene,method,setting,primitives,width,height,frame_ms,fps,grid_gpu_ms,cast_gpu_ms,"
-               "fit_s,note\n";
+               "upload_ms,fit_s,note\n";
   bench.Splats();
   for (long long n : bench.Opt.Balls)
   {
     bench.Metaballs(n);
   }
   std::ofstream csv(bench.Opt.Out + "/render.csv");
-  csv << "scene,method,setting,primitives,width,height,frame_ms,fps,grid_gpu_ms,cast_gpu_ms,fit_s,"
+  csv << "scene,method,setting,primitives,width,height,frame_ms,fps,grid_gpu_ms,cast_gpu_ms,upload_"
+         "ms,fit_s,"
          "note\n";
   for (const Row& r : bench.Rows)
   {
