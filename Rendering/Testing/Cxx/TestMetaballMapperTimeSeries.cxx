@@ -1,13 +1,16 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
-// A time series through vtkMetaballMapper: 120 frames of 4000 particles
+// A time series through vtkMetaballMapper: 220 frames of 4000 particles
 // swirling into a vortex (new positions every frame, as a simulation gives
 // them) on the CPU ray caster, then 12 on the GPU one. Every changed frame is
 // uploaded once, every frame finds the surface, the grid is rebuilt each
-// time, and nothing grows: the resident memory after the first 20 frames
-// stays within 8 MB (not checked under AddressSanitizer, whose quarantine
+// time, and nothing grows: the resident memory grows by at most 4 MB over
+// the last 100 CPU frames (a GL driver may take memory for a while first:
+// NVIDIA's 580 driver took 8.5 MB over frames 20 to 120, with any number of
+// threads or malloc arenas, where llvmpipe took 0.04 MB; a leak grows as
+// much in every stretch). Not checked under AddressSanitizer, whose quarantine
 // holds freed memory; the asan preset runs only the unit tests, and
-// TestMetaballCast's time series is the CPU caster's check there). The
+// TestMetaballCast's time series is the CPU caster's check there. The
 // per-frame upload, grid and ray-cast times are printed;
 // bench_metaball_series.py measures them at full size.
 #include "vtkActor.h"
@@ -94,9 +97,9 @@ int TestMetaballMapperTimeSeries(int, char*[])
   camera->SetClippingRange(1.0, 8.0);
 
   int failures = 0;
-  const int cpuFrames = 120, gpuFrames = 12;
+  const int cpuFrames = 220, gpuFrames = 12;
   std::vector<double> uploads, grids, casts;
-  double residentAfterWarmUp = 0.0, residentEnd = 0.0;
+  double residentAfterWarmUp = 0.0, residentMiddle = 0.0, residentEnd = 0.0;
   for (int frame = 0; frame < cpuFrames + gpuFrames; ++frame)
   {
     // A step of the vortex: swirl, pull in, fall; re-seed at the top.
@@ -144,6 +147,10 @@ int TestMetaballMapperTimeSeries(int, char*[])
     {
       residentAfterWarmUp = ResidentMB();
     }
+    if (frame == cpuFrames - 101)
+    {
+      residentMiddle = ResidentMB();
+    }
     if (frame == cpuFrames - 1)
     {
       residentEnd = ResidentMB();
@@ -151,10 +158,11 @@ int TestMetaballMapperTimeSeries(int, char*[])
   }
   std::cout << cpuFrames << " CPU frames of " << n << " particles at 96x96: median upload "
             << Median(uploads) << " ms, grid " << Median(grids) << " ms, ray cast " << Median(casts)
-            << " ms; resident memory " << residentAfterWarmUp << " MB at frame 20, " << residentEnd
+            << " ms; resident memory " << residentAfterWarmUp << " MB at frame 20, "
+            << residentMiddle << " MB at frame " << cpuFrames - 100 << ", " << residentEnd
             << " MB at frame " << cpuFrames << "; then " << gpuFrames << " GPU frames\n";
 #ifndef PS_ASAN
-  if (residentEnd - residentAfterWarmUp > 8.0)
+  if (residentEnd - residentMiddle > 4.0)
   {
     std::cerr << "the memory grows over the series\n";
     ++failures;
