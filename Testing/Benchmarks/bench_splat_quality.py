@@ -307,8 +307,11 @@ def score_mesh(scene, model, mesh, frames, images_out=None, tag="mesh"):
     return score_actor(scene, model, mesh_actor(mesh), frames, images_out, tag)
 
 
-def fit_splats(points, degree, s, tolerance, runs):
-    """Splats of one setting, and the fit's wall-clock and process-CPU ms (medians of runs)."""
+def fit_splats(points, degree, s, tolerance, runs, options=()):
+    """Splats of one setting, and the fit's wall-clock and process-CPU ms (medians of runs).
+
+    options: (name, value) pairs for the fitter's other setters (Set<name>),
+    as --fitter-option gives them."""
     times, cpu = [], []
     for _ in range(max(1, runs)):
         fitter = pointsurfaces.vtkAlgebraicSplatFitter()
@@ -317,6 +320,8 @@ def fit_splats(points, degree, s, tolerance, runs):
         fitter.SetQualityFactor(s)
         if tolerance is not None:
             fitter.SetMaximumDeviation(tolerance)
+        for name, value in options:
+            getattr(fitter, "Set" + name)(value)
         t0, c0 = time.perf_counter(), time.process_time()
         fitter.Update()
         times.append(1000.0 * (time.perf_counter() - t0))
@@ -544,6 +549,10 @@ def main():
     parser.add_argument("--peer-mesh", nargs=2, action="append", default=[],
                         metavar=("MODEL", "PATH"),
                         help="also score this mesh (e.g. a reconstruction) for MODEL")
+    parser.add_argument("--fitter-option", nargs=2, action="append", default=[],
+                        metavar=("NAME", "VALUE"), type=str,
+                        help="also call the fitter's SetNAME(VALUE) (a number) for every "
+                             "setting, e.g. WeightScale 0.5; tell runs apart with --label")
     parser.add_argument("--images", action="store_true",
                         help="write every view's mesh | splats | difference picture")
     parser.add_argument("--quick", action="store_true",
@@ -552,6 +561,13 @@ def main():
                         help="fail unless the pointsurfaces module is loaded from under DIR")
     args = parser.parse_args()
 
+    fitter_options = []
+    for name, value in args.fitter_option:
+        if not hasattr(pointsurfaces.vtkAlgebraicSplatFitter, "Set" + name):
+            parser.error("--fitter-option: vtkAlgebraicSplatFitter has no Set%s" % name)
+        number = float(value)
+        fitter_options.append((name, int(number) if number.is_integer() and "." not in value
+                               else number))
     module = os.path.realpath(pointsurfaces.__file__)
     print("# pointsurfaces module: %s" % module, file=sys.stderr)
     if args.require_module_under:
@@ -638,7 +654,8 @@ def main():
             if (degree, s, tol) in done:  # the same fit in the other sweep: reuse it
                 rows += [dict(r, sweep=sweep) for r in done[(degree, s, tol)]]
                 continue
-            splats, fit_ms, fit_cpu_ms = fit_splats(points, degree, s, tol, args.fit_runs)
+            splats, fit_ms, fit_cpu_ms = fit_splats(points, degree, s, tol, args.fit_runs,
+                                                    fitter_options)
             tag = "%s_d%d_s%g%s" % (args.label, degree, s, "" if tol is None else "_t%g" % tol)
             view_rows = [dict(r, **setting, splats=splats.GetNumberOfPoints(),
                               fit_ms="%.1f" % fit_ms, fit_cpu_ms="%.1f" % fit_cpu_ms)
