@@ -335,8 +335,8 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
           m->GetElement(1, a) * m->GetElement(1, a) + m->GetElement(2, a) * m->GetElement(2, a)));
     }
   }
-  const pointsurfaces::BallArrays& extracted = in.Extracted;
   this->Field->ExtractBalls(input, scale, in.Extracted);
+  const pointsurfaces::BallArrays& extracted = in.Extracted;
   const std::string strengthWarning =
     pointsurfaces::MissingStrengthsWarning(extracted, this->Field->GetStrengthArrayName());
   if (!strengthWarning.empty())
