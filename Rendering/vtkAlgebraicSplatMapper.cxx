@@ -317,8 +317,9 @@ void vtkAlgebraicSplatMapper::SetCameraShaderParameters(vtkOpenGLHelper& cellBO,
     // z = -1 (perspective, w = -z = 1), x = (ndc - P02 z - P03) / P00
     // (parallel, in view units); y likewise. A pixel is 2 / (P00 width).
     GLint viewport[4] = { 0, 0, 1, 1 };
-    glGetIntegerv(
-      GL_VIEWPORT, viewport); // GL itself: not every pass sets it through vtkOpenGLState
+    static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow())
+      ->GetState()
+      ->vtkglGetIntegerv(GL_VIEWPORT, viewport);
     const bool parallel = cam->GetParallelProjection() != 0;
     float step[2], toView[4];
     for (int k = 0; k < 2; ++k)
