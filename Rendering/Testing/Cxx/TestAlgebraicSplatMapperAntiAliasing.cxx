@@ -37,9 +37,10 @@ int TestAlgebraicSplatMapperAntiAliasing(int argc, char* argv[])
   vtkNew<vtkAlgebraicSplatFitter> fitter;
   fitter->SetInputData(sphere);
   fitter->SetDegree(2);
-  // The discs of h = four spacings: with the default two (FeatureSizeNeighbors
-  // 24) the silhouette is made of more, smaller disc rims, and the gain is
-  // smaller (mean error 0.208, 0.169, 0.160; see the README).
+  // The discs of h = four spacings. With the default two (FeatureSizeNeighbors
+  // 24) the gain is smaller (mean error 0.208, 0.169, 0.160): a pixel's
+  // coverage is the largest of any one disc there, not the union of the
+  // discs' samples, and small discs share more silhouette pixels (README).
   fitter->SetFeatureSizeNeighbors(120);
   vtkNew<vtkAlgebraicSplatMapper> mapper;
   mapper->SetInputConnection(fitter->GetOutputPort());
