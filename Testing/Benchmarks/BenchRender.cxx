@@ -562,17 +562,16 @@ int main(int argc, char* argv[])
     }
     std::cout << "# " << caps << "\n";
   }
-  std::cout << "scene,method,setting,primitives,width,height,frame_ms,fps,grid_gpu_ms,cast_gpu_ms,"
-               "upload_ms,fit_s,note\n";
+  const char* header = "scene,method,setting,primitives,width,height,frame_ms,fps,grid_gpu_ms,"
+                       "cast_gpu_ms,upload_ms,fit_s,note\n";
+  std::cout << header;
   bench.Splats();
   for (long long n : bench.Opt.Balls)
   {
     bench.Metaballs(n);
   }
   std::ofstream csv(bench.Opt.Out + "/render.csv");
-  csv << "scene,method,setting,primitives,width,height,frame_ms,fps,grid_gpu_ms,cast_gpu_ms,upload_"
-         "ms,fit_s,"
-         "note\n";
+  csv << header;
   for (const Row& r : bench.Rows)
   {
     bench.Print(r, csv);

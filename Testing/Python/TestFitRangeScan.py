@@ -9,8 +9,9 @@ measured, in units of the median local point spacing: a patch that sticks
 out past a border or a hole, or turns away from the data, is far from every
 point. The unbounded discs of N. K. R. Bolla, "High Quality Rendering of
 Large Point-based Surfaces", M.S. thesis, IIIT Hyderabad, 2010 are measured
-the same way (with its h, FeatureSizeNeighbors 120). The bounded splats at
-the fitter's defaults must stay at least twice as near the data
+the same way (with its h, FeatureSizeNeighbors 120). The bounded splats
+(quadratic, at the fitter's default h and tolerance) must stay at least
+twice as near the data
 (largest and 99th percentile) and leave no point uncovered."""
 import math
 

@@ -145,9 +145,10 @@ Accuracy Measure(vtkRenderWindow* renWin,
   vtkNew<vtkOpenGLFramebufferObject> fbo;
   fbo->SetContext(gl);
   gl->GetState()->PushFramebufferBindings();
-  // A float depth attachment, named explicitly: asked for 32 bits, a driver
-  // may give a fixed-point depth of fewer (NVIDIA's did: its quantisation,
-  // about 2e-5 of the sphere's radius here, swamped the degree 4 errors).
+  // A float depth attachment, named explicitly rather than as "32 bits",
+  // which a driver may give as a fixed-point depth of fewer; its bits are
+  // printed. (The 2e-5 depth floor first seen on an NVIDIA GPU was not the
+  // depth format but the rays' origin: see vtkAlgebraicSplatFS.glsl.)
   fbo->PopulateFramebuffer(w, h, true, 1, VTK_FLOAT, false, 0, 0);
   vtkNew<vtkTextureObject> depthTexture;
   depthTexture->SetContext(gl);
