@@ -191,6 +191,7 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   params.Fit.Loss = static_cast<pointsurfaces::RobustLoss>(this->RobustLoss);
   params.Fit.LossScale = this->RobustLossScale;
   params.Fit.MaximumDeviation = this->MaximumDeviation;
+  params.Fit.ReweightingIterations = this->ReweightingIterations;
   params.Select = static_cast<pointsurfaces::Selection>(this->SelectionMode);
   params.Quality = this->QualityFactor;
   params.VisitOrder = static_cast<pointsurfaces::Order>(this->SelectionOrder);
@@ -381,5 +382,6 @@ void vtkAlgebraicSplatFitter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OctreeBucketSize: " << this->OctreeBucketSize << "\n";
   os << indent << "OrientNormals: " << this->OrientNormals << "\n";
   os << indent << "MaximumDeviation: " << this->MaximumDeviation << "\n";
+  os << indent << "ReweightingIterations: " << this->ReweightingIterations << "\n";
   os << indent << "MergeTolerance: " << this->MergeTolerance << "\n";
 }

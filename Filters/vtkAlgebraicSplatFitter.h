@@ -271,6 +271,19 @@ public:
   ///@}
   ///@{
   /**
+   * Most reweighting steps of the error-bounded fit (MaximumDeviation >
+   * 0): each refits the plane and the patch with the neighbours' weights
+   * lowered by their distance to the last patch, so that the fit keeps to
+   * the sheet of the surface its point lies on. A fit stops earlier once no
+   * weight moves by more than 0.05. Fewer steps cost less fit time, but
+   * with 2 the fits of two parallel sheets closer than the neighbourhood
+   * no longer keep them apart. Default 4.
+   */
+  vtkSetClampMacro(ReweightingIterations, int, 1, 100);
+  vtkGetMacro(ReweightingIterations, int);
+  ///@}
+  ///@{
+  /**
    * Input points within this fraction of the bounding-box diagonal of each
    * other are merged before fitting (see pointsurfaces::UniquePoints);
    * exact duplicates always are. Default 1e-6.
@@ -309,6 +322,7 @@ protected:
 
   int Degree = 3;
   int NumberOfNeighbors = 40;
+  int ReweightingIterations = 4;
   int FeatureSizeNeighbors = 24;
   double WeightScale = 1.0;
   int FitMode = Linear;

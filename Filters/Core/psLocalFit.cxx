@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace pointsurfaces
 {
@@ -41,27 +42,24 @@ bool AllFinite(const double* p, int n)
   }
   return true;
 }
-// The least-squares solution of A c = rhs through the normal equations, with
+constexpr int MaximumMonomials = MonomialCount(MaximumDegree);
+using NormalMatrix =
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, MaximumMonomials, MaximumMonomials>;
+using NormalVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MaximumMonomials, 1>;
+
+// The weighted least-squares solution of A c = rhs from its normal equations
+// (`normal` = A^T W A and `b` = A^T W rhs, accumulated by the caller), with
 // the columns scaled to unit norm: a quarter of the QR's work on the tall,
 // narrow systems of a splat fit. Refuses (returns false) unless the column
-// norms are within 1e4 of each other and the scaled system is well
+// norms are within 1e8 of each other and the scaled system is well
 // conditioned (smallest LDLT pivot over largest above 1e-8, so that
 // squaring the condition number costs about 8 of 16 digits): every system
 // it accepts is one the rank-revealing QR (threshold 1e-10) accepts too.
 // The caller takes that QR otherwise.
-bool SolveNormal(const Eigen::MatrixXd& A, const Eigen::VectorXd& rhs, Eigen::VectorXd& c)
+bool SolveNormal(NormalMatrix normal, const NormalVector& b, NormalVector& c)
 {
-  constexpr int Max = MonomialCount(MaximumDegree);
-  using Square = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, Max, Max>;
-  using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, Max, 1>;
-  const Eigen::Index m = A.cols();
-  if (m > Max || A.rows() < m)
-  {
-    return false;
-  }
-  Square normal(m, m);
-  normal.noalias() = A.transpose() * A;
-  Column scale(m);
+  const Eigen::Index m = normal.cols();
+  NormalVector scale(m);
   double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
   for (Eigen::Index j = 0; j < m; ++j)
   {
@@ -81,7 +79,7 @@ bool SolveNormal(const Eigen::MatrixXd& A, const Eigen::VectorXd& rhs, Eigen::Ve
     return false;
   }
   normal = scale.asDiagonal() * normal * scale.asDiagonal();
-  const Eigen::LDLT<Square> ldlt(normal);
+  const Eigen::LDLT<NormalMatrix> ldlt(normal);
   if (ldlt.info() != Eigen::Success)
   {
     return false;
@@ -91,10 +89,45 @@ bool SolveNormal(const Eigen::MatrixXd& A, const Eigen::VectorXd& rhs, Eigen::Ve
   {
     return false;
   }
-  Column b(m);
-  b.noalias() = A.transpose() * rhs;
-  c = scale.asDiagonal() * ldlt.solve(scale.asDiagonal() * b);
+  c = scale.asDiagonal() * ldlt.solve(NormalVector(scale.asDiagonal() * b));
   return c.allFinite();
+}
+
+// The upper triangle of the normal equations sum w_i r_i r_i^T and
+// sum w_i r_i h_i of the monomials r_i of degree D of each point's (u, v), from the
+// local coordinates `uvh`; a fixed D lets the compiler unroll the products.
+template<int D>
+void Accumulate(const double* uvh,
+  const double* w,
+  int n,
+  double (&normal)[MaximumMonomials][MaximumMonomials],
+  double (&b)[MaximumMonomials],
+  double& wsum,
+  int& active)
+{
+  for (int i = 0; i < n; ++i)
+  {
+    const double wi = w ? w[i] : 1.0;
+    if (!(wi > 0.0))
+    {
+      continue;
+    }
+    ++active;
+    wsum += wi;
+    const double* local = uvh + 3 * static_cast<size_t>(i);
+    double row[MaximumMonomials];
+    Monomials(local[0], local[1], D, row);
+    constexpr int M = MonomialCount(D);
+    for (int j = 0; j < M; ++j)
+    {
+      const double wr = wi * row[j];
+      for (int k = j; k < M; ++k)
+      {
+        normal[j][k] += wr * row[k];
+      }
+      b[j] += wr * local[2];
+    }
+  }
 }
 } // namespace
 
@@ -184,7 +217,8 @@ PolynomialFit FitPolynomial(const double* points,
   const double* w,
   int n,
   const LocalFrame& frame,
-  int degree)
+  int degree,
+  double* residuals)
 {
   PolynomialFit fit;
   if (degree < 1 || degree > MaximumDegree || !(frame.Scale > 0.0) || !std::isfinite(frame.Scale))
@@ -197,26 +231,35 @@ PolynomialFit FitPolynomial(const double* points,
     fit.Status = FitStatus::NonFinite;
     return fit;
   }
-  // Local coordinates and square-root weights, once for all degrees tried.
-  // The work arrays are kept per thread: a fitter calls this several times
-  // per splat with the same sizes, and reallocating them cost more than the
-  // QR itself on small neighbourhoods.
-  thread_local Eigen::MatrixXd uvh, A;
-  thread_local Eigen::VectorXd sw, rhs, c;
-  thread_local Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
-  uvh.resize(n, 3);
-  sw.resize(n);
+  // Local coordinates, and the normal equations of the highest degree,
+  // accumulated point by point (no n-by-m design matrix): a lower degree's
+  // monomials are a prefix of a higher one's, so its system is the leading
+  // block. The work arrays are kept per thread: a fitter calls this several
+  // times per splat with the same sizes.
+  thread_local std::vector<double> uvh;
+  uvh.resize(3 * static_cast<size_t>(n));
+  double normal[MaximumMonomials][MaximumMonomials] = {};
+  double b[MaximumMonomials] = {};
+  double wsum = 0.0;
   int active = 0;
   for (int i = 0; i < n; ++i)
   {
-    double local[3];
-    ToLocal(frame, points + 3 * i, local);
-    uvh(i, 0) = local[0];
-    uvh(i, 1) = local[1];
-    uvh(i, 2) = local[2];
-    const double wi = w ? w[i] : 1.0;
-    sw(i) = wi > 0.0 ? std::sqrt(wi) : 0.0;
-    active += wi > 0.0 ? 1 : 0;
+    ToLocal(frame, points + 3 * i, &uvh[3 * static_cast<size_t>(i)]);
+  }
+  switch (degree)
+  {
+    case 1:
+      Accumulate<1>(uvh.data(), w, n, normal, b, wsum, active);
+      break;
+    case 2:
+      Accumulate<2>(uvh.data(), w, n, normal, b, wsum, active);
+      break;
+    case 3:
+      Accumulate<3>(uvh.data(), w, n, normal, b, wsum, active);
+      break;
+    default:
+      Accumulate<4>(uvh.data(), w, n, normal, b, wsum, active);
+      break;
   }
 
   for (int d = degree; d >= 1; --d)
@@ -226,28 +269,44 @@ PolynomialFit FitPolynomial(const double* points,
     {
       continue;
     }
-    A.resize(n, m);
-    rhs.resize(n);
-    double row[MonomialCount(MaximumDegree)];
-    for (int i = 0; i < n; ++i)
+    NormalMatrix system(m, m);
+    NormalVector rhs(m), c(m);
+    for (int j = 0; j < m; ++j)
     {
-      Monomials(uvh(i, 0), uvh(i, 1), d, row);
-      for (int j = 0; j < m; ++j)
+      for (int k = j; k < m; ++k)
       {
-        A(i, j) = sw(i) * row[j];
+        system(j, k) = system(k, j) = normal[j][k];
       }
-      rhs(i) = sw(i) * uvh(i, 2);
+      rhs(j) = b[j];
     }
-    if (!SolveNormal(A, rhs, c))
+    if (!SolveNormal(system, rhs, c))
     {
-      // Ill-conditioned or rank-deficient: the rank-revealing QR decides.
+      // Ill-conditioned or rank-deficient: the rank-revealing QR of the
+      // weighted design matrix decides.
+      thread_local Eigen::MatrixXd A;
+      thread_local Eigen::VectorXd h;
+      thread_local Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
+      A.resize(n, m);
+      h.resize(n);
+      double row[MaximumMonomials];
+      for (int i = 0; i < n; ++i)
+      {
+        const double wi = w ? w[i] : 1.0;
+        const double sw = wi > 0.0 ? std::sqrt(wi) : 0.0;
+        Monomials(uvh[3 * i], uvh[3 * i + 1], d, row);
+        for (int j = 0; j < m; ++j)
+        {
+          A(i, j) = sw * row[j];
+        }
+        h(i) = sw * uvh[3 * i + 2];
+      }
       qr.compute(A);
       qr.setThreshold(1e-10);
       if (qr.rank() < m)
       {
         continue; // e.g. points on a line in (u, v): no well-posed fit of this degree
       }
-      c = qr.solve(rhs);
+      c = qr.solve(h);
     }
     if (!c.allFinite())
     {
@@ -258,8 +317,20 @@ PolynomialFit FitPolynomial(const double* points,
     {
       fit.Coefficients[j] = c(j);
     }
-    const double wsum = sw.squaredNorm();
-    fit.WeightedRMS = wsum > 0.0 ? std::sqrt((A * c - rhs).squaredNorm() / wsum) : 0.0;
+    // The weighted RMS and, when asked, each point's distance to the patch.
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i)
+    {
+      const double* local = &uvh[3 * static_cast<size_t>(i)];
+      const double e = local[2] - Evaluate(fit.Coefficients, d, local[0], local[1]);
+      const double wi = w ? w[i] : 1.0;
+      sum += wi > 0.0 ? wi * e * e : 0.0;
+      if (residuals)
+      {
+        residuals[i] = std::abs(e) * frame.Scale;
+      }
+    }
+    fit.WeightedRMS = wsum > 0.0 ? std::sqrt(sum / wsum) : 0.0;
     fit.Status = d == degree ? FitStatus::Ok : FitStatus::ReducedDegree;
     return fit;
   }

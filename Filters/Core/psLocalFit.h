@@ -75,9 +75,16 @@ struct PolynomialFit
  * height = (p - o)·n / h, minimising sum w_i (g(u_i, v_i) - height_i)^2.
  * A rank-deficient system falls back to the highest degree that is well
  * posed (status ReducedDegree); coefficients are always finite.
+ * `residuals`, when given (n values), receives each point's distance to the
+ * patch along the normal, |height_i - g(u_i, v_i)| h (world units), where
+ * the fit succeeds.
  */
-POINTSURFACESFILTERS_EXPORT PolynomialFit
-FitPolynomial(const double* points, const double* w, int n, const LocalFrame& frame, int degree);
+POINTSURFACESFILTERS_EXPORT PolynomialFit FitPolynomial(const double* points,
+  const double* w,
+  int n,
+  const LocalFrame& frame,
+  int degree,
+  double* residuals = nullptr);
 
 /**
  * Coordinates of p in the normalised frame: u = (p - o)·t / h,

@@ -96,6 +96,13 @@ void Residuals(const LocalFrame& frame,
   }
 }
 
+// The largest change of any neighbour's weight (each in [0, 1]) at which the
+// bounded fit's reweighting stops early. On the benchmark scans (s = 1) it
+// cut the fit time by a quarter at the same masked SSIM against the mesh
+// (0.1 cut a little more but raised the largest error on Lucy by a fifth);
+// the tests of parallel sheets, a thin fin and a cube's edges hold.
+constexpr double Settled = 0.05;
+
 // The bounded fit's steps 3 to 5: iteratively reweighted least squares
 // that keeps to q's sheet (see psSplatFit.h). `w` holds the Gaussian
 // weights on entry and the final weights on return.
@@ -122,32 +129,48 @@ FitStatus FitOnSheet(const double q[3],
   }
   std::copy(q, q + 3, seed.Origin);
   seed.Scale = splat.Frame.Scale;
-  std::vector<double> r(m);
+  // Per-thread scratch: FitOnSheet starts no parallel work and is not
+  // re-entered while these are in use.
+  thread_local std::vector<double> r, next, gaussian;
+  r.resize(m);
+  next.resize(m);
   Residuals(seed, PolynomialFit(), nbrs, m, r.data());
-  const std::vector<double> gaussian = w;
+  gaussian.assign(w.begin(), w.end());
   const double inv2 = 1.0 / (sigma * sigma);
   const double* normal = orient;
   for (int it = 0; it < std::max(1, params.ReweightingIterations); ++it)
   {
+    // The next weights; once none moves by more than Settled, a further
+    // step would barely move the fit (IRLS has converged): stop.
+    double change = 0.0;
     for (int j = 0; j < m; ++j)
     {
-      w[j] = gaussian[j] * std::exp(-r[j] * r[j] * inv2);
+      next[j] = gaussian[j] * std::exp(-r[j] * r[j] * inv2);
+      change = std::max(change, std::abs(next[j] - w[j]));
     }
+    // (A fit that fell to a lower degree goes on: new weights may restore it.)
+    if (it > 0 && change <= Settled && splat.Fit.Status == FitStatus::Ok)
+    {
+      break; // w stays the weights of the fit kept
+    }
+    std::copy(next.begin(), next.end(), w.begin());
     LocalFrame frame = splat.Frame;
     status = PlaneAt(q, nbrs, m, w.data(), normal, frame);
     if (status != FitStatus::Ok)
     {
       return it > 0 ? FitStatus::Ok : status; // keep the last good iterate
     }
-    const PolynomialFit fit = FitPolynomial(nbrs, w.data(), m, frame, params.Degree);
+    // The residuals come with the fit (same frame): the next weights.
+    const PolynomialFit fit = FitPolynomial(nbrs, w.data(), m, frame, params.Degree, next.data());
     if (fit.Degree == 0)
     {
       return it > 0 ? FitStatus::Ok : fit.Status;
     }
     splat.Frame = frame;
     splat.Fit = fit;
+    splat.Iterations = it + 1;
     normal = splat.Frame.Normal; // later planes keep the sign of the first
-    Residuals(splat.Frame, splat.Fit, nbrs, m, r.data());
+    r.swap(next);
   }
   return FitStatus::Ok;
 }

@@ -84,7 +84,8 @@ struct Splat
 {
   LocalFrame Frame; ///< origin, axes, and Scale = h
   PolynomialFit Fit;
-  int Iterations = 0;   ///< projection steps (Projected) or solver iterations (Robust)
+  int Iterations = 0;   ///< projection steps (Projected), solver iterations (Robust), else
+                        ///< reweighting steps of the bounded fit (Linear)
   double Spacing = 0.0; ///< local point spacing around q (world units)
 };
 

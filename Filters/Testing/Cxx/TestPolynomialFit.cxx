@@ -240,12 +240,49 @@ void TestDegenerate()
 }
 } // namespace
 
+// The residuals FitPolynomial returns are each point's distance to its patch
+// (world units), and its weighted RMS is theirs: checked against the patch
+// evaluated here, with points off any quadratic and a zero weight among them.
+void TestResiduals()
+{
+  const double c[10] = { 0.02, 0.1, -0.05, 0.3, -0.2, 0.15, 0.4, -0.3, 0.25, 0.2 };
+  const double cases[][2] = { { 0.0, 1.0 }, { 1e7, 1.0 }, { 0.0, 1e-6 } };
+  for (const auto& cs : cases)
+  {
+    const LocalFrame f = TiltedFrame(cs[0], cs[1]);
+    const auto pts = Sample(f, c, 3, 50, 11u); // cubic points, fitted by a quadratic
+    std::vector<double> w(50), r(50, -1.0);
+    for (int i = 0; i < 50; ++i)
+    {
+      w[i] = i == 7 ? 0.0 : 0.3 + 0.7 * ((i * 13) % 7) / 6.0;
+    }
+    const PolynomialFit fit = FitPolynomial(pts.data(), w.data(), 50, f, 2, r.data());
+    Check(fit.Status == FitStatus::Ok && fit.Degree == 2, "quadratic fit of cubic points");
+    double worst = 0.0, largest = 0.0, sum = 0.0, wsum = 0.0;
+    for (int i = 0; i < 50; ++i)
+    {
+      double uvh[3];
+      ToLocal(f, pts.data() + 3 * i, uvh);
+      const double e = std::abs(uvh[2] - Evaluate(fit.Coefficients, 2, uvh[0], uvh[1])) * f.Scale;
+      worst = std::max(worst, std::abs(r[i] - e));
+      largest = std::max(largest, e);
+      sum += w[i] * (e / f.Scale) * (e / f.Scale);
+      wsum += w[i];
+    }
+    const double precision = cs[0] > 0 ? 1e-8 : 1e-12 * f.Scale;
+    Check(largest > 1e3 * precision && worst <= precision, "residuals: distance to the patch");
+    Check(std::abs(fit.WeightedRMS - std::sqrt(sum / wsum)) <= 1e-9 * std::sqrt(sum / wsum) + 1e-12,
+      "weighted RMS of the residuals");
+  }
+}
+
 int TestPolynomialFit(int, char*[])
 {
   TestMonomialOrder();
   TestExactRecovery();
   TestPlaneInvariance();
   TestDegenerate();
+  TestResiduals();
   if (Failures)
   {
     std::cerr << Failures << " checks failed\n";

@@ -279,6 +279,56 @@ void TestFitModes()
     "the projected origin lies on the sphere");
 }
 
+void TestReweighting()
+{
+  // The bounded fit reweights its neighbours by their distance to the last
+  // patch until no weight moves by more than 0.05 (or ReweightingIterations
+  // steps): at once on a clean sphere, later where some neighbours lie
+  // 1.5 bounds above the surface and the patch moves as they lose weight.
+  const std::vector<double> sphere = FibonacciSphere(20000);
+  PointIndex index(sphere.data(), 20000);
+  const double q[3] = { 0.0, 0.0, 1.0 };
+  std::vector<int> ids;
+  std::vector<double> d2, clean, dirty;
+  index.Nearest(q, 41, ids, d2);
+  std::mt19937 gen(5);
+  for (size_t j = 0; j < ids.size(); ++j)
+  {
+    clean.insert(clean.end(), index.Point(ids[j]), index.Point(ids[j]) + 3);
+    dirty.insert(dirty.end(), index.Point(ids[j]), index.Point(ids[j]) + 3);
+    if (j > 0 && gen() % 100 < 15)
+    {
+      dirty[3 * j + 2] += 0.02;
+    }
+  }
+  const int n = static_cast<int>(ids.size());
+  SplatFitParameters par;
+  par.Degree = 2;
+  par.FeatureSizeNeighbors = 24;
+  par.MaximumDeviation = 0.5;
+  const Splat settled = FitSplat(q, clean.data(), n, par);
+  // Unit sphere: g ~ -(h / 2)(u^2 + v^2).
+  const double curvatureError =
+    std::abs(settled.Fit.Coefficients[3] + 0.5 * settled.Frame.Scale) / (0.5 * settled.Frame.Scale);
+  std::cout << "reweighting: clean sphere " << settled.Iterations << " step(s), curvature error "
+            << curvatureError << "\n";
+  Check(settled.Fit.Status == FitStatus::Ok && settled.Iterations == 1 && curvatureError < 0.05,
+    "the bounded fit of a clean patch settles after one step");
+  par.ReweightingIterations = 1;
+  const Splat once = FitSplat(q, clean.data(), n, par);
+  Check(once.Iterations == 1 &&
+      std::equal(once.Fit.Coefficients, once.Fit.Coefficients + 6, settled.Fit.Coefficients),
+    "a settled fit is the fit of its first step");
+  par.ReweightingIterations = 4;
+  const Splat moving = FitSplat(q, dirty.data(), n, par);
+  par.ReweightingIterations = 2;
+  const Splat capped = FitSplat(q, dirty.data(), n, par);
+  std::cout << "reweighting: outliers " << moving.Iterations << " steps (at most 4), "
+            << capped.Iterations << " (at most 2)\n";
+  Check(moving.Iterations > 2 && moving.Iterations <= 4 && capped.Iterations == 2,
+    "reweighting goes on while the weights move, up to ReweightingIterations");
+}
+
 void TestThreadIndependence()
 {
   // The parallel selection must not depend on the number of threads.
@@ -585,6 +635,7 @@ int TestSplatFit(int, char*[])
   TestInvariance();
   TestThreadIndependence();
   TestFitModes();
+  TestReweighting();
   TestLOP();
   TestOctree();
   TestErrorMetric();
