@@ -51,7 +51,7 @@
  * Defaults: cubic patches and FeatureSizeNeighbors 24 (h_i about two point
  * spacings), chosen against the meshes of the Bunny, the Horse and Lucy
  * (masked SSIM of the splats against the mesh from six views: 0.962, 0.965
- * and 0.852 at s = 1; with quadratics and 120 neighbours, 0.867, 0.897 and
+ * and 0.854 at s = 1; with quadratics and 120 neighbours, 0.867, 0.897 and
  * 0.741): a narrower h follows folds a few spacings wide, which the
  * error-bounded discs of a wider one stop short of.
  *

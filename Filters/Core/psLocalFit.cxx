@@ -51,7 +51,7 @@ using NormalVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MaximumMonomial
 // (`normal` = A^T W A and `b` = A^T W rhs, accumulated by the caller), with
 // the columns scaled to unit norm: a quarter of the QR's work on the tall,
 // narrow systems of a splat fit. Refuses (returns false) unless the column
-// norms are within 1e8 of each other and the scaled system is well
+// norms are within 1e4 of each other and the scaled system is well
 // conditioned (smallest LDLT pivot over largest above 1e-8, so that
 // squaring the condition number costs about 8 of 16 digits): every system
 // it accepts is one the rank-revealing QR (threshold 1e-10) accepts too.
@@ -94,7 +94,7 @@ bool SolveNormal(NormalMatrix normal, const NormalVector& b, NormalVector& c)
 }
 
 // The upper triangle of the normal equations sum w_i r_i r_i^T and
-// sum w_i r_i h_i of the monomials r_i of degree D of each point's (u, v), from the
+// sum w_i r_i h_i of the degree-D monomials r_i of each point (u, v), from the
 // local coordinates `uvh`; a fixed D lets the compiler unroll the products.
 template<int D>
 void Accumulate(const double* uvh,
