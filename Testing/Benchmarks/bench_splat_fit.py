@@ -7,7 +7,7 @@
                                                           (unbounded fit; the error-bounded default beside it)
     bench_splat_fit.py million   [--out DIR] [--points N] 1M points (sampled on the Bunny's mesh) at s = 1
     bench_splat_fit.py tradeoff  [--out DIR]              error against time over degree, s, k, fit mode
-    bench_splat_fit.py fittime   [--out DIR] [--runs N] [--label L] [scans...]
+    bench_splat_fit.py fittime   [--out DIR] [--runs N] [--label L] [--fitter-option NAME VALUE] [scans...]
                                                           the error-bounded fit's time against the
                                                           unbounded fit's in the same process, s = 2, 1, 0.5
     add --smoke for a few-second run on a subset (what ctest runs)
@@ -35,6 +35,7 @@ from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkIOPLY import vtkPLYReader
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 
+import bench_csv
 from surface_sampling import sample_surface
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -172,6 +173,7 @@ def fittime(args):
     scans = args.scans or [os.path.join(SCANS, s) for s in ("bunny.ply", "horse.ply", "lucy_50k.ply")]
     qualities = (2.0, 1.0, 0.5)
     runs = max(1, args.runs)
+    options = args.fitter_options
     if args.smoke:
         scans = [os.path.join(ROOT, "Testing", "Data", "bunny.vtp")]
         qualities = (1.0,)
@@ -181,34 +183,36 @@ def fittime(args):
         model = os.path.basename(path).split(".")[0]
         pd = load(path)
         for s in qualities:
-            seconds = {0.0: [], None: []}
-            splats = {}
+            # The thesis's unbounded fit and the default fitter (with --fitter-option).
+            settings = {"thesis": list(THESIS_FIT.items()), "default": options}
+            seconds = {name: [] for name in settings}
+            splats, deviation = {}, {}
             for _ in range(runs):
-                for bound in (0.0, None):
+                for name, pairs in settings.items():
                     fitter = pointsurfaces.vtkAlgebraicSplatFitter()
                     fitter.SetInputData(pd)
                     fitter.SetQualityFactor(s)
-                    if bound is not None:  # the thesis's unbounded fit
-                        for key, value in THESIS_FIT.items():
-                            getattr(fitter, "Set" + key)(value)
+                    for key, value in pairs:
+                        getattr(fitter, "Set" + key)(value)
                     start = time.perf_counter()
                     fitter.Update()
-                    seconds[bound].append(time.perf_counter() - start)
-                    splats[bound] = fitter.GetOutput().GetNumberOfPoints()
-            unbounded = float(np.median(seconds[0.0]))
-            probe = pointsurfaces.vtkAlgebraicSplatFitter()
-            for bound in (0.0, None):
-                median = float(np.median(seconds[bound]))
+                    seconds[name].append(time.perf_counter() - start)
+                    splats[name] = fitter.GetOutput().GetNumberOfPoints()
+                    deviation[name] = fitter.GetMaximumDeviation()
+            unbounded = float(np.median(seconds["thesis"]))
+            for name in settings:
+                median = float(np.median(seconds[name]))
                 rows.append({"label": args.label, "model": model, "points": pd.GetNumberOfPoints(),
-                             "s": s,
-                             "maximum_deviation": bound if bound is not None else probe.GetMaximumDeviation(),
-                             "splats": splats[bound], "runs": runs, "seconds": round(median, 4),
-                             "ratio_to_unbounded": round(median / unbounded, 3)})
+                             "s": s, "maximum_deviation": deviation[name],
+                             "splats": splats[name], "runs": runs, "seconds": round(median, 4),
+                             "ratio_to_unbounded": round(median / unbounded, 3),
+                             "fitter": " ".join([name] + ["%s=%s" % o for o in settings[name]
+                                                          if name == "default"])})
     path = write(rows, args.out, "fit_time" + ("_" + args.label if args.label else ""))
     pyplot = plt()
     fig, ax = pyplot.subplots(figsize=(6, 4))
     for i, model in enumerate(sorted({r["model"] for r in rows})):
-        sel = [r for r in rows if r["model"] == model and r["maximum_deviation"] != 0.0]
+        sel = [r for r in rows if r["model"] == model and r["fitter"] != "thesis"]
         ax.plot([r["s"] for r in sel], [r["ratio_to_unbounded"] for r in sel], "o-", color="C%d" % i,
                 label=model)
     ax.axhline(1.5, color="grey", ls="--", lw=1, label="1.5x")
@@ -267,8 +271,15 @@ def main():
     parser.add_argument("--points", type=int, default=1000000)
     parser.add_argument("--runs", type=int, default=3, help="fittime: runs per setting")
     parser.add_argument("--label", default="", help="fittime: names the build in the CSV")
+    parser.add_argument("--fitter-option", nargs=2, action="append", default=[],
+                        metavar=("NAME", "VALUE"),
+                        help="fittime: also call SetNAME(VALUE) (a number) on the default fitter, "
+                             "e.g. MaximumDeviation 0 FeatureSizeNeighbors 24 for the unbounded fit "
+                             "at today's h; tell runs apart with --label")
     parser.add_argument("--smoke", action="store_true")
     args = parser.parse_args()
+    args.fitter_options = bench_csv.fitter_options(parser, args.fitter_option,
+                                                   pointsurfaces.vtkAlgebraicSplatFitter)
     {"counts": counts, "million": million, "tradeoff": tradeoff, "fittime": fittime}[args.bench](args)
 
 

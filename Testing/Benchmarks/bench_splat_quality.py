@@ -99,6 +99,8 @@ from vtkmodules.vtkIOPLY import vtkPLYReader
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderWindow, vtkRenderer
 
+import bench_csv
+
 try:
     from skimage.metrics import structural_similarity
 except ImportError:
@@ -561,13 +563,8 @@ def main():
                         help="fail unless the pointsurfaces module is loaded from under DIR")
     args = parser.parse_args()
 
-    fitter_options = []
-    for name, value in args.fitter_option:
-        if not hasattr(pointsurfaces.vtkAlgebraicSplatFitter, "Set" + name):
-            parser.error("--fitter-option: vtkAlgebraicSplatFitter has no Set%s" % name)
-        number = float(value)
-        fitter_options.append((name, int(number) if number.is_integer() and "." not in value
-                               else number))
+    fitter_options = bench_csv.fitter_options(parser, args.fitter_option,
+                                              pointsurfaces.vtkAlgebraicSplatFitter)
     module = os.path.realpath(pointsurfaces.__file__)
     print("# pointsurfaces module: %s" % module, file=sys.stderr)
     if args.require_module_under:
