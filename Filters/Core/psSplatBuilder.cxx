@@ -21,6 +21,8 @@ namespace
 {
 // How far inside its disc a bounded splat's claims stay, in point spacings.
 constexpr double ClaimMargin = 0.5;
+// The first disc radius a bound tries, in point spacings (see `bound`).
+constexpr double FirstTrial = 4.0;
 
 struct Position
 {
@@ -288,41 +290,60 @@ BuildResult BuildSplats(const double* xyz,
       std::max(bp.MaximumReach, 2.0 * tolerance); // a looser patch may stray farther
     bp.MeasureOnly = !bounded;
     // BoundSplat's own fallback when the spacing is unknown: h.
-    const double search =
-      BoundSearchRadius(b.Radius, sp.Spacing > 0.0 ? sp.Spacing : sp.Frame.Scale);
+    const double spacing = sp.Spacing > 0.0 ? sp.Spacing : sp.Frame.Scale;
     const double offset =
       from ? std::sqrt(vtkMath::Distance2BetweenPoints(from, sp.Frame.Origin)) : 0.0;
+    // A bound looks at every point within BoundSearchRadius of the disc, so
+    // its cost grows with the nominal radius, while the discs the bound
+    // cuts end up near their s = 1 size at any s. The disc therefore grows:
+    // first to FirstTrial spacings, doubling while the bound leaves it
+    // whole, up to the nominal radius; the first trial the bound cuts is the
+    // disc. At s = 1 (a nominal radius under FirstTrial spacings) there is
+    // one trial, the nominal radius.
+    const double nominal = b.Radius;
+    double trial = bounded ? std::min(nominal, FirstTrial * spacing) : nominal;
     const std::vector<int>* candidates = &found;
-    if (nearest && !nearest->empty() && std::sqrt(nearestD2->back()) >= search + offset)
+    SplatBound sb;
+    for (;;)
     {
-      candidates = nearest; // a superset of the points within `search` of the origin
-    }
-    else if (from)
-    {
-      // A superset of the points within `search` of the origin.
-      if (from != foundFrom || foundBuild != buildId || foundRadius < search + offset)
+      const double search = BoundSearchRadius(trial, spacing);
+      candidates = &found;
+      if (nearest && !nearest->empty() && std::sqrt(nearestD2->back()) >= search + offset)
+      {
+        candidates = nearest; // a superset of the points within `search` of the origin
+      }
+      else if (from)
+      {
+        // A superset of the points within `search` of the origin.
+        if (from != foundFrom || foundBuild != buildId || foundRadius < search + offset)
+        {
+          foundFrom = nullptr;
+          foundRadius = search + 2.0 * offset + 0.25 * sp.Spacing;
+          index.Within(from, foundRadius, found, d2, false);
+          foundFrom = from;
+          foundBuild = buildId;
+        }
+      }
+      else
       {
         foundFrom = nullptr;
-        foundRadius = search + 2.0 * offset + 0.25 * sp.Spacing;
-        index.Within(from, foundRadius, found, d2, false);
-        foundFrom = from;
-        foundBuild = buildId;
+        index.Within(sp.Frame.Origin, search, found, d2, false);
       }
-    }
-    else
-    {
-      foundFrom = nullptr;
-      index.Within(sp.Frame.Origin, search, found, d2, false);
+      const std::vector<int>& ids = *candidates;
+      coords.resize(3 * ids.size());
+      for (size_t j = 0; j < ids.size(); ++j)
+      {
+        std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &coords[3 * j]);
+      }
+      sb = BoundSplat(sp, trial, coords.data(), static_cast<int>(ids.size()), bp, &local, rho);
+      if (sb.Radius < trial || !(trial < nominal))
+      {
+        break;
+      }
+      trial = std::min(nominal, 2.0 * trial);
     }
     const std::vector<int>& ids = *candidates;
-    coords.resize(3 * ids.size());
-    for (size_t j = 0; j < ids.size(); ++j)
-    {
-      std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &coords[3 * j]);
-    }
-    const SplatBound sb =
-      BoundSplat(sp, b.Radius, coords.data(), static_cast<int>(ids.size()), bp, &local, rho);
-    b.NominalRadius = b.Radius;
+    b.NominalRadius = nominal;
     b.Radius = sb.Radius;
     b.MaxDeviation = sb.MaxDeviation;
     b.Bounded = true;

@@ -10,6 +10,10 @@
     bench_splat_fit.py fittime   [--out DIR] [--runs N] [--label L] [--fitter-option NAME VALUE] [scans...]
                                                           the error-bounded fit's time against the
                                                           unbounded fit's in the same process, s = 2, 1, 0.5
+    bench_splat_fit.py levels    [--out DIR] [--runs N] [--label L] [scans...]
+                                                          single levels at s = 1, 2, 4 and the
+                                                          multi-resolution builder, against the
+                                                          unbounded fit at s = 1
     add --smoke for a few-second run on a subset (what ctest runs)
 
 Scans default to ../shared/data/scans/{bunny.ply,igea.xyz,horse.ply}
@@ -226,6 +230,61 @@ def fittime(args):
     fig.savefig(os.path.splitext(path)[0] + ".png", dpi=100)
 
 
+def levels(args):
+    """Fit time of single levels at s = 1, 2 and 4 and of vtkMultiResolutionSplatBuilder
+    (its default 25 levels from s = 4 to 1), the defaults otherwise; the median of --runs
+    each, with the unbounded fit (THESIS_FIT) at s = 1 as the peer in this process."""
+    scans = args.scans or [os.path.join(SCANS, s) for s in ("bunny.ply", "horse.ply", "lucy_50k.ply")]
+    qualities = (1.0, 2.0, 4.0)
+    runs = max(1, args.runs)
+    if args.smoke:
+        scans = [os.path.join(ROOT, "Testing", "Data", "bunny.vtp")]
+        qualities = (2.0,)
+        runs = 1
+    rows = []
+    for path in scans:
+        model = os.path.basename(path).split(".")[0]
+        pd = load(path)
+        settings = [("thesis, s = 1", "vtkAlgebraicSplatFitter", dict(THESIS_FIT, QualityFactor=1.0))]
+        settings += [("s = %g" % s, "vtkAlgebraicSplatFitter", {"QualityFactor": s}) for s in qualities]
+        settings += [("multi-resolution", "vtkMultiResolutionSplatBuilder", {})]
+        seconds = {name: [] for name, _, _ in settings}
+        splats = {}
+        for _ in range(runs):
+            for name, cls, pairs in settings:
+                fitter = getattr(pointsurfaces, cls)()
+                fitter.SetInputData(pd)
+                for key, value in pairs.items():
+                    getattr(fitter, "Set" + key)(value)
+                start = time.perf_counter()
+                fitter.Update()
+                seconds[name].append(time.perf_counter() - start)
+                splats[name] = fitter.GetOutput().GetNumberOfPoints()
+        peer = float(np.median(seconds["thesis, s = 1"]))
+        for name, _, _ in settings:
+            median = float(np.median(seconds[name]))
+            rows.append({"label": args.label, "model": model, "fit": name, "splats": splats[name],
+                         "runs": runs, "seconds": round(median, 4),
+                         "ratio_to_thesis_s1": round(median / peer, 3)})
+    path = write(rows, args.out, "fit_levels" + ("_" + args.label if args.label else ""))
+    pyplot = plt()
+    fig, ax = pyplot.subplots(figsize=(7, 4))
+    names = [r["fit"] for r in rows if r["model"] == rows[0]["model"]]
+    models = sorted({r["model"] for r in rows})
+    width = 0.8 / len(models)
+    for i, model in enumerate(models):
+        ratio = {r["fit"]: r["ratio_to_thesis_s1"] for r in rows if r["model"] == model}
+        ax.bar([k + i * width for k in range(len(names))], [ratio[n] for n in names], width,
+               label=model, color="C%d" % i)
+    ax.set_xticks([k + 0.4 - width / 2 for k in range(len(names))])
+    ax.set_xticklabels(names, fontsize=8)
+    ax.set_ylabel("fit time / unbounded fit at s = 1")
+    ax.legend()
+    ax.grid(True, axis="y", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.splitext(path)[0] + ".png", dpi=100)
+
+
 def tradeoff(args):
     pd = load(os.path.join(ROOT, "Testing", "Data", "bunny.vtp"), every=4 if args.smoke else 1)
     degrees = (1, 2) if args.smoke else (1, 2, 3, 4)
@@ -265,11 +324,11 @@ def tradeoff(args):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("bench", choices=("counts", "million", "tradeoff", "fittime"))
+    parser.add_argument("bench", choices=("counts", "million", "tradeoff", "fittime", "levels"))
     parser.add_argument("scans", nargs="*")
     parser.add_argument("--out", default="bench-results")
     parser.add_argument("--points", type=int, default=1000000)
-    parser.add_argument("--runs", type=int, default=3, help="fittime: runs per setting")
+    parser.add_argument("--runs", type=int, default=3, help="fittime, levels: runs per setting")
     parser.add_argument("--label", default="", help="fittime: names the build in the CSV")
     parser.add_argument("--fitter-option", nargs=2, action="append", default=[],
                         metavar=("NAME", "VALUE"),
@@ -280,7 +339,8 @@ def main():
     args = parser.parse_args()
     args.fitter_options = bench_csv.fitter_options(parser, args.fitter_option,
                                                    pointsurfaces.vtkAlgebraicSplatFitter)
-    {"counts": counts, "million": million, "tradeoff": tradeoff, "fittime": fittime}[args.bench](args)
+    {"counts": counts, "million": million, "tradeoff": tradeoff, "fittime": fittime,
+     "levels": levels}[args.bench](args)
 
 
 if __name__ == "__main__":

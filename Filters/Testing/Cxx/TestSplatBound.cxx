@@ -375,6 +375,51 @@ void TestCandidatesBeyondSearch()
 }
 } // namespace
 
+// A bound grows its disc from FirstTrial spacings, doubling while nothing
+// cuts it: where nothing does (the middle of a flat sheet) a coarse level's
+// disc must still reach its full nominal radius, and a disc cut short (near
+// the rim) must stop by the data's rim.
+void TestGrowingDiscs()
+{
+  std::mt19937 gen(11);
+  std::vector<double> pts;
+  Rectangle(pts, 80, 80, 0.0, gen);
+  BuildParameters params;
+  params.Fit.Degree = 2;
+  params.Fit.MaximumDeviation = 0.5;
+  params.Fit.FeatureSizeNeighbors = 24; // the fitter's default
+  params.Quality = 4.0;
+  const BuildResult r =
+    BuildSplats(pts.data(), static_cast<long long>(pts.size() / 3), nullptr, params);
+  int inner = 0, whole = 0, outside = 0;
+  double excess = 0.0;
+  for (const BuiltSplat& b : r.Splats)
+  {
+    const double* o = b.Fitted.Frame.Origin;
+    const double margin = std::min({ o[0], o[1], 80.0 - o[0], 80.0 - o[1] });
+    if (margin > b.NominalRadius + 3.0)
+    {
+      ++inner;
+      whole += b.Radius == b.NominalRadius ? 1 : 0;
+    }
+    // Borders let a disc reach about 1.5 local spacings past the data (the
+    // local spacing is 1.1 to 1.3 grid spacings). Without the growth, 7 discs
+    // here reached more than 2.25 grid spacings past the rim, the farthest
+    // 2.53; with it, 1 and 2.41.
+    outside += b.Radius > margin + 2.5 ? 1 : 0;
+    excess = std::max(excess, b.Radius - margin);
+  }
+  std::printf("growing discs at s = 4: %d of %d inner discs whole (nominal radius %.2f), "
+              "%d reach more than 2.5 past the rim (farthest %.2f)\n",
+    whole,
+    inner,
+    r.Splats.empty() ? 0.0 : r.Splats.front().NominalRadius,
+    outside,
+    excess);
+  Check(inner > 10 && whole == inner, "inner discs of a flat sheet grow to their nominal radius");
+  Check(outside == 0, "discs at the rim stop at the data");
+}
+
 int TestSplatBound(int, char*[])
 {
   std::mt19937 gen(7);
@@ -439,5 +484,6 @@ int TestSplatBound(int, char*[])
   }
   TestCoveredWithinTolerance();
   TestCandidatesBeyondSearch();
+  TestGrowingDiscs();
   return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
