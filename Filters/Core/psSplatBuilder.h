@@ -15,8 +15,12 @@
  * chosen, and it claims only the points its bounded splat covers, so that
  * a point counts as covered only where a splat is within the tolerance
  * there; on every level and in every selection mode the disc is bounded
- * and the largest deviation measured. Without it the discs keep their
- * nominal radius and the deviation over them is measured all the same.
+ * and the largest deviation measured. A disc is bounded growing: first
+ * at 4 point spacings, doubling while the bound leaves it whole, up to its
+ * nominal radius (the first radius the bound cuts is the disc), so that a
+ * coarse level costs what its cut discs need. Without the bound the discs
+ * keep their nominal radius and the deviation over them is measured all
+ * the same.
  *
  * Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
  * M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
