@@ -169,19 +169,22 @@ def million(args):
     write(rows, args.out, "million")
 
 
+def timed_scans(args, qualities, smoke_qualities):
+    """The scans (default: Bunny, Horse, Lucy), s values and runs of a timing benchmark;
+    with --smoke, the committed Bunny, `smoke_qualities` and one run."""
+    if args.smoke:
+        return [os.path.join(ROOT, "Testing", "Data", "bunny.vtp")], smoke_qualities, 1
+    scans = args.scans or [os.path.join(SCANS, s) for s in ("bunny.ply", "horse.ply", "lucy_50k.ply")]
+    return scans, qualities, max(1, args.runs)
+
+
 def fittime(args):
     """Fit time of the default fitter against the unbounded fit (THESIS_FIT), both
     in this process, runs interleaved; the median of --runs each. Run it
     once per build (e.g. with LD_LIBRARY_PATH at another build's libraries)
     and --label each to compare builds."""
-    scans = args.scans or [os.path.join(SCANS, s) for s in ("bunny.ply", "horse.ply", "lucy_50k.ply")]
-    qualities = (2.0, 1.0, 0.5)
-    runs = max(1, args.runs)
+    scans, qualities, runs = timed_scans(args, (2.0, 1.0, 0.5), (1.0,))
     options = args.fitter_options
-    if args.smoke:
-        scans = [os.path.join(ROOT, "Testing", "Data", "bunny.vtp")]
-        qualities = (1.0,)
-        runs = 1
     rows = []
     for path in scans:
         model = os.path.basename(path).split(".")[0]
@@ -234,13 +237,7 @@ def levels(args):
     """Fit time of single levels at s = 1, 2 and 4 and of vtkMultiResolutionSplatBuilder
     (its default 25 levels from s = 4 to 1), the defaults otherwise; the median of --runs
     each, with the unbounded fit (THESIS_FIT) at s = 1 as the peer in this process."""
-    scans = args.scans or [os.path.join(SCANS, s) for s in ("bunny.ply", "horse.ply", "lucy_50k.ply")]
-    qualities = (1.0, 2.0, 4.0)
-    runs = max(1, args.runs)
-    if args.smoke:
-        scans = [os.path.join(ROOT, "Testing", "Data", "bunny.vtp")]
-        qualities = (2.0,)
-        runs = 1
+    scans, qualities, runs = timed_scans(args, (1.0, 2.0, 4.0), (2.0,))
     rows = []
     for path in scans:
         model = os.path.basename(path).split(".")[0]
