@@ -178,6 +178,24 @@ def timed_scans(args, qualities, smoke_qualities):
     return scans, qualities, max(1, args.runs)
 
 
+def time_fits(pd, settings, runs):
+    """Fits `pd` with each setting (name, class name, {setter: value}), the settings
+    interleaved `runs` times; returns {name: (median seconds of Update(), last fitter)}."""
+    seconds = {name: [] for name, _, _ in settings}
+    last = {}
+    for _ in range(runs):
+        for name, cls, pairs in settings:
+            fitter = getattr(pointsurfaces, cls)()
+            fitter.SetInputData(pd)
+            for key, value in pairs.items():
+                getattr(fitter, "Set" + key)(value)
+            start = time.perf_counter()
+            fitter.Update()
+            seconds[name].append(time.perf_counter() - start)
+            last[name] = fitter
+    return {name: (float(np.median(seconds[name])), last[name]) for name, _, _ in settings}
+
+
 def fittime(args):
     """Fit time of the default fitter against the unbounded fit (THESIS_FIT), both
     in this process, runs interleaved; the median of --runs each. Run it
@@ -191,29 +209,20 @@ def fittime(args):
         pd = load(path)
         for s in qualities:
             # The thesis's unbounded fit and the default fitter (with --fitter-option).
-            settings = {"thesis": list(THESIS_FIT.items()), "default": options}
-            seconds = {name: [] for name in settings}
-            splats, deviation = {}, {}
-            for _ in range(runs):
-                for name, pairs in settings.items():
-                    fitter = pointsurfaces.vtkAlgebraicSplatFitter()
-                    fitter.SetInputData(pd)
-                    fitter.SetQualityFactor(s)
-                    for key, value in pairs:
-                        getattr(fitter, "Set" + key)(value)
-                    start = time.perf_counter()
-                    fitter.Update()
-                    seconds[name].append(time.perf_counter() - start)
-                    splats[name] = fitter.GetOutput().GetNumberOfPoints()
-                    deviation[name] = fitter.GetMaximumDeviation()
-            unbounded = float(np.median(seconds["thesis"]))
-            for name in settings:
-                median = float(np.median(seconds[name]))
+            # (An option may set QualityFactor too: it comes last and wins.)
+            settings = [("thesis", "vtkAlgebraicSplatFitter", dict(THESIS_FIT, QualityFactor=s)),
+                        ("default", "vtkAlgebraicSplatFitter",
+                         {"QualityFactor": s, **dict(options)})]
+            timed = time_fits(pd, settings, runs)
+            unbounded = timed["thesis"][0]
+            for name, _, _ in settings:
+                median, fitter = timed[name]
                 rows.append({"label": args.label, "model": model, "points": pd.GetNumberOfPoints(),
-                             "s": s, "maximum_deviation": deviation[name],
-                             "splats": splats[name], "runs": runs, "seconds": round(median, 4),
+                             "s": s, "maximum_deviation": fitter.GetMaximumDeviation(),
+                             "splats": fitter.GetOutput().GetNumberOfPoints(), "runs": runs,
+                             "seconds": round(median, 4),
                              "ratio_to_unbounded": round(median / unbounded, 3),
-                             "fitter": " ".join([name] + ["%s=%s" % o for o in settings[name]
+                             "fitter": " ".join([name] + ["%s=%s" % o for o in options
                                                           if name == "default"])})
     path = write(rows, args.out, "fit_time" + ("_" + args.label if args.label else ""))
     pyplot = plt()
@@ -245,22 +254,12 @@ def levels(args):
         settings = [("thesis, s = 1", "vtkAlgebraicSplatFitter", dict(THESIS_FIT, QualityFactor=1.0))]
         settings += [("s = %g" % s, "vtkAlgebraicSplatFitter", {"QualityFactor": s}) for s in qualities]
         settings += [("multi-resolution", "vtkMultiResolutionSplatBuilder", {})]
-        seconds = {name: [] for name, _, _ in settings}
-        splats = {}
-        for _ in range(runs):
-            for name, cls, pairs in settings:
-                fitter = getattr(pointsurfaces, cls)()
-                fitter.SetInputData(pd)
-                for key, value in pairs.items():
-                    getattr(fitter, "Set" + key)(value)
-                start = time.perf_counter()
-                fitter.Update()
-                seconds[name].append(time.perf_counter() - start)
-                splats[name] = fitter.GetOutput().GetNumberOfPoints()
-        peer = float(np.median(seconds["thesis, s = 1"]))
+        timed = time_fits(pd, settings, runs)
+        peer = timed["thesis, s = 1"][0]
         for name, _, _ in settings:
-            median = float(np.median(seconds[name]))
-            rows.append({"label": args.label, "model": model, "fit": name, "splats": splats[name],
+            median, fitter = timed[name]
+            rows.append({"label": args.label, "model": model, "fit": name,
+                         "splats": fitter.GetOutput().GetNumberOfPoints(),
                          "runs": runs, "seconds": round(median, 4),
                          "ratio_to_thesis_s1": round(median / peer, 3)})
     path = write(rows, args.out, "fit_levels" + ("_" + args.label if args.label else ""))
