@@ -192,6 +192,8 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   params.Fit.LossScale = this->RobustLossScale;
   params.Fit.MaximumDeviation = this->MaximumDeviation;
   params.Fit.ReweightingIterations = this->ReweightingIterations;
+  params.NormalAngle = this->MaximumNormalAngle;
+  params.EstimateNormals = this->EstimateNormals;
   params.Select = static_cast<pointsurfaces::Selection>(this->SelectionMode);
   params.Quality = this->QualityFactor;
   params.VisitOrder = static_cast<pointsurfaces::Order>(this->SelectionOrder);
@@ -383,5 +385,7 @@ void vtkAlgebraicSplatFitter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "OrientNormals: " << this->OrientNormals << "\n";
   os << indent << "MaximumDeviation: " << this->MaximumDeviation << "\n";
   os << indent << "ReweightingIterations: " << this->ReweightingIterations << "\n";
+  os << indent << "MaximumNormalAngle: " << this->MaximumNormalAngle << "\n";
+  os << indent << "EstimateNormals: " << (this->EstimateNormals ? "on" : "off") << "\n";
   os << indent << "MergeTolerance: " << this->MergeTolerance << "\n";
 }

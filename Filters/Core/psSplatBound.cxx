@@ -19,7 +19,8 @@ SplatBound BoundSplat(const Splat& splat,
   int n,
   const BoundParameters& params,
   std::vector<int>* covered,
-  std::vector<double>* rho)
+  std::vector<double>* rho,
+  const double* normals)
 {
   SplatBound bound;
   if (covered)
@@ -48,7 +49,12 @@ SplatBound BoundSplat(const Splat& splat,
   {
     double U, V, Rho, E;
     int Index;
+    bool Turned; // within the tolerance, but its normal turns away from the patch's
   };
+  // |cos| of the largest angle between a covered point's normal and the patch's.
+  const double agreement = normals && params.NormalAngle < 90.0
+    ? std::cos(params.NormalAngle * 3.14159265358979323846 / 180.0)
+    : -1.0;
   // Per-thread scratch, kept between calls: BoundSplat calls back into
   // nothing and starts no parallel work, so no thread re-enters it while
   // these are in use.
@@ -71,11 +77,25 @@ SplatBound BoundSplat(const Splat& splat,
     {
       continue;
     }
-    const Candidate c{ uvh[0] * h,
+    Candidate c{ uvh[0] * h,
       uvh[1] * h,
       rhoJ,
       std::abs(uvh[2] - Evaluate(splat.Fit.Coefficients, splat.Fit.Degree, uvh[0], uvh[1])) * h,
-      j };
+      j,
+      false };
+    if (agreement > 0.0 && c.E <= tol && !params.MeasureOnly)
+    {
+      // The patch's normal at (u, v) is (-g_u, -g_v, 1) in the frame.
+      double du = 0.0, dv = 0.0;
+      EvaluateWithGradient(splat.Fit.Coefficients, splat.Fit.Degree, uvh[0], uvh[1], du, dv);
+      const double* m = normals + 3 * j;
+      const double mt = m[0] * f.Tangent[0] + m[1] * f.Tangent[1] + m[2] * f.Tangent[2];
+      const double mb = m[0] * f.Bitangent[0] + m[1] * f.Bitangent[1] + m[2] * f.Bitangent[2];
+      const double mn = m[0] * f.Normal[0] + m[1] * f.Normal[1] + m[2] * f.Normal[2];
+      const double length2 = (mt * mt + mb * mb + mn * mn) * (1.0 + du * du + dv * dv);
+      const double dot = mn - du * mt - dv * mb;
+      c.Turned = length2 > 0.0 && dot * dot < agreement * agreement * length2;
+    }
     if (params.MeasureOnly)
     {
       // The unbounded disc of [Bolla 2010] covers its cylinder of height R.
@@ -85,7 +105,7 @@ SplatBound BoundSplat(const Splat& splat,
       }
       continue;
     }
-    (c.E <= tol ? on : off).push_back(c);
+    (c.E <= tol && !c.Turned ? on : off).push_back(c);
   }
   // The disc of radius r covers the points on the patch within it.
   auto finish = [&](double r)
@@ -128,7 +148,7 @@ SplatBound BoundSplat(const Splat& splat,
   thread_local std::vector<const double*> near;
   thread_local std::vector<int> binStart;
   binStart.assign(static_cast<size_t>(bins) + 1, 0);
-  auto isNear = [&](const Candidate& c) { return c.E <= 2.0 * tol; };
+  auto isNear = [&](const Candidate& c) { return c.E <= 2.0 * tol && !c.Turned; };
   for (const Candidate& c : on)
   {
     ++binStart[binOf(c.Rho) + 1];
@@ -167,15 +187,18 @@ SplatBound BoundSplat(const Splat& splat,
   // Where the surface bends away: the nearest point off the patch that
   // continues the points on or near it. A point barely off (under twice
   // the tolerance) is noise as often as it is a bend: it is not covered,
-  // but does not stop the disc; nor does a point within a spacing of the
-  // centre, where the fit itself is within the tolerance (so that the disc
-  // always covers its own centre).
+  // but does not stop the disc; nor does a point within CentreReach
+  // spacings of the centre (so that the disc always covers its own
+  // centre). A point on a wall that turns away from the patch (Turned)
+  // stops it however near the patch it lies. A splat whose point sits on
+  // the lip of a deep fold is stopped half a spacing out: with a whole
+  // spacing, its disc hung over the fold's opening as a light half-disc.
   double r = radius;
   thread_local std::vector<const Candidate*> stoppers;
   stoppers.clear();
   for (const Candidate& c : off)
   {
-    if (c.Rho < r && c.E > 2.0 * tol && c.Rho >= spacing)
+    if (c.Rho < r && (c.E > 2.0 * tol || c.Turned) && c.Rho >= params.CentreReach * spacing)
     {
       stoppers.push_back(&c);
     }
@@ -239,8 +262,10 @@ SplatBound BoundSplat(const Splat& splat,
     : r;
   const double shortest = *std::min_element(support, support + Directions);
   // A small disc holds too few points to tell a border from chance; half its
-  // radius short is a border all the same.
-  if (shortest + std::max(std::min(band, 0.5 * r), params.BorderSlack * spacing) < r)
+  // radius short is a border all the same (the cap of the band: a disc of a
+  // spacing or so, centred on the edge of a thin part, otherwise hung a
+  // whole spacing past it).
+  if (shortest + std::min(std::max(band, params.BorderSlack * spacing), 0.5 * r) < r)
   {
     r = std::min(r, shortest + params.BorderMargin * spacing);
     bound.Border = true;

@@ -18,14 +18,24 @@
  *   points with e <= tolerance are *on* the patch;
  * - a point off the patch that lies within `Adjacency` spacings of a point
  *   on it belongs to the same sheet of the surface, which bends away
- *   there: the disc must stop short of it (R < rho). Points off the patch
+ *   there: the disc must stop short of it (R < rho; only past
+ *   `CentreReach` spacings, so that a disc covers its own point). Points off the patch
  *   and away from it are another sheet (the other side of a thin part) and
  *   do not bound the disc;
+ * - with point normals (the input's, or PCA normals of each point's own
+ *   few neighbours), a point within the tolerance whose normal turns away
+ *   from the patch's normal there by more than `NormalAngle` lies on a
+ *   wall that meets the patch's sheet at a crease or a fold: it is not
+ *   covered, and it stops the disc as a bend does. Within the tolerance
+ *   alone, the rows of a fold's other wall next to its crease pass for the
+ *   patch, and a disc reaching over them shows the patch's face where the
+ *   fold is dark;
  * - the points on the patch within max(R, 3 spacings) are projected on 16
  *   directions of the plane: where their reach in a direction (the support
  *   function) falls short of the disc by more than the band in which
  *   randomly spread points of the local density would put `BorderPoints`
- *   points (at least `BorderSlack` spacings), the data ends on that side
+ *   points (at least `BorderSlack` spacings, at most half the disc's
+ *   radius), the data ends on that side
  *   (an open border, or the rim of a thin part), and the disc reaches at
  *   most `BorderMargin` spacings past it;
  * - last, the patch's rim is sampled in the same 16 directions, and the disc
@@ -58,7 +68,10 @@ struct BoundParameters
   double BorderMargin = 0.5; ///< how far a disc may reach past the data, in spacings
   double MaximumReach =
     2.5;                    ///< how far the disc's rim may lie from the data, in sampling distances
-  bool MeasureOnly = false; ///< only measure: keep the radius, cover every point in the disc
+  double CentreReach = 0.5; ///< off-patch points nearer the centre (in spacings) stop no disc
+  double NormalAngle = 60.0; ///< largest angle between a covered point's normal and the patch's,
+                             ///< in degrees (with normals; 90 or more: no test)
+  bool MeasureOnly = false;  ///< only measure: keep the radius, cover every point in the disc
 };
 
 struct SplatBound
@@ -74,7 +87,9 @@ struct SplatBound
  * `points` are the `n` candidate points (xyz triples), which must include
  * every point within sqrt(2) max(radius, 3 spacings) of the splat's origin.
  * On return `covered` (when given) holds the indices into `points` of the
- * points the splat covers and `rho` their in-plane distances.
+ * points the splat covers and `rho` their in-plane distances. `normals`,
+ * when given, are the points' normals (n triples, either sign, any length;
+ * a zero normal is unknown and passes).
  */
 POINTSURFACESFILTERS_EXPORT SplatBound BoundSplat(const Splat& splat,
   double radius,
@@ -82,7 +97,8 @@ POINTSURFACESFILTERS_EXPORT SplatBound BoundSplat(const Splat& splat,
   int n,
   const BoundParameters& params,
   std::vector<int>* covered = nullptr,
-  std::vector<double>* rho = nullptr);
+  std::vector<double>* rho = nullptr,
+  const double* normals = nullptr);
 
 /** The largest radius BoundSplat looks at for a nominal `radius`: its candidates must reach it. */
 POINTSURFACESFILTERS_EXPORT double BoundSearchRadius(double radius, double spacing);

@@ -239,6 +239,37 @@ BuildResult BuildSplats(const double* xyz,
   const int kAll = std::max(fit.NumberOfNeighbors, fit.FeatureSizeNeighbors + 1);
 
   const bool bounded = fit.MaximumDeviation > 0.0;
+  // The bounds' normal test (see BoundParameters::NormalAngle): each point's
+  // normal, the input's or the PCA normal of its NormalNeighbors nearest.
+  std::vector<double> pointNormals;
+  if (bounded && params.NormalAngle < 90.0 && (normals || params.EstimateNormals))
+  {
+    pointNormals.assign(static_cast<size_t>(3 * n), 0.0);
+    vtkSMPTools::For(0,
+      n,
+      [&](long long begin, long long end)
+      {
+        std::vector<int> ids;
+        std::vector<double> d2, coords;
+        for (long long i = begin; i < end; ++i)
+        {
+          double* out = &pointNormals[static_cast<size_t>(3 * i)];
+          if (normals)
+          {
+            std::copy(normals + 3 * i, normals + 3 * i + 3, out);
+            continue;
+          }
+          Gather(index, index.Point(i), NormalNeighbors, ids, d2, coords);
+          LocalFrame plane;
+          if (FitReferencePlane(
+                coords.data(), nullptr, static_cast<int>(ids.size()), plane, nullptr) ==
+            FitStatus::Ok)
+          {
+            std::copy(plane.Normal, plane.Normal + 3, out);
+          }
+        }
+      });
+  }
   // Tells this call's cached searches (see `bound`) from an earlier call's.
   static std::atomic<unsigned long long> builds{ 0 };
   const unsigned long long buildId = ++builds;
@@ -277,7 +308,7 @@ BuildResult BuildSplats(const double* xyz,
                  const double* from = nullptr)
   {
     thread_local std::vector<int> found;
-    thread_local std::vector<double> d2, coords;
+    thread_local std::vector<double> d2, coords, nrm;
     thread_local std::vector<int> local;
     thread_local const double* foundFrom = nullptr;
     thread_local double foundRadius = 0.0;
@@ -289,6 +320,7 @@ BuildResult BuildSplats(const double* xyz,
     bp.MaximumReach =
       std::max(bp.MaximumReach, 2.0 * tolerance); // a looser patch may stray farther
     bp.MeasureOnly = !bounded;
+    bp.NormalAngle = params.NormalAngle;
     // BoundSplat's own fallback when the spacing is unknown: h.
     const double spacing = sp.Spacing > 0.0 ? sp.Spacing : sp.Frame.Scale;
     const double offset =
@@ -335,7 +367,23 @@ BuildResult BuildSplats(const double* xyz,
       {
         std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &coords[3 * j]);
       }
-      sb = BoundSplat(sp, trial, coords.data(), static_cast<int>(ids.size()), bp, &local, rho);
+      if (!pointNormals.empty())
+      {
+        nrm.resize(3 * ids.size());
+        for (size_t j = 0; j < ids.size(); ++j)
+        {
+          const double* m = &pointNormals[3 * static_cast<size_t>(ids[j])];
+          std::copy(m, m + 3, &nrm[3 * j]);
+        }
+      }
+      sb = BoundSplat(sp,
+        trial,
+        coords.data(),
+        static_cast<int>(ids.size()),
+        bp,
+        &local,
+        rho,
+        pointNormals.empty() ? nullptr : nrm.data());
       if (sb.Radius < trial || !(trial < nominal))
       {
         break;

@@ -68,7 +68,19 @@ struct BuildParameters
   unsigned int Seed = 1;
   double RadiusScale = 1.0; ///< R_i = RadiusScale s h_i
   bool KeepWeights = false; ///< keep neighbour ids and weights for attributes
+  /**
+   * Bounded fits: a point within the tolerance whose normal turns from the
+   * patch's by more than this many degrees is not covered, and stops the
+   * disc (BoundParameters::NormalAngle). The normals are the input's; without
+   * them, PCA normals of NormalNeighbors points when EstimateNormals is set,
+   * else there is no such test. 90 or more: no test.
+   */
+  double NormalAngle = 60.0;
+  bool EstimateNormals = false;
 };
+
+/** Neighbours of the PCA normals of BuildParameters::EstimateNormals. */
+constexpr int NormalNeighbors = 10;
 
 struct BuiltSplat
 {

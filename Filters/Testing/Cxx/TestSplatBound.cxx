@@ -373,6 +373,156 @@ void TestCandidatesBeyondSearch()
     "candidates beyond the search radius do not change the disc");
   Check(coveredInside == coveredEvery, "candidates beyond the search radius are not covered");
 }
+
+// A flat splat (g = 0, h = 2, spacing 1) whose frame lies in z = 0 around `origin`.
+Splat FlatSplat(double x0)
+{
+  Splat splat;
+  splat.Fit.Degree = 2;
+  splat.Fit.Status = FitStatus::Ok;
+  splat.Spacing = 1.0;
+  splat.Frame.Scale = 2.0;
+  splat.Frame.Origin[0] = x0;
+  splat.Frame.Tangent[0] = 1.0;
+  splat.Frame.Bitangent[1] = 1.0;
+  splat.Frame.Normal[2] = 1.0;
+  return splat;
+}
+
+// The lip of a deep fold: a sheet z = 0 for x <= 0 (grid spacing 1) whose
+// surface dives at x = 0 into a fold 3 wide and 8 deep. A splat half a
+// spacing from the lip must stop at it: a disc that reaches past the lip
+// hangs over the fold's opening, in front of its dark walls.
+void TestFoldLip()
+{
+  std::vector<double> pts;
+  for (int j = -10; j <= 10; ++j)
+  {
+    for (int i = -10; i <= 0; ++i)
+    {
+      pts.insert(pts.end(), { double(i), double(j), 0.0 }); // the sheet, lip at x = 0
+      pts.insert(pts.end(), { 3.0 - i, double(j), 0.0 });   // the far side of the fold
+    }
+    for (int k = 1; k <= 8; ++k)
+    {
+      pts.insert(pts.end(), { 0.0, double(j), -double(k) }); // the fold's walls
+      pts.insert(pts.end(), { 3.0, double(j), -double(k) });
+    }
+  }
+  const Splat splat = FlatSplat(-0.5);
+  BoundParameters bp;
+  bp.Spacing = 1.0;
+  bp.Tolerance = 0.4;
+  const int n = static_cast<int>(pts.size() / 3);
+  std::vector<int> covered;
+  const SplatBound lip = BoundSplat(splat, 2.5, pts.data(), n, bp, &covered);
+  BoundParameters wide = bp;
+  wide.CentreReach = 1.0; // the rule before: no stop within a spacing of the centre
+  const SplatBound before = BoundSplat(splat, 2.5, pts.data(), n, wide);
+  std::printf("fold lip: disc reaches %.3f past the lip (%zu covered); with a centre reach of "
+              "one spacing %.3f\n",
+    lip.Radius - 0.5,
+    covered.size(),
+    before.Radius - 0.5);
+  Check(lip.BentAway && lip.Radius <= 0.5 + 1e-12, "a disc by a fold's lip stops at the lip");
+  Check(!covered.empty(), "a disc stopped by a lip still covers the points by its centre");
+  for (int j : covered)
+  {
+    Check(pts[3 * j] <= 0.0 && pts[3 * j + 2] == 0.0, "a disc by a lip covers only its sheet");
+  }
+  Check(before.Radius - 0.5 >= 0.5 - 1e-12,
+    "with a centre reach of a spacing, the disc hung over the fold");
+}
+
+// The normal test: a sheet z = 0 (x <= 0) meets at x = 0 a wall that falls
+// steeply (z = -3 x, 72 degrees from the sheet). The wall's first row lies
+// within the tolerance of the sheet's patch: by heights alone the splat
+// covers it and reaches over it; by normals it stops there.
+void TestNormalAngle()
+{
+  std::vector<double> pts, normals;
+  const double wall[3] = { 3.0 / std::sqrt(10.0), 0.0, 1.0 / std::sqrt(10.0) };
+  std::vector<bool> onWall;
+  for (int j = -8; j <= 8; ++j)
+  {
+    for (int i = -8; i <= 0; ++i)
+    {
+      pts.insert(pts.end(), { double(i), double(j), 0.0 });
+      normals.insert(normals.end(), { 0.0, 0.0, 1.0 });
+      onWall.push_back(false);
+    }
+    for (int k = 0; k < 8; ++k)
+    {
+      const double x = 0.15 + k / std::sqrt(10.0); // spacing 1 along the wall
+      pts.insert(pts.end(), { x, double(j), -3.0 * x });
+      normals.insert(normals.end(), wall, wall + 3);
+      onWall.push_back(true);
+    }
+  }
+  const int n = static_cast<int>(pts.size() / 3);
+  const Splat splat = FlatSplat(-2.0);
+  BoundParameters bp;
+  bp.Spacing = 1.0;
+  bp.Tolerance = 0.5;
+  auto wallCovered = [&](const std::vector<int>& covered)
+  {
+    int count = 0;
+    for (int j : covered)
+    {
+      count += onWall[j] ? 1 : 0;
+    }
+    return count;
+  };
+  std::vector<int> plain, tested, flipped, unknown, noisy;
+  const SplatBound a = BoundSplat(splat, 4.0, pts.data(), n, bp, &plain);
+  const SplatBound b = BoundSplat(splat, 4.0, pts.data(), n, bp, &tested, nullptr, normals.data());
+  std::vector<double> negated(normals), zero(normals.size(), 0.0);
+  for (size_t j = 0; j < negated.size(); j += 6)
+  {
+    negated[j] = -negated[j];
+    negated[j + 1] = -negated[j + 1];
+    negated[j + 2] = -negated[j + 2];
+  }
+  const SplatBound c = BoundSplat(splat, 4.0, pts.data(), n, bp, &flipped, nullptr, negated.data());
+  const SplatBound d = BoundSplat(splat, 4.0, pts.data(), n, bp, &unknown, nullptr, zero.data());
+  BoundParameters off = bp;
+  off.NormalAngle = 90.0;
+  const SplatBound e = BoundSplat(splat, 4.0, pts.data(), n, off, nullptr, nullptr, normals.data());
+  std::printf("normal test: radius %.3f by heights (%d wall points covered), %.3f by normals "
+              "(%d)\n",
+    a.Radius,
+    wallCovered(plain),
+    b.Radius,
+    wallCovered(tested));
+  Check(
+    wallCovered(plain) > 0 && a.Radius > 2.15, "by heights alone the wall's first row is covered");
+  Check(wallCovered(tested) == 0 && b.Radius <= 2.15 + 1e-12 && b.BentAway,
+    "by normals the wall is not covered and stops the disc");
+  Check(c.Radius == b.Radius && flipped == tested, "the normals' sign does not matter");
+  Check(d.Radius == a.Radius && unknown == plain, "zero normals are unknown and pass");
+  Check(e.Radius == a.Radius, "NormalAngle 90 turns the test off");
+
+  // A sheet whose normals are noisy (tilted up to 40 degrees, as PCA on a
+  // rough scan gives them) but agree with it: the test changes nothing.
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> tilt(-0.45, 0.45);
+  std::vector<double> sheet, rough;
+  for (int j = -8; j <= 8; ++j)
+  {
+    for (int i = -8; i <= 8; ++i)
+    {
+      sheet.insert(sheet.end(), { double(i), double(j), 0.0 });
+      rough.insert(rough.end(), { tilt(gen), tilt(gen), 1.0 });
+    }
+  }
+  const int m = static_cast<int>(sheet.size() / 3);
+  std::vector<int> coverRough;
+  const SplatBound f = BoundSplat(FlatSplat(0.0), 4.0, sheet.data(), m, bp, &plain);
+  const SplatBound g =
+    BoundSplat(FlatSplat(0.0), 4.0, sheet.data(), m, bp, &coverRough, nullptr, rough.data());
+  Check(f.Radius == 4.0 && g.Radius == 4.0 && coverRough == plain,
+    "normals that agree within the angle change nothing");
+}
 } // namespace
 
 // A bound grows its disc from FirstTrial spacings, doubling while nothing
@@ -422,6 +572,8 @@ void TestGrowingDiscs()
 
 int TestSplatBound(int, char*[])
 {
+  TestFoldLip();
+  TestNormalAngle();
   std::mt19937 gen(7);
   // Two parallel sheets 2 spacings apart: a fit's 40 neighbours reach 2.5
   // spacings, its feature size neighbourhood 4.4.
