@@ -52,7 +52,8 @@ def load(path, every=1):
     if path.endswith(".xyz"):
         xyz = np.loadtxt(path, usecols=(0, 1, 2))
     else:
-        reader = vtkXMLPolyDataReader() if path.endswith(".vtp") else vtkPLYReader()
+        reader = (vtkXMLPolyDataReader() if path.endswith(".vtp")
+                  else pointsurfaces.vtkPCDReader() if path.endswith(".pcd") else vtkPLYReader())
         reader.SetFileName(path)
         reader.Update()
         xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)
