@@ -10,11 +10,6 @@
  * that selects the format. VTK's error and warning output is switched off:
  * the fuzzer looks for crashes, hangs, leaks and sanitizer reports, and the
  * readers' clear errors on bad input are tested by the unit tests.
- *
- * Every target runs on one thread (TBB, which OpenVDB and VTK's SMP tools
- * use, is limited to one worker): with threads, the coverage that a run
- * records varied between runs of the same seed, so that the smoke run's
- * inputs, and whether it met a crash, were not repeatable.
  */
 #ifndef psFuzzFile_h
 #define psFuzzFile_h
@@ -24,8 +19,6 @@
 #include "vtkObject.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
-
-#include <tbb/global_control.h>
 
 #include <cstdint>
 #include <cstdio>
@@ -40,7 +33,6 @@ inline std::string FuzzFile(const uint8_t* data, size_t size, const std::string&
 {
   static bool quiet = (vtkObject::GlobalWarningDisplayOff(), true);
   (void)quiet;
-  static tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
   const char* tmp = std::getenv("TMPDIR");
   static const std::string base = std::string(tmp && *tmp ? tmp : "/tmp") + "/psfuzz-" +
     std::to_string(static_cast<long>(getpid())) + ".";
