@@ -241,34 +241,34 @@ BuildResult BuildSplats(const double* xyz,
   const bool bounded = fit.MaximumDeviation > 0.0;
   // The bounds' normal test (see BoundParameters::NormalAngle): each point's
   // normal, the input's or the PCA normal of its NormalNeighbors nearest.
-  std::vector<double> pointNormals;
-  if (bounded && params.NormalAngle < 90.0 && (normals || params.EstimateNormals))
+  const double* pointNormals = nullptr;
+  std::vector<double> estimated;
+  if (bounded && params.NormalAngle < 90.0)
   {
-    pointNormals.assign(static_cast<size_t>(3 * n), 0.0);
-    vtkSMPTools::For(0,
-      n,
-      [&](long long begin, long long end)
-      {
-        std::vector<int> ids;
-        std::vector<double> d2, coords;
-        for (long long i = begin; i < end; ++i)
+    pointNormals = normals;
+    if (!normals && params.EstimateNormals)
+    {
+      estimated.assign(static_cast<size_t>(3 * n), 0.0);
+      vtkSMPTools::For(0,
+        n,
+        [&](long long begin, long long end)
         {
-          double* out = &pointNormals[static_cast<size_t>(3 * i)];
-          if (normals)
+          std::vector<int> ids;
+          std::vector<double> d2, coords;
+          for (long long i = begin; i < end; ++i)
           {
-            std::copy(normals + 3 * i, normals + 3 * i + 3, out);
-            continue;
+            Gather(index, index.Point(i), NormalNeighbors, ids, d2, coords);
+            LocalFrame plane;
+            if (FitReferencePlane(
+                  coords.data(), nullptr, static_cast<int>(ids.size()), plane, nullptr) ==
+              FitStatus::Ok)
+            {
+              std::copy(plane.Normal, plane.Normal + 3, &estimated[static_cast<size_t>(3 * i)]);
+            }
           }
-          Gather(index, index.Point(i), NormalNeighbors, ids, d2, coords);
-          LocalFrame plane;
-          if (FitReferencePlane(
-                coords.data(), nullptr, static_cast<int>(ids.size()), plane, nullptr) ==
-            FitStatus::Ok)
-          {
-            std::copy(plane.Normal, plane.Normal + 3, out);
-          }
-        }
-      });
+        });
+      pointNormals = estimated.data();
+    }
   }
   // Tells this call's cached searches (see `bound`) from an earlier call's.
   static std::atomic<unsigned long long> builds{ 0 };
@@ -367,12 +367,12 @@ BuildResult BuildSplats(const double* xyz,
       {
         std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &coords[3 * j]);
       }
-      if (!pointNormals.empty())
+      if (pointNormals)
       {
         nrm.resize(3 * ids.size());
         for (size_t j = 0; j < ids.size(); ++j)
         {
-          const double* m = &pointNormals[3 * static_cast<size_t>(ids[j])];
+          const double* m = pointNormals + 3 * static_cast<size_t>(ids[j]);
           std::copy(m, m + 3, &nrm[3 * j]);
         }
       }
@@ -383,7 +383,7 @@ BuildResult BuildSplats(const double* xyz,
         bp,
         &local,
         rho,
-        pointNormals.empty() ? nullptr : nrm.data());
+        pointNormals ? nrm.data() : nullptr);
       if (sb.Radius < trial || !(trial < nominal))
       {
         break;
