@@ -23,6 +23,8 @@ namespace
 constexpr double ClaimMargin = 0.5;
 // The first disc radius a bound tries, in point spacings (see `bound`).
 constexpr double FirstTrial = 4.0;
+// The narrowest Gaussian weight of a bounded splat's second fit, in point spacings.
+constexpr double NarrowestWeight = 1.5;
 
 struct Position
 {
@@ -460,11 +462,18 @@ BuildResult BuildSplats(const double* xyz,
       // Where the surface bent away well inside the disc, the patch averaged
       // over more than it may cover: fit again with weights that reach no
       // farther than the bounded disc, and keep the fit that reaches farther.
+      // The weights stay at least NarrowestWeight spacings wide: narrower,
+      // too few points carry a cubic, whose patch then bulges over creases
+      // (h of two spacings, the default, leaves no room to narrow; h of four
+      // does).
       const double nominalRadius = b->NominalRadius;
-      if (b->Radius < 0.6 * nominalRadius)
+      const double narrowScale = std::max({ 0.35,
+        b->Radius / nominalRadius,
+        NarrowestWeight * b->Fitted.Spacing / b->Fitted.Frame.Scale });
+      if (b->Radius < 0.6 * nominalRadius && narrowScale < 0.9)
       {
         SplatFitParameters narrow = levelFit;
-        narrow.WeightScale *= std::max(0.35, b->Radius / nominalRadius);
+        narrow.WeightScale *= narrowScale;
         auto n2 = std::make_unique<BuiltSplat>(*b);
         n2->Fitted = FitSplat(index.Point(i),
           coords.data(),
