@@ -469,7 +469,7 @@ BuildResult BuildSplats(const double* xyz,
       const double nominalRadius = b->NominalRadius;
       const double narrowScale = std::max({ 0.35,
         b->Radius / nominalRadius,
-        NarrowestWeight * b->Fitted.Spacing / b->Fitted.Frame.Scale });
+        NarrowestWeight * b->Fitted.Spacing / (levelFit.WeightScale * b->Fitted.Frame.Scale) });
       if (b->Radius < 0.6 * nominalRadius && narrowScale < 0.9)
       {
         SplatFitParameters narrow = levelFit;
