@@ -387,13 +387,16 @@ def cropped(*images, margin=8):
     return [image[y0:y1, x0:x1] for image in images]
 
 
-def write_diagnostic(path, reference, image):
-    """mesh | test | |difference| x 4 (grey) with the mask's disagreement in red / blue."""
+def write_diagnostic(path, reference, image, flakes=None):
+    """mesh | test | |difference| x 4 (grey) with the mask's disagreement in red / blue, and
+    `flakes` (a mask, when given: the test in front of the mesh) in orange."""
     diff = np.clip(4.0 * np.abs(reference - image).mean(axis=2), 0, 1)
     panel = np.repeat((1.0 - diff)[:, :, None], 3, axis=2)
     ref_mask, test_mask = covered(reference), covered(image)
     panel[ref_mask & ~test_mask] = (1.0, 0.0, 0.0)  # mesh only: a hole in the test
     panel[test_mask & ~ref_mask] = (0.0, 0.3, 1.0)  # test only: spill past the silhouette
+    if flakes is not None:
+        panel[flakes] = (1.0, 0.55, 0.0)  # the test stands in front of the mesh
     write_png(path, side_by_side(*cropped(reference, image, panel)))
 
 

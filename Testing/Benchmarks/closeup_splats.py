@@ -14,16 +14,50 @@ flake a few splats wide covers a pixel or two there. A close camera shows it. FX
 place the focal point as fractions of the mesh's bounding box (0.5 0.5 0.5: its centre),
 D is the camera's distance in mesh diagonals, A and E turn it about the model's up axis
 (z for horse and lucy, else y) from the front, in degrees. Prints one CSV row.
+
+Flakes, counted: besides the image scores, the row holds flake_pixels, the pixels where
+the splats' depth lies more than one point spacing (the mesh's mean edge length) in front
+of the mesh's, both covered: a patch that stands off the surface toward the viewer, such
+as a disc hanging over a fold. flake_fraction is their share of the mesh's pixels. They
+are orange in the difference panel.
 """
 import argparse
 import math
 import os
 import sys
 
+import numpy as np
 import pointsurfaces
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkFloatArray
 
 import bench_csv
 import bench_splat_quality as quality
+
+
+def view_depth(scene, state):
+    """Depth along the view axis of each pixel of the last render (rows bottom-up; inf where
+    nothing was drawn), from the depth buffer and the state's perspective clipping range."""
+    w, h = scene.size
+    z = vtkFloatArray()
+    scene.window.GetZbufferData(0, 0, w - 1, h - 1, z)
+    z = vtk_to_numpy(z).reshape(h, w).astype(np.float64)
+    near, far = state["clip"]
+    ndc = 2.0 * z - 1.0
+    with np.errstate(divide="ignore"):
+        depth = 2.0 * near * far / (far + near - ndc * (far - near))
+    depth[z >= 1.0] = np.inf
+    return depth
+
+
+def mean_edge_length(mesh):
+    """Mean edge length of the mesh's triangles: its point spacing."""
+    points = vtk_to_numpy(mesh.GetPoints().GetData()).astype(np.float64)
+    polys = vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+    edges = np.concatenate([points[polys[:, 0]] - points[polys[:, 1]],
+                            points[polys[:, 1]] - points[polys[:, 2]],
+                            points[polys[:, 2]] - points[polys[:, 0]]])
+    return float(np.linalg.norm(edges, axis=1).mean())
 
 
 def main():
@@ -72,16 +106,23 @@ def main():
     scene = quality.Scene((args.size, args.size))
     scene.show(quality.mesh_actor(mesh))
     reference = scene.image(state)
+    reference_depth = view_depth(scene, state)
     splats = quality.splat_actor(fitter.GetOutput())
     if args.no_blend:
         splats.GetMapper().SetBlending(False)
     scene.show(splats)
     image = scene.image(state)
+    splat_depth = view_depth(scene, state)
+    both = np.isfinite(reference_depth) & np.isfinite(splat_depth)
+    flakes = np.zeros_like(both)
+    flakes[both] = reference_depth[both] - splat_depth[both] > mean_edge_length(mesh)
     row = quality.score_images(reference, image)
+    row.update(flake_pixels=int(flakes.sum()),
+               flake_fraction=float(flakes.sum()) / max(1, row["covered_reference"]))
     row.update(model=name, splats=fitter.GetOutput().GetNumberOfPoints(),
                options=" ".join("%s=%s" % o for o in options), blending=not args.no_blend)
     os.makedirs(os.path.dirname(os.path.abspath(args.output)), exist_ok=True)
-    quality.write_diagnostic(args.output, reference, image)
+    quality.write_diagnostic(args.output, reference, image, flakes)
     bench_csv.write_rows(os.devnull, [row])
     return 0
 
