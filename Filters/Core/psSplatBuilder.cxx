@@ -336,15 +336,16 @@ BuildResult BuildSplats(const double* xyz,
     // one trial, the nominal radius.
     const double nominal = b.Radius;
     double trial = bounded ? std::min(nominal, FirstTrial * spacing) : nominal;
-    const std::vector<int>* candidates = &found;
+    const std::vector<int>* candidates = nullptr; // whose points `coords` holds
     SplatBound sb;
     for (;;)
     {
       const double search = BoundSearchRadius(trial, spacing);
-      candidates = &found;
+      const std::vector<int>* next = &found;
+      bool searched = false;
       if (nearest && !nearest->empty() && std::sqrt(nearestD2->back()) >= search + offset)
       {
-        candidates = nearest; // a superset of the points within `search` of the origin
+        next = nearest; // a superset of the points within `search` of the origin
       }
       else if (from)
       {
@@ -356,28 +357,37 @@ BuildResult BuildSplats(const double* xyz,
           index.Within(from, foundRadius, found, d2, false);
           foundFrom = from;
           foundBuild = buildId;
+          searched = true;
         }
       }
       else
       {
         foundFrom = nullptr;
         index.Within(sp.Frame.Origin, search, found, d2, false);
+        searched = true;
       }
-      const std::vector<int>& ids = *candidates;
-      coords.resize(3 * ids.size());
-      for (size_t j = 0; j < ids.size(); ++j)
+      // The candidates' coordinates (and normals), gathered again only when
+      // the candidates changed: a larger trial often reuses the last ones.
+      if (next != candidates || searched)
       {
-        std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &coords[3 * j]);
-      }
-      if (pointNormals)
-      {
-        nrm.resize(3 * ids.size());
+        candidates = next;
+        const std::vector<int>& ids = *candidates;
+        coords.resize(3 * ids.size());
         for (size_t j = 0; j < ids.size(); ++j)
         {
-          const double* m = pointNormals + 3 * static_cast<size_t>(ids[j]);
-          std::copy(m, m + 3, &nrm[3 * j]);
+          std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &coords[3 * j]);
+        }
+        if (pointNormals)
+        {
+          nrm.resize(3 * ids.size());
+          for (size_t j = 0; j < ids.size(); ++j)
+          {
+            const double* m = pointNormals + 3 * static_cast<size_t>(ids[j]);
+            std::copy(m, m + 3, &nrm[3 * j]);
+          }
         }
       }
+      const std::vector<int>& ids = *candidates;
       sb = BoundSplat(sp,
         trial,
         coords.data(),
