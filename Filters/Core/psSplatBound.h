@@ -31,7 +31,8 @@
  *   patch, and a disc reaching over them shows the patch's face where the
  *   fold is dark;
  * - the points on the patch within max(R, 3 spacings) are projected on 16
- *   directions of the plane: where their reach in a direction (the support
+ *   directions of the plane, each point on the directions within
+ *   `BorderAngle` of its own: where their reach in a direction (the support
  *   function) falls short of the disc by more than the band in which
  *   randomly spread points of the local density would put `BorderPoints`
  *   points (at least `BorderSlack` spacings, at most half the disc's
@@ -66,6 +67,8 @@ struct BoundParameters
   double BorderSlack = 1.0;  ///< least shortfall of the data that is a border, in spacings
   double BorderPoints = 7.0; ///< points expected in the band that would make a border
   double BorderMargin = 0.5; ///< how far a disc may reach past the data, in spacings
+  double BorderAngle = 30.0; ///< a point supports the directions within this angle of its own,
+                             ///< in degrees (180: every direction it projects onto positively)
   double MaximumReach =
     2.5;                    ///< how far the disc's rim may lie from the data, in sampling distances
   double CentreReach = 0.5; ///< off-patch points nearer the centre (in spacings) stop no disc

@@ -389,6 +389,44 @@ Splat FlatSplat(double x0)
   return splat;
 }
 
+// An open border with stray points beyond it: a sheet z = 0 for x <= 0
+// (grid spacing 1) and two lone points on the patch's plane at
+// (2.085, -1.785) and (2.085, 1.785): for a disc of radius 2.5 centred 0.2
+// from the border, past its rim (2.9 from its centre) and 38 degrees either
+// side of the border's normal (points across a hole, or wall points a
+// curled patch passes through). They must not hide the border: counted for
+// every direction they project onto, they left the disc whole, 2.3 past the
+// data (its rim lies near them, so the rim test passed it too).
+void TestStrayPointAcrossBorder()
+{
+  std::vector<double> pts;
+  for (int j = -10; j <= 10; ++j)
+  {
+    for (int i = -10; i <= 0; ++i)
+    {
+      pts.insert(pts.end(), { double(i), double(j), 0.0 });
+    }
+  }
+  pts.insert(pts.end(), { 2.085, -1.785, 0.0, 2.085, 1.785, 0.0 });
+  const Splat splat = FlatSplat(-0.2);
+  BoundParameters bp;
+  bp.Spacing = 1.0;
+  bp.Tolerance = 0.4;
+  const int n = static_cast<int>(pts.size() / 3);
+  const SplatBound now = BoundSplat(splat, 2.5, pts.data(), n, bp);
+  BoundParameters wide = bp;
+  wide.BorderAngle = 180.0;
+  const SplatBound before = BoundSplat(splat, 2.5, pts.data(), n, wide);
+  std::printf("stray points across a border: disc reaches %.3f past the data (%.3f when they "
+              "support every direction)\n",
+    now.Radius - 0.2,
+    before.Radius - 0.2);
+  Check(now.Border && now.Radius <= 0.2 + bp.BorderMargin + 1e-12,
+    "stray points beyond the disc do not hide a border");
+  Check(!before.Border && before.Radius == 2.5,
+    "counted for every direction, the stray points hid the border (the case is a real one)");
+}
+
 // The lip of a deep fold: a sheet z = 0 for x <= 0 (grid spacing 1) whose
 // surface dives at x = 0 into a fold 3 wide and 8 deep. A splat half a
 // spacing from the lip must stop at it: a disc that reaches past the lip
@@ -417,7 +455,8 @@ void TestFoldLip()
   std::vector<int> covered;
   const SplatBound lip = BoundSplat(splat, 2.5, pts.data(), n, bp, &covered);
   BoundParameters wide = bp;
-  wide.CentreReach = 1.0; // the rule before: no stop within a spacing of the centre
+  wide.CentreReach = 1.0; // the rules before: no stop within a spacing of the centre,
+  wide.BorderAngle = 180.0; // and the far side's points support the border test's every direction
   const SplatBound before = BoundSplat(splat, 2.5, pts.data(), n, wide);
   std::printf("fold lip: disc reaches %.3f past the lip (%zu covered); with a centre reach of "
               "one spacing %.3f\n",
@@ -573,6 +612,7 @@ void TestGrowingDiscs()
 int TestSplatBound(int, char*[])
 {
   TestFoldLip();
+  TestStrayPointAcrossBorder();
   TestNormalAngle();
   std::mt19937 gen(7);
   // Two parallel sheets 2 spacings apart: a fit's 40 neighbours reach 2.5
