@@ -30,6 +30,15 @@ not exactly the background colour in the mesh image or in the splat image):
   window, sigma 1.5, population covariance, data range 1);
 - coverage_iou: |mesh pixels AND splat pixels| / |mesh pixels OR splat pixels|.
 
+Per setting, and without any camera: stray_splats, the share of splats whose
+patch strays from the mesh by more than the mesh's mean edge length (its
+point spacing) anywhere on its disc (sampled at the centre and on two rings,
+half the radius and the rim, 16 directions each; vtkImplicitPolyDataDistance),
+and stray_max, the largest such distance in edge lengths. A flake that no
+view happens to show is counted here. Open borders count: a disc may reach
+half a spacing past the data there, so that distance is the mesh's border
+edge, in the plane.
+
 Also per row: the splat count, the fit time (fit_ms: the wall-clock time of
 one vtkAlgebraicSplatFitter.Update(), or the median of --fit-runs runs, with
 every core vtkSMPTools uses) and the frame time (frame_ms: the median of
@@ -121,7 +130,7 @@ COLOUR = (0.8, 0.8, 0.8)
 FIELDS = ["fitter_label", "method", "model", "view", "azimuth", "elevation", "degree", "s",
           "tolerance", "sweep", "splats", "points", "fit_ms", "fit_cpu_ms", "frame_ms",
           "frame_cpu_ms", "masked_rmse", "masked_ssim", "coverage_iou", "covered_reference",
-          "covered_test"]
+          "covered_test", "stray_splats", "stray_max"]
 
 
 def parse_size(text):
@@ -309,6 +318,57 @@ def score_mesh(scene, model, mesh, frames, images_out=None, tag="mesh"):
     return score_actor(scene, model, mesh_actor(mesh), frames, images_out, tag)
 
 
+def mean_edge_length(mesh):
+    """Mean edge length of the mesh's triangles: its point spacing."""
+    points = vtk_to_numpy(mesh.GetPoints().GetData()).astype(np.float64)
+    polys = vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+    edges = np.concatenate([points[polys[:, 0]] - points[polys[:, 1]],
+                            points[polys[:, 1]] - points[polys[:, 2]],
+                            points[polys[:, 2]] - points[polys[:, 0]]])
+    return float(np.linalg.norm(edges, axis=1).mean())
+
+
+def disc_samples(splats, rings=(0.5, 1.0), directions=16):
+    """World points on each splat's patch: its origin and `directions` points on each
+    ring (a fraction of the disc radius); an array (splats, samples, 3)."""
+    def array(name):
+        return vtk_to_numpy(splats.GetPointData().GetArray(name)).astype(np.float64)
+    origin = vtk_to_numpy(splats.GetPoints().GetData()).astype(np.float64)
+    normal, tangent = array("SplatNormal"), array("SplatTangent")
+    bitangent = np.cross(normal, tangent)
+    h, radius, c = array("SplatFeatureSize"), array("SplatRadius"), array("SplatCoefficients")
+    if c.ndim == 1:
+        c = c[:, None]
+    angles = np.linspace(0.0, 2.0 * np.pi, directions, endpoint=False)
+    fraction = np.concatenate([[0.0]] + [np.full(directions, f) for f in rings])
+    angle = np.concatenate([[0.0]] + [angles for _ in rings])
+    rho = radius[:, None] * fraction[None, :] / h[:, None]
+    u, v = rho * np.cos(angle)[None, :], rho * np.sin(angle)[None, :]
+    # The monomials in the data model's order: by total degree, then descending power of u.
+    monomials = [u ** (d - j) * v ** j for d in range(5) for j in range(d + 1)]
+    g = sum(c[:, k][:, None] * monomials[k] for k in range(c.shape[1]))
+    return origin[:, None, :] + h[:, None, None] * (
+        u[..., None] * tangent[:, None, :] + v[..., None] * bitangent[:, None, :] +
+        g[..., None] * normal[:, None, :])
+
+
+def stray_splats(mesh, splats, spacing=None):
+    """(share of splats whose disc strays more than a mesh edge length from the mesh,
+    largest stray in edge lengths), over disc_samples."""
+    from vtkmodules.vtkCommonCore import vtkDoubleArray
+    from vtkmodules.vtkFiltersCore import vtkImplicitPolyDataDistance
+    if splats.GetNumberOfPoints() == 0:
+        return 0.0, 0.0
+    spacing = spacing or mean_edge_length(mesh)
+    samples = disc_samples(splats)
+    distance = vtkImplicitPolyDataDistance()
+    distance.SetInput(mesh)
+    values = vtkDoubleArray()
+    distance.FunctionValue(numpy_to_vtk(samples.reshape(-1, 3).copy(), deep=True), values)
+    worst = np.abs(vtk_to_numpy(values)).reshape(samples.shape[:2]).max(axis=1) / spacing
+    return float((worst > 1.0).mean()), float(worst.max())
+
+
 def fit_splats(points, degree, s, tolerance, runs, options=()):
     """Splats of one setting, and the fit's wall-clock and process-CPU ms (medians of runs).
 
@@ -402,7 +462,7 @@ def write_diagnostic(path, reference, image, flakes=None):
 
 SUMMARY_FIELDS = ["fitter_label", "method", "model", "degree", "s", "tolerance", "sweep",
                   "views", "splats", "fit_ms", "fit_cpu_ms", "frame_ms", "frame_cpu_ms",
-                  "masked_rmse", "masked_ssim", "coverage_iou"]
+                  "masked_rmse", "masked_ssim", "coverage_iou", "stray_splats", "stray_max"]
 
 
 def summarise(rows):
@@ -426,7 +486,9 @@ def summarise(rows):
                         frame_cpu_ms="" if cpu is None else "%.2f" % cpu,
                         masked_rmse="%.5f" % mean("masked_rmse"),
                         masked_ssim="%.5f" % mean("masked_ssim"),
-                        coverage_iou="%.5f" % mean("coverage_iou")))
+                        coverage_iou="%.5f" % mean("coverage_iou"),
+                        stray_splats=rs[0].get("stray_splats", ""),
+                        stray_max=rs[0].get("stray_max", "")))
     return out
 
 
@@ -627,7 +689,8 @@ def main():
             return 1
         up = args.up if args.up != "auto" else next(
             (a for k, a in UP_AXIS.items() if name.startswith(k)), "y")
-        model = dict(name=name, views=views, cameras=scene.cameras(mesh, up, views))
+        model = dict(name=name, views=views, cameras=scene.cameras(mesh, up, views),
+                     spacing=mean_edge_length(mesh))
         scene.show(mesh_actor(mesh))
         model["references"] = [scene.image(state) for state in model["cameras"]]
         points = scan_of(mesh)
@@ -657,8 +720,10 @@ def main():
             splats, fit_ms, fit_cpu_ms = fit_splats(points, degree, s, tol, args.fit_runs,
                                                     fitter_options)
             tag = "%s_d%d_s%g%s" % (args.label, degree, s, "" if tol is None else "_t%g" % tol)
+            stray, stray_max = stray_splats(mesh, splats, model["spacing"])
             view_rows = [dict(r, **setting, splats=splats.GetNumberOfPoints(),
-                              fit_ms="%.1f" % fit_ms, fit_cpu_ms="%.1f" % fit_cpu_ms)
+                              fit_ms="%.1f" % fit_ms, fit_cpu_ms="%.1f" % fit_cpu_ms,
+                              stray_splats="%.5f" % stray, stray_max="%.2f" % stray_max)
                          for r in score_actor(scene, model, splat_actor(splats), frames,
                                               images_out, tag)]
             done[(degree, s, tol)] = view_rows
@@ -667,12 +732,12 @@ def main():
                 write_png(os.path.join(args.out, "%s_mesh_vs_splats.png" % name),
                           side_by_side(*cropped(model["references"][0], model["last_image"])))
             print("# %s %s d%d s=%g%s: %d splats, fit %.0f ms, SSIM %.4f, RMSE %.4f, IoU %.4f, "
-                  "%s ms/frame (%.0f s so far)" % (
+                  "stray %.2f %%, %s ms/frame (%.0f s so far)" % (
                       args.label, name, degree, s, "" if tol is None else " tol=%g" % tol,
                       splats.GetNumberOfPoints(), fit_ms,
                       statistics.fmean(r["masked_ssim"] for r in view_rows),
                       statistics.fmean(r["masked_rmse"] for r in view_rows),
-                      statistics.fmean(r["coverage_iou"] for r in view_rows),
+                      statistics.fmean(r["coverage_iou"] for r in view_rows), 100.0 * stray,
                       "%.1f" % statistics.median(r["frame_ms"] for r in view_rows)
                       if frames > 0 else "-", time.perf_counter() - start), file=sys.stderr)
 

@@ -50,16 +50,6 @@ def view_depth(scene, state):
     return depth
 
 
-def mean_edge_length(mesh):
-    """Mean edge length of the mesh's triangles: its point spacing."""
-    points = vtk_to_numpy(mesh.GetPoints().GetData()).astype(np.float64)
-    polys = vtk_to_numpy(mesh.GetPolys().GetConnectivityArray()).reshape(-1, 3)
-    edges = np.concatenate([points[polys[:, 0]] - points[polys[:, 1]],
-                            points[polys[:, 1]] - points[polys[:, 2]],
-                            points[polys[:, 2]] - points[polys[:, 0]]])
-    return float(np.linalg.norm(edges, axis=1).mean())
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("model", help="a mesh with triangles, .ply or .vtp")
@@ -115,7 +105,7 @@ def main():
     splat_depth = view_depth(scene, state)
     both = np.isfinite(reference_depth) & np.isfinite(splat_depth)
     flakes = np.zeros_like(both)
-    flakes[both] = reference_depth[both] - splat_depth[both] > mean_edge_length(mesh)
+    flakes[both] = reference_depth[both] - splat_depth[both] > quality.mean_edge_length(mesh)
     row = quality.score_images(reference, image)
     row.update(flake_pixels=int(flakes.sum()),
                flake_fraction=float(flakes.sum()) / max(1, row["covered_reference"]))

@@ -455,7 +455,7 @@ void TestFoldLip()
   std::vector<int> covered;
   const SplatBound lip = BoundSplat(splat, 2.5, pts.data(), n, bp, &covered);
   BoundParameters wide = bp;
-  wide.CentreReach = 1.0; // the rules before: no stop within a spacing of the centre,
+  wide.CentreReach = 1.0;   // the rules before: no stop within a spacing of the centre,
   wide.BorderAngle = 180.0; // and the far side's points support the border test's every direction
   const SplatBound before = BoundSplat(splat, 2.5, pts.data(), n, wide);
   std::printf("fold lip: disc reaches %.3f past the lip (%zu covered); with a centre reach of "
