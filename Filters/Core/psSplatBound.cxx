@@ -252,12 +252,12 @@ SplatBound BoundSplat(const Splat& splat,
   // A point supports only the directions within BorderAngle of its own: a
   // point far to one side reaches past the band all the same (one stray
   // point across a hole, or a wall point that the patch curls through,
-  // hid a border as wide as half the disc). A cone of 30 degrees holds a
-  // cap up to a seventh of the radius deep; it cuts the corners off the
-  // deeper caps of small discs (the band is at least BorderSlack), which
-  // then meet a border by chance a little more often, though the cone
-  // reaches out to `reach`, past the disc: at s = 1, 2 to 5 % more splats
-  // on the benchmark scans, and a third to three quarters fewer discs
+  // hid a border as wide as half the disc). The cone cuts the corners off
+  // the caps whose statistics the band assumes, so that a disc meets a
+  // border by chance more often where the sampling is random: on points
+  // spread at random over the Bunny (200 000), 45 degrees gave 8 % more
+  // splats and 30 degrees 37 %; on the benchmark scans at s = 1, 1 to 2 %
+  // and 2 to 5 %, and a half (30 degrees: three quarters) fewer discs
   // straying a spacing from the surface.
   const double coneCos = std::cos(std::min(std::abs(params.BorderAngle), 180.0) * pi / 180.0);
   for (const Candidate& m : on)

@@ -67,7 +67,7 @@ struct BoundParameters
   double BorderSlack = 1.0;  ///< least shortfall of the data that is a border, in spacings
   double BorderPoints = 7.0; ///< points expected in the band that would make a border
   double BorderMargin = 0.5; ///< how far a disc may reach past the data, in spacings
-  double BorderAngle = 30.0; ///< a point supports the directions within this angle of its own,
+  double BorderAngle = 45.0; ///< a point supports the directions within this angle of its own,
                              ///< in degrees (180: every direction it projects onto positively)
   double MaximumReach =
     2.5;                    ///< how far the disc's rim may lie from the data, in sampling distances

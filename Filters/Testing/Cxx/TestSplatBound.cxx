@@ -391,8 +391,8 @@ Splat FlatSplat(double x0)
 
 // An open border with stray points beyond it: a sheet z = 0 for x <= 0
 // (grid spacing 1) and two lone points on the patch's plane at
-// (2.085, -1.785) and (2.085, 1.785): for a disc of radius 2.5 centred 0.2
-// from the border, past its rim (2.9 from its centre) and 38 degrees either
+// (1.664, -2.222) and (1.664, 2.222): for a disc of radius 2.5 centred 0.2
+// from the border, past its rim (2.9 from its centre) and 50 degrees either
 // side of the border's normal (points across a hole, or wall points a
 // curled patch passes through). They must not hide the border: counted for
 // every direction they project onto, they left the disc whole, 2.3 past the
@@ -407,7 +407,7 @@ void TestStrayPointAcrossBorder()
       pts.insert(pts.end(), { double(i), double(j), 0.0 });
     }
   }
-  pts.insert(pts.end(), { 2.085, -1.785, 0.0, 2.085, 1.785, 0.0 });
+  pts.insert(pts.end(), { 1.664, -2.222, 0.0, 1.664, 2.222, 0.0 });
   const Splat splat = FlatSplat(-0.2);
   BoundParameters bp;
   bp.Spacing = 1.0;
