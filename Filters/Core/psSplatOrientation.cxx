@@ -82,11 +82,30 @@ long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* part
       }
     }
   }
+  // The cost of an edge: how far the normals turn (Hoppe's 1 - |n_i.n_j|),
+  // plus how steeply the edge leaves each splat's plane (|e.n| for the unit
+  // edge e). Along the surface an edge lies nearly in both planes; between
+  // the two faces of a thin part it runs along their normals, which are
+  // antiparallel and so turn by nothing: by angle alone such an edge was as
+  // cheap as any, and the propagation crossed through the part and turned
+  // one face inward (a third of Lucy's splats).
   auto cost = [&](long long i, long long j)
   {
     const double* a = splats[i]->Frame.Normal;
     const double* b = splats[j]->Frame.Normal;
-    return 1.0 - std::abs(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+    const double turn = 1.0 - std::abs(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+    const double e[3] = {
+      xyz[3 * j] - xyz[3 * i], xyz[3 * j + 1] - xyz[3 * i + 1], xyz[3 * j + 2] - xyz[3 * i + 2]
+    };
+    const double length = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    if (!(length > 0.0))
+    {
+      return turn;
+    }
+    return turn +
+      (std::abs(e[0] * a[0] + e[1] * a[1] + e[2] * a[2]) +
+        std::abs(e[0] * b[0] + e[1] * b[1] + e[2] * b[2])) /
+      length;
   };
 
   // Seeds in order of decreasing height; Prim's algorithm over each part.

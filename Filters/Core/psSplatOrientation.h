@@ -10,16 +10,23 @@
  * reads SplatNormal do not. OrientSplats propagates one sign over each
  * connected part of the splats' k-nearest-neighbour graph along its minimum
  * spanning tree under the cost 1 - |n_i . n_j| (Hoppe et al., "Surface
- * reconstruction from unorganized points", 1992), so that the sign passes
- * between nearly parallel normals first. Each part is seeded at its highest
+ * reconstruction from unorganized points", 1992) plus |e . n_i| + |e . n_j|
+ * for the edge's unit vector e, so that the sign passes between nearly
+ * parallel normals along the surface first. Each part is seeded at its highest
  * splat (largest z), whose normal is made to point up: outward on a closed
  * surface. Flipping a splat turns its frame (n, t, b) into (-n, t, -b) and
  * its polynomial into g'(u, v) = -g(u, -v), so it describes the same surface.
  *
- * Known limit (Hoppe's too): where two sheets of the surface lie closer than
- * the splats' spacing (a thin plate, two touching parts), the graph joins
- * them and their antiparallel normals cost nothing, so one sheet may end up
- * facing inward.
+ * Where two sheets of the surface lie closer than the splats' spacing (a
+ * thin plate, a fold of drapery), the graph joins them and their
+ * antiparallel normals cost nothing by angle alone (Hoppe's known limit):
+ * one sheet could end up facing inward. An edge between the sheets runs
+ * along their normals, and the second term makes it dear, so that the sign
+ * goes round by the rim instead (a closed 40 x 12 x 2 box at spacing 1: 98
+ * of its 190 face splats faced inward by angle alone, none now; Lucy's
+ * splats against her mesh's outward normals: 34 % wrong, now 1.4 %). Two
+ * sheets that touch, with no rim between them in the graph, can still be
+ * crossed.
  */
 #ifndef psSplatOrientation_h
 #define psSplatOrientation_h

@@ -37,7 +37,11 @@ half the radius and the rim, 16 directions each; vtkImplicitPolyDataDistance),
 and stray_max, the largest such distance in edge lengths. A flake that no
 view happens to show is counted here. Open borders count: a disc may reach
 half a spacing past the data there, so that distance is the mesh's border
-edge, in the plane.
+edge, in the plane. inward_splats: the share of splats whose SplatNormal
+disagrees with the mesh's outward normal (vtkPolyDataNormals with
+AutoOrientNormals) at the nearest vertex, among those whose normals are
+within 60 degrees of that axis either way: orientation errors, which the
+two-sided shading hides and back-face culling turns into holes.
 
 Also per row: the splat count, the fit time (fit_ms: the wall-clock time of
 one vtkAlgebraicSplatFitter.Update(), or the median of --fit-runs runs, with
@@ -130,7 +134,7 @@ COLOUR = (0.8, 0.8, 0.8)
 FIELDS = ["fitter_label", "method", "model", "view", "azimuth", "elevation", "degree", "s",
           "tolerance", "sweep", "splats", "points", "fit_ms", "fit_cpu_ms", "frame_ms",
           "frame_cpu_ms", "masked_rmse", "masked_ssim", "coverage_iou", "covered_reference",
-          "covered_test", "stray_splats", "stray_max"]
+          "covered_test", "stray_splats", "stray_max", "inward_splats"]
 
 
 def parse_size(text):
@@ -369,6 +373,33 @@ def stray_splats(mesh, splats, spacing=None):
     return float((worst > 1.0).mean()), float(worst.max())
 
 
+def outward_normals(mesh):
+    """The mesh's vertices and their outward normals (vtkPolyDataNormals, AutoOrientNormals)."""
+    normals = vtkPolyDataNormals()
+    normals.SetInputData(mesh)
+    normals.SplittingOff()
+    normals.ConsistencyOn()
+    normals.AutoOrientNormalsOn()
+    normals.Update()
+    out = normals.GetOutput()
+    return (vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64),
+            vtk_to_numpy(out.GetPointData().GetNormals()).astype(np.float64))
+
+
+def inward_splats(outward, splats):
+    """Share of the splats whose normal points against the mesh's outward normal at the
+    nearest vertex (`outward`: outward_normals(mesh)), of those within 60 degrees of it."""
+    from scipy.spatial import cKDTree
+    if splats.GetNumberOfPoints() == 0:
+        return 0.0
+    points, normals = outward
+    origin = vtk_to_numpy(splats.GetPoints().GetData()).astype(np.float64)
+    normal = vtk_to_numpy(splats.GetPointData().GetArray("SplatNormal")).astype(np.float64)
+    cosine = (normal * normals[cKDTree(points).query(origin)[1]]).sum(axis=1)
+    sure = np.abs(cosine) > 0.5
+    return float((cosine[sure] < 0.0).sum()) / max(1, int(sure.sum()))
+
+
 def fit_splats(points, degree, s, tolerance, runs, options=()):
     """Splats of one setting, and the fit's wall-clock and process-CPU ms (medians of runs).
 
@@ -462,7 +493,8 @@ def write_diagnostic(path, reference, image, flakes=None):
 
 SUMMARY_FIELDS = ["fitter_label", "method", "model", "degree", "s", "tolerance", "sweep",
                   "views", "splats", "fit_ms", "fit_cpu_ms", "frame_ms", "frame_cpu_ms",
-                  "masked_rmse", "masked_ssim", "coverage_iou", "stray_splats", "stray_max"]
+                  "masked_rmse", "masked_ssim", "coverage_iou", "stray_splats", "stray_max",
+                  "inward_splats"]
 
 
 def summarise(rows):
@@ -488,7 +520,8 @@ def summarise(rows):
                         masked_ssim="%.5f" % mean("masked_ssim"),
                         coverage_iou="%.5f" % mean("coverage_iou"),
                         stray_splats=rs[0].get("stray_splats", ""),
-                        stray_max=rs[0].get("stray_max", "")))
+                        stray_max=rs[0].get("stray_max", ""),
+                        inward_splats=rs[0].get("inward_splats", "")))
     return out
 
 
@@ -690,7 +723,7 @@ def main():
         up = args.up if args.up != "auto" else next(
             (a for k, a in UP_AXIS.items() if name.startswith(k)), "y")
         model = dict(name=name, views=views, cameras=scene.cameras(mesh, up, views),
-                     spacing=mean_edge_length(mesh))
+                     spacing=mean_edge_length(mesh), outward=outward_normals(mesh))
         scene.show(mesh_actor(mesh))
         model["references"] = [scene.image(state) for state in model["cameras"]]
         points = scan_of(mesh)
@@ -721,9 +754,11 @@ def main():
                                                     fitter_options)
             tag = "%s_d%d_s%g%s" % (args.label, degree, s, "" if tol is None else "_t%g" % tol)
             stray, stray_max = stray_splats(mesh, splats, model["spacing"])
+            inward = inward_splats(model["outward"], splats)
             view_rows = [dict(r, **setting, splats=splats.GetNumberOfPoints(),
                               fit_ms="%.1f" % fit_ms, fit_cpu_ms="%.1f" % fit_cpu_ms,
-                              stray_splats="%.5f" % stray, stray_max="%.2f" % stray_max)
+                              stray_splats="%.5f" % stray, stray_max="%.2f" % stray_max,
+                              inward_splats="%.5f" % inward)
                          for r in score_actor(scene, model, splat_actor(splats), frames,
                                               images_out, tag)]
             done[(degree, s, tol)] = view_rows
@@ -732,12 +767,13 @@ def main():
                 write_png(os.path.join(args.out, "%s_mesh_vs_splats.png" % name),
                           side_by_side(*cropped(model["references"][0], model["last_image"])))
             print("# %s %s d%d s=%g%s: %d splats, fit %.0f ms, SSIM %.4f, RMSE %.4f, IoU %.4f, "
-                  "stray %.2f %%, %s ms/frame (%.0f s so far)" % (
+                  "stray %.2f %%, inward %.2f %%, %s ms/frame (%.0f s so far)" % (
                       args.label, name, degree, s, "" if tol is None else " tol=%g" % tol,
                       splats.GetNumberOfPoints(), fit_ms,
                       statistics.fmean(r["masked_ssim"] for r in view_rows),
                       statistics.fmean(r["masked_rmse"] for r in view_rows),
                       statistics.fmean(r["coverage_iou"] for r in view_rows), 100.0 * stray,
+                      100.0 * inward,
                       "%.1f" % statistics.median(r["frame_ms"] for r in view_rows)
                       if frames > 0 else "-", time.perf_counter() - start), file=sys.stderr)
 

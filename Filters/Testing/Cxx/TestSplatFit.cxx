@@ -624,6 +624,54 @@ void TestOrientation()
   std::cout << "torus: " << fitted.size() << " splats, " << wrong << " inward after, " << parts
             << " parts\n";
   Check(wrong == 0 && parts == 1, "a torus's splats all point outward");
+
+  // A thin plate: the surface of a closed 40 x 12 x 2 box, grid spacing 1,
+  // fitted error-bounded as the fitter's defaults do. Its two faces lie two
+  // spacings apart, so the neighbour graph joins them, and their
+  // antiparallel normals cost nothing by angle alone: the orientation must
+  // not cross from one face to the other.
+  std::vector<double> plate;
+  for (int i = 0; i <= 40; ++i)
+  {
+    for (int j = 0; j <= 12; ++j)
+    {
+      for (int k = 0; k <= 2; ++k)
+      {
+        if (i == 0 || i == 40 || j == 0 || j == 12 || k == 0 || k == 2)
+        {
+          plate.insert(plate.end(), { double(i), double(j), double(k) });
+        }
+      }
+    }
+  }
+  BuildParameters bounded;
+  bounded.Fit.Degree = 3;
+  bounded.Fit.FeatureSizeNeighbors = 24;
+  bounded.Fit.MaximumDeviation = 0.5;
+  BuildResult box =
+    BuildSplats(plate.data(), static_cast<long long>(plate.size() / 3), nullptr, bounded);
+  fitted.clear();
+  for (BuiltSplat& b : box.Splats)
+  {
+    fitted.push_back(&b.Fitted);
+  }
+  OrientSplats(fitted, 8, &parts);
+  // Splats on the two large faces, two spacings or more from their rims:
+  // outward is -z on the bottom face and +z on the top.
+  long long faces = 0, inward = 0;
+  for (const Splat* sp : fitted)
+  {
+    const double* o = sp->Frame.Origin;
+    if (o[0] < 2.0 || o[0] > 38.0 || o[1] < 2.0 || o[1] > 10.0)
+    {
+      continue;
+    }
+    ++faces;
+    inward += (o[2] > 1.0 ? sp->Frame.Normal[2] : -sp->Frame.Normal[2]) < 0.0;
+  }
+  std::cout << "thin plate: " << fitted.size() << " splats, " << inward << " of " << faces
+            << " on its faces inward after, " << parts << " parts\n";
+  Check(faces > 100 && inward == 0, "a thin plate's faces point outward, each its own way");
   Check(OrientSplats({}) == 0, "no splats, nothing to orient");
 }
 } // namespace
