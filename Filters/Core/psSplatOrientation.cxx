@@ -15,6 +15,16 @@
 
 namespace pointsurfaces
 {
+namespace
+{
+// How large the flux of a part's normals must be, as a share of its largest
+// possible value, to decide which way is out.
+constexpr double Decisive = 0.1;
+// A part whose area-weighted normals sum to more than this share of its
+// area is an open sheet, not a closed surface.
+constexpr double OpenSheet = 0.3;
+} // namespace
+
 void FlipSplat(Splat& splat)
 {
   LocalFrame& f = splat.Frame;
@@ -115,7 +125,13 @@ long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* part
     order.end(),
     [&](long long a, long long b) { return xyz[3 * a + 2] > xyz[3 * b + 2]; });
   std::vector<char> done(n, 0);
-  long long flipped = 0;
+  std::vector<char> turned(n, 0);
+  auto flip = [&](long long i)
+  {
+    FlipSplat(*splats[i]);
+    turned[i] = !turned[i];
+  };
+  std::vector<long long> part;
   using Edge = std::pair<double, std::pair<long long, long long>>; // cost, (from, to)
   std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> queue;
   for (const long long seed : order)
@@ -130,10 +146,10 @@ long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* part
     }
     if (splats[seed]->Frame.Normal[2] < 0.0)
     {
-      FlipSplat(*splats[seed]);
-      ++flipped;
+      flip(seed);
     }
     done[seed] = 1;
+    part.assign(1, seed);
     for (const int j : adjacency[seed])
     {
       queue.push({ cost(seed, j), { seed, j } });
@@ -147,12 +163,12 @@ long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* part
         continue;
       }
       done[to] = 1;
+      part.push_back(to);
       const double* a = splats[from]->Frame.Normal;
       const double* b = splats[to]->Frame.Normal;
       if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0)
       {
-        FlipSplat(*splats[to]);
-        ++flipped;
+        flip(to);
       }
       for (const int j : adjacency[to])
       {
@@ -162,6 +178,59 @@ long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* part
         }
       }
     }
+    // Which way is out, on a closed part: there the integral of (x - c).n
+    // over the area is three times the enclosed volume, positive for
+    // outward normals whatever c and the shape. Summed over the part's
+    // splats (weighted by h squared, their share of the area) it decides,
+    // unless it is too close to zero to. The seed's rule alone (the highest
+    // normal points up) turned all of Lucy inward at some settings: her
+    // highest splat, on a wing's tip, lies on its underside. An open sheet
+    // (a range scan, whose patch may be concave towards the scanner) keeps
+    // the seed's rule: a part is taken for closed when its normals nearly
+    // cancel (the area-weighted sum of a closed surface's normals is zero),
+    // under OpenSheet of their total.
+    double centre[3] = { 0.0, 0.0, 0.0 }, weight = 0.0;
+    for (const long long i : part)
+    {
+      const double w = splats[i]->Frame.Scale * splats[i]->Frame.Scale;
+      for (int c = 0; c < 3; ++c)
+      {
+        centre[c] += w * xyz[3 * i + c];
+      }
+      weight += w;
+    }
+    if (!(weight > 0.0) || part.size() < 4)
+    {
+      continue;
+    }
+    double flux = 0.0, magnitude = 0.0, area[3] = { 0.0, 0.0, 0.0 };
+    for (const long long i : part)
+    {
+      const double w = splats[i]->Frame.Scale * splats[i]->Frame.Scale;
+      const double* m = splats[i]->Frame.Normal;
+      double along = 0.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        along += (xyz[3 * i + c] - centre[c] / weight) * m[c];
+        area[c] += w * m[c];
+      }
+      flux += w * along;
+      magnitude += w * std::abs(along);
+    }
+    const double open =
+      std::sqrt(area[0] * area[0] + area[1] * area[1] + area[2] * area[2]) / weight;
+    if (open < OpenSheet && flux < -Decisive * magnitude)
+    {
+      for (const long long i : part)
+      {
+        flip(i);
+      }
+    }
+  }
+  long long flipped = 0;
+  for (const char t : turned)
+  {
+    flipped += t;
   }
   return flipped;
 }

@@ -13,8 +13,11 @@
  * reconstruction from unorganized points", 1992) plus |e . n_i| + |e . n_j|
  * for the edge's unit vector e, so that the sign passes between nearly
  * parallel normals along the surface first. Each part is seeded at its highest
- * splat (largest z), whose normal is made to point up: outward on a closed
- * surface. Flipping a splat turns its frame (n, t, b) into (-n, t, -b) and
+ * splat (largest z), whose normal is made to point up. A part whose normals
+ * nearly cancel (a closed surface) is then turned over as a whole when the
+ * area-weighted sum of (x - c).n, three times its volume for outward
+ * normals, says it faces inward: the highest splat can lie on the underside
+ * of a thin tip (a wing's, on Lucy), where "up" is inward. Flipping a splat turns its frame (n, t, b) into (-n, t, -b) and
  * its polynomial into g'(u, v) = -g(u, -v), so it describes the same surface.
  *
  * Where two sheets of the surface lie closer than the splats' spacing (a

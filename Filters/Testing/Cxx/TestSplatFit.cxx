@@ -672,6 +672,35 @@ void TestOrientation()
   std::cout << "thin plate: " << fitted.size() << " splats, " << inward << " of " << faces
             << " on its faces inward after, " << parts << " parts\n";
   Check(faces > 100 && inward == 0, "a thin plate's faces point outward, each its own way");
+
+  // A closed surface whose highest splat faces sideways, a little up (as on
+  // the underside of a thin tip): "up" at the seed does not tell out, and
+  // the sign it passes on may reach the sphere inward. The part's flux
+  // (the sum of (x - c).n over its splats) must turn it outward.
+  const std::vector<double> ball = FibonacciSphere(n);
+  BuildResult one = BuildSplats(ball.data(), n, nullptr, params);
+  fitted.clear();
+  for (BuiltSplat& b : one.Splats)
+  {
+    fitted.push_back(&b.Fitted);
+  }
+  Splat tip;
+  tip.Fit.Degree = 1;
+  tip.Fit.Status = FitStatus::Ok;
+  tip.Frame.Scale = 0.05;
+  const double tipOrigin[3] = { -0.03, 0.0, 1.01 }, tipNormal[3] = { 0.998, 0.0, 0.05 };
+  std::copy(tipOrigin, tipOrigin + 3, tip.Frame.Origin);
+  std::copy(tipNormal, tipNormal + 3, tip.Frame.Normal);
+  tip.Frame.Tangent[2] = 1.0;
+  tip.Frame.Bitangent[1] = 1.0;
+  std::vector<Splat*> tipped = fitted;
+  tipped.push_back(&tip);
+  OrientSplats(tipped, 8, &parts);
+  auto fromOrigin = [](const double* p, double* out) { std::copy(p, p + 3, out); };
+  const long long wrongBall = outward(fitted, fromOrigin);
+  std::cout << "sphere under a sideways tip: " << wrongBall << " of " << fitted.size()
+            << " inward after, " << parts << " parts\n";
+  Check(wrongBall == 0, "a closed surface under a sideways highest splat points outward");
   Check(OrientSplats({}) == 0, "no splats, nothing to orient");
 }
 } // namespace
