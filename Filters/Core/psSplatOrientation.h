@@ -26,10 +26,10 @@
  * one sheet could end up facing inward. An edge between the sheets runs
  * along their normals, and the second term makes it dear, so that the sign
  * goes round by the rim instead (a closed 40 x 12 x 2 box at spacing 1: 98
- * of its 190 face splats faced inward by angle alone, none now; Lucy's
- * splats against her mesh's outward normals: a third disagreed with the rest, now 1.4 % inward). Two
- * sheets that touch, with no rim between them in the graph, can still be
- * crossed.
+ * of its 190 face splats faced inward by angle alone, none now; of Lucy's
+ * splats, a third disagreed with the rest, and 1.4 % now point against her
+ * mesh's outward normals). Two sheets that touch, with no rim between them
+ * in the graph, can still be crossed.
  */
 #ifndef psSplatOrientation_h
 #define psSplatOrientation_h
