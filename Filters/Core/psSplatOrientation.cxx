@@ -203,6 +203,10 @@ long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* part
     {
       continue;
     }
+    for (double& c : centre)
+    {
+      c /= weight;
+    }
     double flux = 0.0, magnitude = 0.0, area[3] = { 0.0, 0.0, 0.0 };
     for (const long long i : part)
     {
@@ -211,7 +215,7 @@ long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* part
       double along = 0.0;
       for (int c = 0; c < 3; ++c)
       {
-        along += (xyz[3 * i + c] - centre[c] / weight) * m[c];
+        along += (xyz[3 * i + c] - centre[c]) * m[c];
         area[c] += w * m[c];
       }
       flux += w * along;

@@ -17,8 +17,9 @@
  * nearly cancel (a closed surface) is then turned over as a whole when the
  * area-weighted sum of (x - c).n, three times its volume for outward
  * normals, says it faces inward: the highest splat can lie on the underside
- * of a thin tip (a wing's, on Lucy), where "up" is inward. Flipping a splat turns its frame (n, t, b) into (-n, t, -b) and
- * its polynomial into g'(u, v) = -g(u, -v), so it describes the same surface.
+ * of a thin tip (a wing's, on Lucy), where "up" is inward. Flipping a
+ * splat turns its frame (n, t, b) into (-n, t, -b) and its polynomial into
+ * g'(u, v) = -g(u, -v), so it describes the same surface.
  *
  * Where two sheets of the surface lie closer than the splats' spacing (a
  * thin plate, a fold of drapery), the graph joins them and their
