@@ -8,6 +8,11 @@
 
 namespace pointsurfaces
 {
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+} // namespace
+
 double BoundSearchRadius(double radius, double spacing)
 {
   return std::sqrt(2.0) * std::max(radius, 3.0 * spacing);
@@ -52,9 +57,8 @@ SplatBound BoundSplat(const Splat& splat,
     bool Turned; // within the tolerance, but its normal turns away from the patch's
   };
   // |cos| of the largest angle between a covered point's normal and the patch's.
-  const double agreement = normals && params.NormalAngle < 90.0
-    ? std::cos(params.NormalAngle * 3.14159265358979323846 / 180.0)
-    : -1.0;
+  const double agreement =
+    normals && params.NormalAngle < 90.0 ? std::cos(params.NormalAngle * Pi / 180.0) : -1.0;
   // Per-thread scratch, kept between calls: BoundSplat calls back into
   // nothing and starts no parallel work, so no thread re-enters it while
   // these are in use.
@@ -237,7 +241,6 @@ SplatBound BoundSplat(const Splat& splat,
   // (Poisson), the band would hold BorderPoints points on average, so that
   // irregular sampling does not pass for a border: a spacing or two.
   constexpr int Directions = 16;
-  const double pi = 3.14159265358979323846;
   // The density from the spacing (the mean distance of the 6 nearest is
   // about 1 / sqrt(density) for random points, 1.14 of it on a grid), not
   // from a count in the disc, which a thin strip of data would make small.
@@ -245,8 +248,8 @@ SplatBound BoundSplat(const Splat& splat,
   double cosine[Directions], sine[Directions], support[Directions];
   for (int k = 0; k < Directions; ++k)
   {
-    cosine[k] = std::cos(2.0 * pi * k / Directions);
-    sine[k] = std::sin(2.0 * pi * k / Directions);
+    cosine[k] = std::cos(2.0 * Pi * k / Directions);
+    sine[k] = std::sin(2.0 * Pi * k / Directions);
     support[k] = 0.0;
   }
   // A point supports only the directions within BorderAngle of its own: a
@@ -259,7 +262,7 @@ SplatBound BoundSplat(const Splat& splat,
   // splats and 30 degrees 37 %; on the benchmark scans at s = 1, 1 to 2 %
   // and 2 to 5 %, and a half (30 degrees: three quarters) fewer discs
   // straying a spacing from the surface.
-  const double coneCos = std::cos(std::min(std::abs(params.BorderAngle), 180.0) * pi / 180.0);
+  const double coneCos = std::cos(std::min(std::abs(params.BorderAngle), 180.0) * Pi / 180.0);
   for (const Candidate& m : on)
   {
     for (int k = 0; k < Directions; ++k)

@@ -373,14 +373,11 @@ BuildResult BuildSplats(const double* xyz,
         candidates = next;
         const std::vector<int>& ids = *candidates;
         coords.resize(3 * ids.size());
+        nrm.resize(pointNormals ? 3 * ids.size() : 0);
         for (size_t j = 0; j < ids.size(); ++j)
         {
           std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &coords[3 * j]);
-        }
-        if (pointNormals)
-        {
-          nrm.resize(3 * ids.size());
-          for (size_t j = 0; j < ids.size(); ++j)
+          if (pointNormals)
           {
             const double* m = pointNormals + 3 * static_cast<size_t>(ids[j]);
             std::copy(m, m + 3, &nrm[3 * j]);
