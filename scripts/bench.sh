@@ -15,7 +15,7 @@ mkdir -p "$out"
 set -x
 "$build/bin/BenchFitPeers" --threads 2 "$scans/bunny.ply" "$scans/igea.xyz" "$scans/horse.ply" \
   | tee "$out/fit_peers.csv"
-for b in counts million tradeoff fittime; do
+for b in counts million tradeoff fittime equalquality; do
   /usr/bin/python3 "$root/Testing/Benchmarks/bench_splat_fit.py" "$b" --out "$out"
 done
 env -u DISPLAY POINTSURFACES_RENDER_WINDOW=egl /usr/bin/python3 \

@@ -10,6 +10,11 @@
     bench_splat_fit.py fittime   [--out DIR] [--runs N] [--label L] [--fitter-option NAME VALUE] [scans...]
                                                           the error-bounded fit's time against the
                                                           unbounded fit's in the same process, s = 2, 1, 0.5
+    bench_splat_fit.py equalquality [--out DIR] [--runs N] [--label L] [--quality PEER.csv SCORES.csv...]
+                                 [scans...]             time to the same picture: the unbounded fit at
+                                                          its s = 1 and at its best masked SSIM, against
+                                                          the cheapest default setting that scores as
+                                                          well (scores from bench_splat_quality.py)
     bench_splat_fit.py levels    [--out DIR] [--runs N] [--label L] [scans...]
                                                           single levels at s = 1, 2, 4 and the
                                                           multi-resolution builder, against the
@@ -243,6 +248,98 @@ def fittime(args):
     fig.savefig(os.path.splitext(path)[0] + ".png", dpi=100)
 
 
+RESULTS = os.path.join(HERE, "results")
+QUALITY = (os.path.join(RESULTS, "splat_quality_previous_summary.csv"),
+           [os.path.join(RESULTS, "splat_quality_default_summary.csv"),
+            os.path.join(RESULTS, "splat_quality_tolerance_summary.csv")])
+
+
+def sweep_scores(path, model):
+    """The settings of `model` scored in a bench_splat_quality.py summary: (degree, s,
+    tolerance or None, masked SSIM, fit ms of that run), once each."""
+    scores = {}
+    with open(path, newline="") as f:
+        for r in csv.DictReader(f):
+            if r["model"] == model and r["method"] == "splats":
+                tolerance = float(r["tolerance"]) if r["tolerance"] else None
+                key = (int(r["degree"]), float(r["s"]), tolerance)
+                scores[key] = key + (float(r["masked_ssim"]), float(r["fit_ms"]))
+    return list(scores.values())
+
+
+def equalquality(args):
+    """Fit time at equal quality. The fit-time figure at the same s compares discs of
+    different sizes: the default's h is half the thesis's, and its error bound stops
+    discs where the surface leaves the patch, so it draws 4 to 9 times the splats and
+    a better picture. Here the masked SSIM against the mesh (bench_splat_quality.py's
+    summaries: --quality PEER SCORES..., the unbounded fit's sweep, then the default
+    fitter's s and tolerance sweeps) sets two targets per scan: the unbounded fit's
+    score at its default (quadratic, s = 1) and its best over its sweep (degree and
+    s). For each, the default fitter's scored setting (degree, s, MaximumDeviation)
+    that reaches the score in the least fit time (by its sweep's timing) is timed
+    against the unbounded setting, interleaved in this process (median of --runs)."""
+    scans, _, runs = timed_scans(args, (), ())
+    peer_csv, score_csvs = (args.quality[0], args.quality[1:]) if args.quality else QUALITY
+    rows = []
+    for path in scans:
+        model = os.path.basename(path).split(".")[0]
+        peer = sweep_scores(peer_csv, model)
+        ours = [r for csv_path in score_csvs for r in sweep_scores(csv_path, model)]
+        if not peer or not ours:
+            print("equalquality: no scores of %s in %s" % (model, " ".join(args.quality or ())),
+                  file=sys.stderr)
+            continue
+        pd = load(path)
+        targets = [("thesis default", next(r for r in peer if r[0] == 2 and r[1] == 1.0)),
+                   ("thesis best", max(peer, key=lambda r: r[3]))]
+        for target, (pdeg, ps, _, pssim, _) in targets:
+            reached = [r for r in ours if r[3] >= pssim]
+            settings = [("thesis", "vtkAlgebraicSplatFitter",
+                         dict(THESIS_FIT, Degree=pdeg, QualityFactor=ps))]
+            best = min(reached, key=lambda r: r[4]) if reached else None
+            if best:
+                chosen = {"Degree": best[0], "QualityFactor": best[1]}
+                if best[2] is not None:
+                    chosen["MaximumDeviation"] = best[2]
+                settings.append(("default", "vtkAlgebraicSplatFitter", chosen))
+            timed = time_fits(pd, settings, runs)
+            peer_seconds, peer_fitter = timed["thesis"]
+            row = {"label": args.label, "model": model, "target": target, "runs": runs,
+                   "thesis_degree": pdeg, "thesis_s": ps, "thesis_ssim": pssim,
+                   "thesis_splats": peer_fitter.GetOutput().GetNumberOfPoints(),
+                   "thesis_seconds": round(peer_seconds, 4),
+                   "default_degree": "", "default_s": "", "default_tolerance": "",
+                   "default_ssim": "", "default_splats": "", "default_seconds": "", "ratio": ""}
+            if best:
+                seconds, fitter = timed["default"]
+                row.update({"default_degree": best[0], "default_s": best[1],
+                            "default_tolerance": fitter.GetMaximumDeviation(),
+                            "default_ssim": best[3],
+                            "default_splats": fitter.GetOutput().GetNumberOfPoints(),
+                            "default_seconds": round(seconds, 4),
+                            "ratio": round(seconds / peer_seconds, 3)})
+            rows.append(row)
+    if not rows:
+        sys.exit("equalquality: nothing to compare")
+    path = write(rows, args.out, "fit_equal_quality" + ("_" + args.label if args.label else ""))
+    pyplot = plt()
+    fig, ax = pyplot.subplots(figsize=(6, 4))
+    models = sorted({r["model"] for r in rows}, key=[r["model"] for r in rows].index)
+    for i, target in enumerate(("thesis default", "thesis best")):
+        ratio = {r["model"]: r["ratio"] for r in rows if r["target"] == target}
+        ax.bar([k + 0.4 * i - 0.2 for k in range(len(models))],
+               [ratio.get(m) or 0.0 for m in models], 0.4, color="C%d" % i,
+               label="at the SSIM of the unbounded fit's %s" % target.split()[1])
+    ax.axhline(1.5, color="grey", ls="--", lw=1, label="1.5x")
+    ax.set_xticks(range(len(models)))
+    ax.set_xticklabels(models)
+    ax.set_ylabel("default fit time / unbounded fit time")
+    ax.legend(fontsize=8)
+    ax.grid(True, axis="y", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.splitext(path)[0] + ".png", dpi=100)
+
+
 def levels(args):
     """Fit time of single levels at s = 1, 2 and 4 and of vtkMultiResolutionSplatBuilder
     (its default 25 levels from s = 4 to 1), the defaults otherwise; the median of --runs
@@ -321,23 +418,30 @@ def tradeoff(args):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("bench", choices=("counts", "million", "tradeoff", "fittime", "levels"))
+    parser.add_argument("bench", choices=("counts", "million", "tradeoff", "fittime", "equalquality",
+                                              "levels"))
     parser.add_argument("scans", nargs="*")
     parser.add_argument("--out", default="bench-results")
     parser.add_argument("--points", type=int, default=1000000)
-    parser.add_argument("--runs", type=int, default=3, help="fittime, levels: runs per setting")
-    parser.add_argument("--label", default="", help="fittime: names the build in the CSV")
+    parser.add_argument("--runs", type=int, default=3, help="fittime, equalquality, levels: runs per setting")
+    parser.add_argument("--label", default="", help="fittime, equalquality, levels: names the run in the CSV")
     parser.add_argument("--fitter-option", nargs=2, action="append", default=[],
                         metavar=("NAME", "VALUE"),
                         help="fittime: also call SetNAME(VALUE) (a number) on the default fitter, "
                              "e.g. MaximumDeviation 0 FeatureSizeNeighbors 24 for the unbounded fit "
                              "at today's h; tell runs apart with --label")
+    parser.add_argument("--quality", nargs="+", metavar="CSV",
+                        help="equalquality: bench_splat_quality.py summaries, the unbounded fit's "
+                             "sweep first, then the default fitter's (default: the committed "
+                             "ones in results/)")
     parser.add_argument("--smoke", action="store_true")
     args = parser.parse_args()
+    if args.quality and len(args.quality) < 2:
+        parser.error("--quality: the unbounded fit's summary and at least one of the default's")
     args.fitter_options = bench_csv.fitter_options(parser, args.fitter_option,
                                                    pointsurfaces.vtkAlgebraicSplatFitter)
     {"counts": counts, "million": million, "tradeoff": tradeoff, "fittime": fittime,
-     "levels": levels}[args.bench](args)
+     "equalquality": equalquality, "levels": levels}[args.bench](args)
 
 
 if __name__ == "__main__":
