@@ -221,12 +221,15 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   if (!inNormals && oriented)
   {
     std::vector<pointsurfaces::Splat*> fitted;
+    std::vector<double> radii;
     fitted.reserve(built.Splats.size());
+    radii.reserve(built.Splats.size());
     for (BuiltSplat& b : built.Splats)
     {
       fitted.push_back(&b.Fitted);
+      radii.push_back(b.Radius);
     }
-    pointsurfaces::OrientSplats(fitted);
+    pointsurfaces::OrientSplats(fitted, 8, nullptr, &radii);
   }
 
   if (this->BuildOctree)

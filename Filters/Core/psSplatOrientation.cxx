@@ -5,12 +5,15 @@
 #include "psPointIndex.h"
 #include "psPolynomial.h"
 
+#include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <numeric>
-#include <queue>
 #include <utility>
 
 namespace pointsurfaces
@@ -23,6 +26,216 @@ constexpr double Decisive = 0.1;
 // A part whose area-weighted normals sum to more than this share of its
 // area is an open sheet, not a closed surface.
 constexpr double OpenSheet = 0.3;
+// A splat whose visible views face it, summed as |n.u| over the views, reach
+// SeenEnough, and agree on its side by Unanimous of that sum, is a seed of
+// its closed part's orientation.
+constexpr double SeenEnough = 1.0;
+constexpr double Unanimous = 0.8;
+// Views steeper than this (|n.u|) vote; grazing ones do not.
+constexpr double Facing = 0.2;
+// The largest side of a view's depth image, in pixels.
+constexpr int LargestImage = 1024;
+// The depth images' pixel, in median disc radii.
+constexpr double PixelRadii = 0.5;
+
+// How the splats are seen from outside: from each of the 26 directions of a
+// cube's neighbours (13 axes, each seen from both ends), the discs are
+// drawn in parallel projection into a depth image (pixels of half the
+// median radius; the nearest and the farthest depth per pixel serve the two
+// ends), and a splat whose own disc lies within half its spacing of the
+// nearest one at its centre's pixel is visible from that end; it faces the
+// view when n.u > 0 for the direction u towards the viewer. votes[i] sums
+// n.u and seen[i] |n.u| over the views that see splat i (steeper than
+// Facing).
+void VisibilityVotes(const std::vector<Splat*>& splats,
+  const std::vector<double>& radii,
+  std::vector<double>& votes,
+  std::vector<double>& seen)
+{
+  const long long n = static_cast<long long>(splats.size());
+  votes.assign(static_cast<size_t>(n), 0.0);
+  seen.assign(static_cast<size_t>(n), 0.0);
+  std::vector<double> sorted(radii);
+  std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
+  const double median = sorted[n / 2];
+  if (!(median > 0.0) || !std::isfinite(median))
+  {
+    return;
+  }
+  // One end of each axis (its first non-zero component positive).
+  std::vector<std::array<double, 3>> axes;
+  for (int i = -1; i <= 1; ++i)
+  {
+    for (int j = -1; j <= 1; ++j)
+    {
+      for (int k = -1; k <= 1; ++k)
+      {
+        if (i > 0 || (i == 0 && (j > 0 || (j == 0 && k > 0))))
+        {
+          const double length = std::sqrt(double(i * i + j * j + k * k));
+          axes.push_back({ i / length, j / length, k / length });
+        }
+      }
+    }
+  }
+  auto dot = [](const double* x, const double* y)
+  { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+  // Origins, normals and slacks, gathered once for the 13 passes.
+  std::vector<double> origins(3 * static_cast<size_t>(n)), normals(3 * static_cast<size_t>(n)),
+    slacks(static_cast<size_t>(n));
+  for (long long i = 0; i < n; ++i)
+  {
+    const LocalFrame& f = splats[i]->Frame;
+    std::copy(f.Origin, f.Origin + 3, &origins[3 * i]);
+    std::copy(f.Normal, f.Normal + 3, &normals[3 * i]);
+    slacks[i] = 0.5 * (splats[i]->Spacing > 0.0 ? splats[i]->Spacing : radii[i]);
+  }
+  struct Tally
+  {
+    std::vector<double> Votes, Seen, A, B, Gradient;
+    std::vector<float> Near, Far;
+  };
+  vtkSMPThreadLocal<Tally> tallies;
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(axes.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      Tally& tally = tallies.Local();
+      tally.Votes.resize(static_cast<size_t>(n), 0.0);
+      tally.Seen.resize(static_cast<size_t>(n), 0.0);
+      tally.A.resize(static_cast<size_t>(n));
+      tally.B.resize(static_cast<size_t>(n));
+      tally.Gradient.resize(2 * static_cast<size_t>(n));
+      for (vtkIdType axis = begin; axis < end; ++axis)
+      {
+        const double* u = axes[axis].data();
+        // The image plane's axes a and b.
+        const int least = std::abs(u[0]) < std::abs(u[1])
+          ? (std::abs(u[0]) < std::abs(u[2]) ? 0 : 2)
+          : (std::abs(u[1]) < std::abs(u[2]) ? 1 : 2);
+        double e[3] = { 0.0, 0.0, 0.0 };
+        e[least] = 1.0;
+        double a[3] = {
+          u[1] * e[2] - u[2] * e[1], u[2] * e[0] - u[0] * e[2], u[0] * e[1] - u[1] * e[0]
+        };
+        const double la = std::sqrt(dot(a, a));
+        for (double& c : a)
+        {
+          c /= la;
+        }
+        const double b[3] = {
+          u[1] * a[2] - u[2] * a[1], u[2] * a[0] - u[0] * a[2], u[0] * a[1] - u[1] * a[0]
+        };
+        // Each disc's centre on the image, and its plane's depth t (along
+        // -u) there and its gradient: t = -o.u + ga da + gb db.
+        double lo[2] = { std::numeric_limits<double>::max(), std::numeric_limits<double>::max() };
+        double hi[2] = { -lo[0], -lo[1] };
+        for (long long i = 0; i < n; ++i)
+        {
+          const double* o = &origins[3 * i];
+          const double* m = &normals[3 * i];
+          tally.A[i] = dot(o, a);
+          tally.B[i] = dot(o, b);
+          const double nu = dot(m, u);
+          const bool steep = std::abs(nu) > 1e-6;
+          tally.Gradient[2 * i] = steep ? dot(m, a) / nu : 0.0;
+          tally.Gradient[2 * i + 1] = steep ? dot(m, b) / nu : 0.0;
+          lo[0] = std::min(lo[0], tally.A[i] - radii[i]);
+          hi[0] = std::max(hi[0], tally.A[i] + radii[i]);
+          lo[1] = std::min(lo[1], tally.B[i] - radii[i]);
+          hi[1] = std::max(hi[1], tally.B[i] + radii[i]);
+        }
+        const double pixel = std::max(
+          { PixelRadii * median, (hi[0] - lo[0]) / LargestImage, (hi[1] - lo[1]) / LargestImage });
+        const int width = static_cast<int>((hi[0] - lo[0]) / pixel) + 1;
+        const int height = static_cast<int>((hi[1] - lo[1]) / pixel) + 1;
+        const size_t pixels = static_cast<size_t>(width) * height;
+        tally.Near.assign(pixels, std::numeric_limits<float>::max());
+        tally.Far.assign(pixels, -std::numeric_limits<float>::max());
+        auto column = [&](double value)
+        { return std::min(width - 1, std::max(0, static_cast<int>((value - lo[0]) / pixel))); };
+        auto row = [&](double value)
+        { return std::min(height - 1, std::max(0, static_cast<int>((value - lo[1]) / pixel))); };
+        for (long long i = 0; i < n; ++i)
+        {
+          const double t0 = -dot(&origins[3 * i], u), ga = tally.Gradient[2 * i],
+                       gb = tally.Gradient[2 * i + 1], r2 = radii[i] * radii[i];
+          const double ca = tally.A[i], cb = tally.B[i];
+          if (ga == 0.0 && gb == 0.0 && !(std::abs(dot(&normals[3 * i], u)) > 1e-6))
+          {
+            continue; // seen edge on
+          }
+          // Row by row, the pixels whose rays meet the plane within the
+          // disc: at (da, db) from the centre the ray meets it at depth
+          // t0 + dt, dt = ga da + gb db, da a + db b - dt u from the
+          // centre, inside where da^2 + db^2 + dt^2 <= r^2: an interval
+          // of da.
+          const double qa = 1.0 + ga * ga;
+          for (int y = row(cb - radii[i]), y1 = row(cb + radii[i]); y <= y1; ++y)
+          {
+            const double db = lo[1] + (y + 0.5) * pixel - cb;
+            const double qb = ga * gb * db, qc = db * db * (1.0 + gb * gb) - r2;
+            const double discriminant = qb * qb - qa * qc;
+            if (!(discriminant >= 0.0))
+            {
+              continue;
+            }
+            const double root = std::sqrt(discriminant);
+            const double first = ca + (-qb - root) / qa - lo[0],
+                         last = ca + (-qb + root) / qa - lo[0];
+            const int x0 = std::max(0, static_cast<int>(std::ceil(first / pixel - 0.5)));
+            const int x1 = std::min(width - 1, static_cast<int>(std::floor(last / pixel - 0.5)));
+            float* nearRow = tally.Near.data() + static_cast<size_t>(y) * width;
+            float* farRow = tally.Far.data() + static_cast<size_t>(y) * width;
+            for (int x = x0; x <= x1; ++x)
+            {
+              const float t =
+                static_cast<float>(t0 + ga * (lo[0] + (x + 0.5) * pixel - ca) + gb * db);
+              nearRow[x] = std::min(nearRow[x], t);
+              farRow[x] = std::max(farRow[x], t);
+            }
+          }
+          // A disc smaller than a pixel still hides its own centre's pixel.
+          const size_t p = static_cast<size_t>(row(cb)) * width + column(ca);
+          tally.Near[p] = std::min(tally.Near[p], static_cast<float>(t0));
+          tally.Far[p] = std::max(tally.Far[p], static_cast<float>(t0));
+        }
+        for (long long i = 0; i < n; ++i)
+        {
+          const double nu = dot(&normals[3 * i], u);
+          if (!(std::abs(nu) > Facing))
+          {
+            continue;
+          }
+          const int x = column(tally.A[i]), y = row(tally.B[i]);
+          const double t = -dot(&origins[3 * i], u) +
+            tally.Gradient[2 * i] * (lo[0] + (x + 0.5) * pixel - tally.A[i]) +
+            tally.Gradient[2 * i + 1] * (lo[1] + (y + 0.5) * pixel - tally.B[i]);
+          const double slack = slacks[i];
+          const size_t p = static_cast<size_t>(y) * width + x;
+          // Seen from +u (nearest depth) and from -u (farthest).
+          if (t <= tally.Near[p] + slack)
+          {
+            tally.Votes[i] += nu;
+            tally.Seen[i] += std::abs(nu);
+          }
+          if (t >= tally.Far[p] - slack)
+          {
+            tally.Votes[i] -= nu;
+            tally.Seen[i] += std::abs(nu);
+          }
+        }
+      }
+    });
+  for (const Tally& tally : tallies)
+  {
+    for (long long i = 0; i < n && !tally.Votes.empty(); ++i)
+    {
+      votes[i] += tally.Votes[i];
+      seen[i] += tally.Seen[i];
+    }
+  }
+}
 } // namespace
 
 void FlipSplat(Splat& splat)
@@ -45,7 +258,10 @@ void FlipSplat(Splat& splat)
   }
 }
 
-long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* parts)
+long long OrientSplats(const std::vector<Splat*>& splats,
+  int k,
+  long long* parts,
+  const std::vector<double>* radii)
 {
   const long long n = static_cast<long long>(splats.size());
   if (parts)
@@ -79,19 +295,6 @@ long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* part
         }
       });
   }
-  std::vector<std::vector<int>> adjacency(n);
-  for (long long i = 0; i < n; ++i)
-  {
-    for (int m = 0; m < kk; ++m)
-    {
-      const int j = neighbours[static_cast<size_t>(i) * kk + m];
-      if (j >= 0 && j != i)
-      {
-        adjacency[i].push_back(j);
-        adjacency[j].push_back(static_cast<int>(i));
-      }
-    }
-  }
   // The cost of an edge: how far the normals turn (Hoppe's 1 - |n_i.n_j|),
   // plus how steeply the edge leaves each splat's plane (|e.n| for the unit
   // edge e). Along the surface an edge lies nearly in both planes; between
@@ -117,13 +320,99 @@ long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* part
         std::abs(e[0] * b[0] + e[1] * b[1] + e[2] * b[2])) /
       length;
   };
+  // The graph's edges, each once, cheapest first (ties by their ends, so
+  // that the trees do not depend on the sort).
+  struct Edge
+  {
+    double Cost;
+    int From, To;
+    bool operator<(const Edge& other) const
+    {
+      return Cost < other.Cost ||
+        (Cost == other.Cost && (From < other.From || (From == other.From && To < other.To)));
+    }
+  };
+  std::vector<Edge> edges;
+  edges.reserve(static_cast<size_t>(n) * kk);
+  for (long long i = 0; i < n; ++i)
+  {
+    for (int m = 0; m < kk; ++m)
+    {
+      const int j = neighbours[static_cast<size_t>(i) * kk + m];
+      if (j >= 0 && j != i)
+      {
+        edges.push_back({ 0.0,
+          static_cast<int>(std::min<long long>(i, j)),
+          static_cast<int>(std::max<long long>(i, j)) });
+      }
+    }
+  }
+  std::sort(edges.begin(),
+    edges.end(),
+    [](const Edge& x, const Edge& y)
+    { return x.From < y.From || (x.From == y.From && x.To < y.To); });
+  edges.erase(std::unique(edges.begin(),
+                edges.end(),
+                [](const Edge& x, const Edge& y) { return x.From == y.From && x.To == y.To; }),
+    edges.end());
+  vtkSMPTools::For(0,
+    static_cast<vtkIdType>(edges.size()),
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      for (vtkIdType e = begin; e < end; ++e)
+      {
+        edges[e].Cost = cost(edges[e].From, edges[e].To);
+      }
+    });
+  vtkSMPTools::Sort(edges.begin(), edges.end());
 
-  // Seeds in order of decreasing height; Prim's algorithm over each part.
-  std::vector<long long> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(),
-    order.end(),
-    [&](long long a, long long b) { return xyz[3 * a + 2] > xyz[3 * b + 2]; });
+  // Minimum spanning trees (Kruskal's algorithm) over the edges whose ends
+  // `use` accepts, with each set of `joined` splats one node from the start
+  // (the seeds of a part: the tree then grows from all of them at once,
+  // as Prim's algorithm would from several roots). `tree` receives each
+  // splat's tree neighbours.
+  std::vector<int> root(static_cast<size_t>(n));
+  auto find = [&](int i)
+  {
+    while (root[i] != i)
+    {
+      root[i] = root[root[i]];
+      i = root[i];
+    }
+    return i;
+  };
+  std::vector<std::vector<int>> tree(static_cast<size_t>(n));
+  auto span =
+    [&](const std::function<bool(int)>& use, const std::vector<std::vector<long long>>& joined)
+  {
+    std::iota(root.begin(), root.end(), 0);
+    for (auto& t : tree)
+    {
+      t.clear();
+    }
+    for (const auto& set : joined)
+    {
+      for (const long long i : set)
+      {
+        root[find(static_cast<int>(i))] = find(static_cast<int>(set.front()));
+      }
+    }
+    for (const Edge& e : edges)
+    {
+      if (!use(e.From) || !use(e.To))
+      {
+        continue;
+      }
+      const int a = find(e.From), b = find(e.To);
+      if (a != b)
+      {
+        root[a] = b;
+        tree[e.From].push_back(e.To);
+        tree[e.To].push_back(e.From);
+      }
+    }
+  };
+
   std::vector<char> done(n, 0);
   std::vector<char> turned(n, 0);
   auto flip = [&](long long i)
@@ -131,9 +420,53 @@ long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* part
     FlipSplat(*splats[i]);
     turned[i] = !turned[i];
   };
+  // From the splats in `front` (oriented already), along the tree: each
+  // splat reached takes the side of the one it is reached from, and is
+  // added to `reached` when given.
+  auto grow = [&](std::vector<long long> front, std::vector<long long>* reached)
+  {
+    for (size_t f = 0; f < front.size(); ++f)
+    {
+      const long long from = front[f];
+      for (const int to : tree[from])
+      {
+        if (done[to])
+        {
+          continue;
+        }
+        done[to] = 1;
+        front.push_back(to);
+        if (reached)
+        {
+          reached->push_back(to);
+        }
+        const double* a = splats[from]->Frame.Normal;
+        const double* b = splats[to]->Frame.Normal;
+        if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0)
+        {
+          flip(to);
+        }
+      }
+    }
+  };
+
+  // Seeds in order of decreasing height; one tree over each part.
+  span([](int) { return true; }, {});
+  std::vector<long long> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&](long long a, long long b) { return xyz[3 * a + 2] > xyz[3 * b + 2]; });
+  // The visibility votes (computed for the first closed part) and which
+  // splats were turned when they were; the seeds of each closed part where
+  // a seed disagrees with its tree.
+  std::vector<double> votes, seen;
+  std::vector<char> turnedWhenSeen;
+  auto vote = [&](long long i) { return turned[i] != turnedWhenSeen[i] ? -votes[i] : votes[i]; };
+  auto isSeed = [&](long long i)
+  { return seen[i] >= SeenEnough && std::abs(votes[i]) >= Unanimous * seen[i]; };
+  std::vector<std::vector<long long>> regrow;
   std::vector<long long> part;
-  using Edge = std::pair<double, std::pair<long long, long long>>; // cost, (from, to)
-  std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> queue;
   for (const long long seed : order)
   {
     if (done[seed])
@@ -150,34 +483,7 @@ long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* part
     }
     done[seed] = 1;
     part.assign(1, seed);
-    for (const int j : adjacency[seed])
-    {
-      queue.push({ cost(seed, j), { seed, j } });
-    }
-    while (!queue.empty())
-    {
-      const auto [from, to] = queue.top().second;
-      queue.pop();
-      if (done[to])
-      {
-        continue;
-      }
-      done[to] = 1;
-      part.push_back(to);
-      const double* a = splats[from]->Frame.Normal;
-      const double* b = splats[to]->Frame.Normal;
-      if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0)
-      {
-        flip(to);
-      }
-      for (const int j : adjacency[to])
-      {
-        if (!done[j])
-        {
-          queue.push({ cost(to, j), { to, j } });
-        }
-      }
-    }
+    grow({ seed }, &part);
     // Which way is out, on a closed part: there the integral of (x - c).n
     // over the area is three times the enclosed volume, positive for
     // outward normals whatever c and the shape. Summed over the part's
@@ -230,6 +536,83 @@ long long OrientSplats(const std::vector<Splat*>& splats, int k, long long* part
         flip(i);
       }
     }
+    if (!(open < OpenSheet))
+    {
+      continue;
+    }
+    // What is seen from outside decides each side of a closed part: the
+    // tree can cross between two sheets that touch (a fold of drapery, a
+    // wing against a body, two parts a spacing apart), where no edge looks
+    // steep, and turn a whole sheet inward that the flux, a sum over the
+    // part, outweighs. The splats that the views agree on are seeds with
+    // their side; where one disagrees with the tree, a tree grows again
+    // from all of them at once (below), so that a sheet takes its sign
+    // from its own seeds. Open sheets are seen from both sides and keep
+    // theirs.
+    if (votes.empty())
+    {
+      // How each splat is seen from outside, with the signs it has now.
+      std::vector<double> r(static_cast<size_t>(n));
+      for (long long i = 0; i < n; ++i)
+      {
+        r[i] =
+          radii && radii->size() == static_cast<size_t>(n) ? (*radii)[i] : splats[i]->Frame.Scale;
+      }
+      VisibilityVotes(splats, r, votes, seen);
+      turnedWhenSeen = turned;
+    }
+    std::vector<long long> seeds;
+    bool against = false;
+    for (const long long i : part)
+    {
+      if (isSeed(i))
+      {
+        seeds.push_back(i);
+        against = against || vote(i) < 0.0;
+      }
+    }
+    if (against)
+    {
+      regrow.push_back(std::move(seeds));
+    }
+  }
+  if (!regrow.empty())
+  {
+    // The parts to grow again, each from its seeds with their sides.
+    std::vector<char> again(static_cast<size_t>(n), 0);
+    std::vector<long long> front;
+    for (const auto& seeds : regrow)
+    {
+      // Every splat of a seed's part: the graph's component.
+      std::vector<long long> component(1, seeds.front());
+      again[seeds.front()] = 1;
+      for (size_t c = 0; c < component.size(); ++c)
+      {
+        for (const int j : tree[component[c]])
+        {
+          if (!again[j])
+          {
+            again[j] = 1;
+            component.push_back(j);
+          }
+        }
+      }
+      for (const long long i : component)
+      {
+        done[i] = 0;
+      }
+      for (const long long i : seeds)
+      {
+        if (vote(i) < 0.0)
+        {
+          flip(i);
+        }
+        done[i] = 1;
+        front.push_back(i);
+      }
+    }
+    span([&](int i) { return again[i] != 0; }, regrow);
+    grow(front, nullptr);
   }
   long long flipped = 0;
   for (const char t : turned)

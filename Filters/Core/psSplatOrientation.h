@@ -30,7 +30,27 @@
  * of its 190 face splats faced inward by angle alone, none now; of Lucy's
  * splats, a third disagreed with the rest, and 1.4 % now point against her
  * mesh's outward normals). Two sheets that touch, with no rim between them
- * in the graph, can still be crossed.
+ * in the graph, can still be crossed: a fold's two walls, a wing against a
+ * body, two parts a spacing apart, where the flux, a sum over the whole
+ * part, outweighs the sheet that came out inward.
+ *
+ * So, on a closed part, what is seen from outside decides each sheet's
+ * side: the discs are drawn into depth images from the 26 directions of a
+ * cube's neighbours, and a splat that every view seeing it (steeper than
+ * about 80 degrees) finds facing it, or every one facing away, is a seed
+ * with that side. When any seed disagrees with the tree's result, the tree
+ * grows again over the part from all seeds at once, so that each sheet
+ * takes its sign from its own seeds and only the faces hidden from every
+ * view (inside a narrow gap or fold) are reached across it. Of Lucy's
+ * splats, 0.3 % then point inward at the defaults (1.4 % without), and at
+ * most 3 % at any setting of s, degree and tolerance measured (up to 62 %
+ * without); two spheres a spacing apart, the second of which the tree
+ * turned wholly inward, come out outward. Open sheets (a range scan) are
+ * seen from both sides and keep the seed's rule.
+ *
+ * The trees are minimum spanning trees of the graph's edges sorted once
+ * by cost (Kruskal's algorithm); growing again from several seeds is the
+ * same with the seeds joined into one node from the start.
  */
 #ifndef psSplatOrientation_h
 #define psSplatOrientation_h
@@ -49,10 +69,13 @@ POINTSURFACESFILTERS_EXPORT void FlipSplat(Splat& splat);
  * Orient `splats` consistently, with `k` nearest neighbours per splat (by
  * origin) in the graph. Returns the number of splats flipped. `parts`, when
  * given, receives the number of connected parts (each with its own seed).
+ * `radii`, when given (one per splat), are the discs' radii for the views
+ * from outside; otherwise each splat's h stands in.
  */
 POINTSURFACESFILTERS_EXPORT long long OrientSplats(const std::vector<Splat*>& splats,
   int k = 8,
-  long long* parts = nullptr);
+  long long* parts = nullptr,
+  const std::vector<double>* radii = nullptr);
 } // namespace pointsurfaces
 
 #endif

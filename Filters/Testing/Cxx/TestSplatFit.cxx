@@ -673,6 +673,43 @@ void TestOrientation()
             << " on its faces inward after, " << parts << " parts\n";
   Check(faces > 100 && inward == 0, "a thin plate's faces point outward, each its own way");
 
+  // Two spheres a point spacing apart: the graph joins them only across the
+  // gap, where their outward normals point at each other, so the tree
+  // passes the first sphere's sign to the second reversed, and the flux,
+  // summed over both, nearly cancels and decides nothing: the second
+  // sphere came out inward. Seen from outside, each sphere seeds its own
+  // sign; the few splats hidden in the gap follow their sphere.
+  std::vector<double> touching = FibonacciSphere(n);
+  for (double v : FibonacciSphere(n))
+  {
+    touching.push_back(v);
+  }
+  const double gap = std::sqrt(4.0 * 3.14159265358979 / n);
+  for (int i = n; i < 2 * n; ++i)
+  {
+    touching[3 * i] += 2.0 + gap;
+  }
+  BuildResult pair = BuildSplats(touching.data(), 2 * n, nullptr, bounded);
+  fitted.clear();
+  std::vector<double> radii;
+  for (BuiltSplat& b : pair.Splats)
+  {
+    fitted.push_back(&b.Fitted);
+    radii.push_back(b.Radius);
+  }
+  OrientSplats(fitted, 8, &parts, &radii);
+  auto fromEither = [gap](const double* p, double* out)
+  {
+    const double cx = p[0] > 1.0 + 0.5 * gap ? 2.0 + gap : 0.0;
+    out[0] = p[0] - cx;
+    out[1] = p[1];
+    out[2] = p[2];
+  };
+  const long long wrongPair = outward(fitted, fromEither);
+  std::cout << "touching spheres: " << fitted.size() << " splats, " << wrongPair
+            << " inward after, " << parts << " parts\n";
+  Check(parts == 1 && wrongPair == 0, "two spheres a spacing apart both point outward");
+
   // A closed surface whose highest splat faces sideways, a little up (as on
   // the underside of a thin tip): "up" at the seed does not tell out, and
   // the sign it passes on may reach the sphere inward. The part's flux
