@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -35,18 +34,24 @@ constexpr double Unanimous = 0.8;
 constexpr double Facing = 0.2;
 // The largest side of a view's depth image, in pixels.
 constexpr int LargestImage = 1024;
-// The depth images' pixel, in median disc radii.
+// The depth images' pixel, in median disc radii, and the coarsest that
+// still votes.
 constexpr double PixelRadii = 0.5;
+constexpr double CoarsestPixel = 2.0;
 
 // How the splats are seen from outside: from each of the 26 directions of a
 // cube's neighbours (13 axes, each seen from both ends), the discs are
-// drawn in parallel projection into a depth image (pixels of half the
-// median radius; the nearest and the farthest depth per pixel serve the two
-// ends), and a splat whose own disc lies within half its spacing of the
-// nearest one at its centre's pixel is visible from that end; it faces the
-// view when n.u > 0 for the direction u towards the viewer. votes[i] sums
-// n.u and seen[i] |n.u| over the views that see splat i (steeper than
-// Facing).
+// drawn in parallel projection into a depth image (pixels of PixelRadii
+// median radii, coarser where the image would pass LargestImage; the
+// nearest and the farthest depth per pixel serve the two ends). A splat
+// whose own depth at its centre's pixel (its plane's there, or its centre's
+// where its disc misses the pixel's centre) lies within half its spacing of
+// the nearest is visible from that end; it faces the view when n.u > 0 for
+// the direction u towards the viewer. votes[i] sums n.u and seen[i] |n.u|
+// over the views that see splat i steeper than Facing. An axis whose
+// pixels would pass CoarsestPixel median radii gives no votes (the scene
+// is too large against its discs to tell them apart), and splats with a
+// non-finite origin, normal or radius take no part.
 void VisibilityVotes(const std::vector<Splat*>& splats,
   const std::vector<double>& radii,
   std::vector<double>& votes,
@@ -55,12 +60,59 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
   const long long n = static_cast<long long>(splats.size());
   votes.assign(static_cast<size_t>(n), 0.0);
   seen.assign(static_cast<size_t>(n), 0.0);
-  std::vector<double> sorted(radii);
-  std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
-  const double median = sorted[n / 2];
-  if (!(median > 0.0) || !std::isfinite(median))
+  auto dot = [](const double* x, const double* y)
+  { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
+  std::vector<char> valid(static_cast<size_t>(n), 0);
+  std::vector<double> sorted;
+  double centre[3] = { 0.0, 0.0, 0.0 };
+  long long count = 0;
+  for (long long i = 0; i < n; ++i)
+  {
+    const LocalFrame& f = splats[i]->Frame;
+    valid[i] = std::isfinite(dot(f.Origin, f.Origin)) && std::isfinite(dot(f.Normal, f.Normal)) &&
+      std::isfinite(radii[i]) && radii[i] >= 0.0;
+    if (valid[i])
+    {
+      sorted.push_back(radii[i]);
+      for (int c = 0; c < 3; ++c)
+      {
+        centre[c] += f.Origin[c];
+      }
+      ++count;
+    }
+  }
+  if (count == 0)
   {
     return;
+  }
+  std::nth_element(sorted.begin(), sorted.begin() + count / 2, sorted.end());
+  const double median = sorted[count / 2];
+  if (!(median > 0.0))
+  {
+    return;
+  }
+  // Origins from their mean, so that the depths, stored as floats, keep
+  // their digits far from the coordinates' origin; normals and slacks;
+  // gathered once for the 13 passes.
+  for (double& c : centre)
+  {
+    c /= static_cast<double>(count);
+  }
+  std::vector<double> origins(3 * static_cast<size_t>(n), 0.0),
+    normals(3 * static_cast<size_t>(n), 0.0), slacks(static_cast<size_t>(n), 0.0);
+  for (long long i = 0; i < n; ++i)
+  {
+    if (!valid[i])
+    {
+      continue;
+    }
+    const LocalFrame& f = splats[i]->Frame;
+    for (int c = 0; c < 3; ++c)
+    {
+      origins[3 * i + c] = f.Origin[c] - centre[c];
+      normals[3 * i + c] = f.Normal[c];
+    }
+    slacks[i] = 0.5 * (splats[i]->Spacing > 0.0 ? splats[i]->Spacing : radii[i]);
   }
   // One end of each axis (its first non-zero component positive).
   std::vector<std::array<double, 3>> axes;
@@ -78,37 +130,30 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
       }
     }
   }
-  auto dot = [](const double* x, const double* y)
-  { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
-  // Origins, normals and slacks, gathered once for the 13 passes.
-  std::vector<double> origins(3 * static_cast<size_t>(n)), normals(3 * static_cast<size_t>(n)),
-    slacks(static_cast<size_t>(n));
-  for (long long i = 0; i < n; ++i)
+  // What each axis sees of each splat: bit 0 from its + end, bit 1 from its
+  // - end; summed in the axes' order below, so that the votes do not
+  // depend on the threads.
+  const size_t axisCount = axes.size();
+  std::vector<unsigned char> sights(axisCount * static_cast<size_t>(n), 0);
+  struct Scratch
   {
-    const LocalFrame& f = splats[i]->Frame;
-    std::copy(f.Origin, f.Origin + 3, &origins[3 * i]);
-    std::copy(f.Normal, f.Normal + 3, &normals[3 * i]);
-    slacks[i] = 0.5 * (splats[i]->Spacing > 0.0 ? splats[i]->Spacing : radii[i]);
-  }
-  struct Tally
-  {
-    std::vector<double> Votes, Seen, A, B, Gradient;
+    std::vector<double> A, B, Gradient;
     std::vector<float> Near, Far;
   };
-  vtkSMPThreadLocal<Tally> tallies;
+  vtkSMPThreadLocal<Scratch> scratches;
   vtkSMPTools::For(0,
-    static_cast<vtkIdType>(axes.size()),
+    static_cast<vtkIdType>(axisCount),
+    1,
     [&](vtkIdType begin, vtkIdType end)
     {
-      Tally& tally = tallies.Local();
-      tally.Votes.resize(static_cast<size_t>(n), 0.0);
-      tally.Seen.resize(static_cast<size_t>(n), 0.0);
-      tally.A.resize(static_cast<size_t>(n));
-      tally.B.resize(static_cast<size_t>(n));
-      tally.Gradient.resize(2 * static_cast<size_t>(n));
+      Scratch& scratch = scratches.Local();
+      scratch.A.resize(static_cast<size_t>(n));
+      scratch.B.resize(static_cast<size_t>(n));
+      scratch.Gradient.resize(2 * static_cast<size_t>(n));
       for (vtkIdType axis = begin; axis < end; ++axis)
       {
         const double* u = axes[axis].data();
+        unsigned char* sight = sights.data() + static_cast<size_t>(axis) * n;
         // The image plane's axes a and b.
         const int least = std::abs(u[0]) < std::abs(u[1])
           ? (std::abs(u[0]) < std::abs(u[2]) ? 0 : 2)
@@ -132,61 +177,81 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
         double hi[2] = { -lo[0], -lo[1] };
         for (long long i = 0; i < n; ++i)
         {
+          if (!valid[i])
+          {
+            continue;
+          }
           const double* o = &origins[3 * i];
           const double* m = &normals[3 * i];
-          tally.A[i] = dot(o, a);
-          tally.B[i] = dot(o, b);
+          scratch.A[i] = dot(o, a);
+          scratch.B[i] = dot(o, b);
           const double nu = dot(m, u);
           const bool steep = std::abs(nu) > 1e-6;
-          tally.Gradient[2 * i] = steep ? dot(m, a) / nu : 0.0;
-          tally.Gradient[2 * i + 1] = steep ? dot(m, b) / nu : 0.0;
-          lo[0] = std::min(lo[0], tally.A[i] - radii[i]);
-          hi[0] = std::max(hi[0], tally.A[i] + radii[i]);
-          lo[1] = std::min(lo[1], tally.B[i] - radii[i]);
-          hi[1] = std::max(hi[1], tally.B[i] + radii[i]);
+          scratch.Gradient[2 * i] = steep ? dot(m, a) / nu : 0.0;
+          scratch.Gradient[2 * i + 1] = steep ? dot(m, b) / nu : 0.0;
+          lo[0] = std::min(lo[0], scratch.A[i] - radii[i]);
+          hi[0] = std::max(hi[0], scratch.A[i] + radii[i]);
+          lo[1] = std::min(lo[1], scratch.B[i] - radii[i]);
+          hi[1] = std::max(hi[1], scratch.B[i] + radii[i]);
         }
         const double pixel = std::max(
           { PixelRadii * median, (hi[0] - lo[0]) / LargestImage, (hi[1] - lo[1]) / LargestImage });
+        if (!(pixel <= CoarsestPixel * median))
+        {
+          continue;
+        }
         const int width = static_cast<int>((hi[0] - lo[0]) / pixel) + 1;
         const int height = static_cast<int>((hi[1] - lo[1]) / pixel) + 1;
         const size_t pixels = static_cast<size_t>(width) * height;
-        tally.Near.assign(pixels, std::numeric_limits<float>::max());
-        tally.Far.assign(pixels, -std::numeric_limits<float>::max());
+        scratch.Near.assign(pixels, std::numeric_limits<float>::max());
+        scratch.Far.assign(pixels, -std::numeric_limits<float>::max());
         auto column = [&](double value)
         { return std::min(width - 1, std::max(0, static_cast<int>((value - lo[0]) / pixel))); };
         auto row = [&](double value)
         { return std::min(height - 1, std::max(0, static_cast<int>((value - lo[1]) / pixel))); };
+        // Splat i's depth at its own centre's pixel (x, y): its plane's at
+        // the pixel's centre, where its disc reaches that far, else its
+        // centre's.
+        auto ownDepth = [&](long long i, int x, int y)
+        {
+          const double ga = scratch.Gradient[2 * i], gb = scratch.Gradient[2 * i + 1];
+          const double da = lo[0] + (x + 0.5) * pixel - scratch.A[i];
+          const double db = lo[1] + (y + 0.5) * pixel - scratch.B[i];
+          const double dt = ga * da + gb * db;
+          const double t0 = -dot(&origins[3 * i], u);
+          return da * da + db * db + dt * dt <= radii[i] * radii[i] ? t0 + dt : t0;
+        };
         for (long long i = 0; i < n; ++i)
         {
-          const double t0 = -dot(&origins[3 * i], u), ga = tally.Gradient[2 * i],
-                       gb = tally.Gradient[2 * i + 1], r2 = radii[i] * radii[i];
-          const double ca = tally.A[i], cb = tally.B[i];
-          if (ga == 0.0 && gb == 0.0 && !(std::abs(dot(&normals[3 * i], u)) > 1e-6))
+          if (!valid[i] || !(std::abs(dot(&normals[3 * i], u)) > 1e-6))
           {
             continue; // seen edge on
           }
+          const double t0 = -dot(&origins[3 * i], u), ga = scratch.Gradient[2 * i],
+                       gb = scratch.Gradient[2 * i + 1], r2 = radii[i] * radii[i];
+          const double ca = scratch.A[i], cb = scratch.B[i];
           // Row by row, the pixels whose rays meet the plane within the
           // disc: at (da, db) from the centre the ray meets it at depth
           // t0 + dt, dt = ga da + gb db, da a + db b - dt u from the
           // centre, inside where da^2 + db^2 + dt^2 <= r^2: an interval
-          // of da.
+          // of da, (-ga gb db +- sqrt(D)) / (1 + ga^2) with
+          // D = (1 + ga^2) r^2 - (1 + ga^2 + gb^2) db^2.
           const double qa = 1.0 + ga * ga;
           for (int y = row(cb - radii[i]), y1 = row(cb + radii[i]); y <= y1; ++y)
           {
             const double db = lo[1] + (y + 0.5) * pixel - cb;
-            const double qb = ga * gb * db, qc = db * db * (1.0 + gb * gb) - r2;
-            const double discriminant = qb * qb - qa * qc;
+            const double discriminant = qa * r2 - (qa + gb * gb) * db * db;
             if (!(discriminant >= 0.0))
             {
               continue;
             }
-            const double root = std::sqrt(discriminant);
-            const double first = ca + (-qb - root) / qa - lo[0],
-                         last = ca + (-qb + root) / qa - lo[0];
+            const double root = std::sqrt(discriminant), middle = -ga * gb * db;
+            const double first = ca + (middle - root) / qa - lo[0];
+            const double last = ca + (middle + root) / qa - lo[0];
             const int x0 = std::max(0, static_cast<int>(std::ceil(first / pixel - 0.5)));
             const int x1 = std::min(width - 1, static_cast<int>(std::floor(last / pixel - 0.5)));
-            float* nearRow = tally.Near.data() + static_cast<size_t>(y) * width;
-            float* farRow = tally.Far.data() + static_cast<size_t>(y) * width;
+            float* nearRow = scratch.Near.data() + static_cast<size_t>(y) * width;
+            float* farRow = scratch.Far.data() + static_cast<size_t>(y) * width;
             for (int x = x0; x <= x1; ++x)
             {
               const float t =
@@ -195,44 +260,41 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
               farRow[x] = std::max(farRow[x], t);
             }
           }
-          // A disc smaller than a pixel still hides its own centre's pixel.
-          const size_t p = static_cast<size_t>(row(cb)) * width + column(ca);
-          tally.Near[p] = std::min(tally.Near[p], static_cast<float>(t0));
-          tally.Far[p] = std::max(tally.Far[p], static_cast<float>(t0));
+          // A disc that misses its own pixel's centre still hides it, at
+          // its centre's depth.
+          const int x = column(ca), y = row(cb);
+          const float t = static_cast<float>(ownDepth(i, x, y));
+          const size_t p = static_cast<size_t>(y) * width + x;
+          scratch.Near[p] = std::min(scratch.Near[p], t);
+          scratch.Far[p] = std::max(scratch.Far[p], t);
         }
         for (long long i = 0; i < n; ++i)
         {
-          const double nu = dot(&normals[3 * i], u);
-          if (!(std::abs(nu) > Facing))
+          if (!valid[i] || !(std::abs(dot(&normals[3 * i], u)) > Facing))
           {
             continue;
           }
-          const int x = column(tally.A[i]), y = row(tally.B[i]);
-          const double t = -dot(&origins[3 * i], u) +
-            tally.Gradient[2 * i] * (lo[0] + (x + 0.5) * pixel - tally.A[i]) +
-            tally.Gradient[2 * i + 1] * (lo[1] + (y + 0.5) * pixel - tally.B[i]);
-          const double slack = slacks[i];
+          const int x = column(scratch.A[i]), y = row(scratch.B[i]);
+          const double t = ownDepth(i, x, y);
           const size_t p = static_cast<size_t>(y) * width + x;
-          // Seen from +u (nearest depth) and from -u (farthest).
-          if (t <= tally.Near[p] + slack)
-          {
-            tally.Votes[i] += nu;
-            tally.Seen[i] += std::abs(nu);
-          }
-          if (t >= tally.Far[p] - slack)
-          {
-            tally.Votes[i] -= nu;
-            tally.Seen[i] += std::abs(nu);
-          }
+          // Seen from the + end (nearest depth) and from the - end (farthest).
+          sight[i] = static_cast<unsigned char>(
+            (t <= scratch.Near[p] + slacks[i] ? 1 : 0) | (t >= scratch.Far[p] - slacks[i] ? 2 : 0));
         }
       }
     });
-  for (const Tally& tally : tallies)
+  for (size_t axis = 0; axis < axisCount; ++axis)
   {
-    for (long long i = 0; i < n && !tally.Votes.empty(); ++i)
+    const unsigned char* sight = sights.data() + axis * static_cast<size_t>(n);
+    for (long long i = 0; i < n; ++i)
     {
-      votes[i] += tally.Votes[i];
-      seen[i] += tally.Seen[i];
+      if (sight[i])
+      {
+        const double nu = dot(&normals[3 * i], axes[axis].data());
+        const int ends = (sight[i] & 1) + (sight[i] >> 1);
+        votes[i] += ((sight[i] & 1) ? nu : 0.0) - ((sight[i] & 2) ? nu : 0.0);
+        seen[i] += ends * std::abs(nu);
+      }
     }
   }
 }
@@ -311,14 +373,15 @@ long long OrientSplats(const std::vector<Splat*>& splats,
       xyz[3 * j] - xyz[3 * i], xyz[3 * j + 1] - xyz[3 * i + 1], xyz[3 * j + 2] - xyz[3 * i + 2]
     };
     const double length = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-    if (!(length > 0.0))
+    double total = turn;
+    if (length > 0.0)
     {
-      return turn;
+      total += (std::abs(e[0] * a[0] + e[1] * a[1] + e[2] * a[2]) +
+                 std::abs(e[0] * b[0] + e[1] * b[1] + e[2] * b[2])) /
+        length;
     }
-    return turn +
-      (std::abs(e[0] * a[0] + e[1] * a[1] + e[2] * a[2]) +
-        std::abs(e[0] * b[0] + e[1] * b[1] + e[2] * b[2])) /
-      length;
+    // A NaN would break the sort's order: such an edge comes last.
+    return std::isfinite(total) ? total : std::numeric_limits<double>::infinity();
   };
   // The graph's edges, each once, cheapest first (ties by their ends, so
   // that the trees do not depend on the sort).
@@ -457,9 +520,9 @@ long long OrientSplats(const std::vector<Splat*>& splats,
   std::stable_sort(order.begin(),
     order.end(),
     [&](long long a, long long b) { return xyz[3 * a + 2] > xyz[3 * b + 2]; });
-  // The visibility votes (computed for the first closed part) and which
-  // splats were turned when they were; the seeds of each closed part where
-  // a seed disagrees with its tree.
+  // The visibility votes (of every splat, computed when the first closed
+  // part is reached) and which splats were turned then; the seeds of each
+  // closed part where a seed disagrees with its tree.
   std::vector<double> votes, seen;
   std::vector<char> turnedWhenSeen;
   auto vote = [&](long long i) { return turned[i] != turnedWhenSeen[i] ? -votes[i] : votes[i]; };

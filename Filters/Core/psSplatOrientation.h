@@ -36,9 +36,9 @@
  *
  * So, on a closed part, what is seen from outside decides each sheet's
  * side: the discs are drawn into depth images from the 26 directions of a
- * cube's neighbours, and a splat that every view seeing it (steeper than
- * about 80 degrees) finds facing it, or every one facing away, is a seed
- * with that side. When any seed disagrees with the tree's result, the tree
+ * cube's neighbours, and a splat seen from enough of them (at less than
+ * about 80 degrees to its normal) that nine tenths of them, weighted by
+ * |n.u|, find it facing them, or facing away, is a seed with that side. When any seed disagrees with the tree's result, the tree
  * grows again over the part from all seeds at once, so that each sheet
  * takes its sign from its own seeds and only the faces hidden from every
  * view (inside a narrow gap or fold) are reached across it. Of Lucy's

@@ -369,6 +369,37 @@ void TestBadInput()
   far->Update();
   Check(near->GetOutput()->GetNumberOfPoints() == far->GetOutput()->GetNumberOfPoints(),
     "coordinates near 1e7 give the same splats");
+  // Without input normals, oriented by the fitter the same way: outward,
+  // from the sphere's centre.
+  auto bare = [](vtkPolyData* in)
+  {
+    auto out = vtkSmartPointer<vtkPolyData>::New();
+    out->SetPoints(in->GetPoints());
+    return out;
+  };
+  vtkNew<vtkAlgebraicSplatFitter> nearBare, farBare;
+  nearBare->SetInputData(bare(s0));
+  farBare->SetInputData(bare(s1));
+  nearBare->Update();
+  farBare->Update();
+  auto inward = [](vtkPolyData* splats, double offset)
+  {
+    vtkDataArray* normals = splats->GetPointData()->GetArray("SplatNormal");
+    vtkIdType count = 0;
+    for (vtkIdType i = 0; normals && i < splats->GetNumberOfPoints(); ++i)
+    {
+      double p[3], m[3];
+      splats->GetPoint(i, p);
+      normals->GetTuple(i, m);
+      count += (p[0] - offset) * m[0] + (p[1] - offset) * m[1] + (p[2] - offset) * m[2] < 0.0;
+    }
+    return normals ? count : -1;
+  };
+  const vtkIdType inwardNear = inward(nearBare->GetOutput(), 0.0);
+  const vtkIdType inwardFar = inward(farBare->GetOutput(), 1e7);
+  std::cout << "sphere near the origin: " << inwardNear << " splats inward; near 1e7: " << inwardFar
+            << "\n";
+  Check(inwardNear == 0 && inwardFar == 0, "coordinates near 1e7: the splats face outward");
 
   // The error metric refuses what is not a splat set, with a clear error.
   vtkNew<vtkSplatErrorMetric> metric;

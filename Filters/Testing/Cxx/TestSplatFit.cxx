@@ -673,42 +673,81 @@ void TestOrientation()
             << " on its faces inward after, " << parts << " parts\n";
   Check(faces > 100 && inward == 0, "a thin plate's faces point outward, each its own way");
 
+  // Orient built splats as the fitter does: with their discs' radii.
+  auto orientBuilt = [&](BuildResult& built)
+  {
+    fitted.clear();
+    std::vector<double> radii;
+    for (BuiltSplat& b : built.Splats)
+    {
+      fitted.push_back(&b.Fitted);
+      radii.push_back(b.Radius);
+    }
+    OrientSplats(fitted, 8, &parts, &radii);
+  };
   // Two spheres a point spacing apart: the graph joins them only across the
   // gap, where their outward normals point at each other, so the tree
   // passes the first sphere's sign to the second reversed, and the flux,
   // summed over both, nearly cancels and decides nothing: the second
   // sphere came out inward. Seen from outside, each sphere seeds its own
-  // sign; the few splats hidden in the gap follow their sphere.
-  std::vector<double> touching = FibonacciSphere(n);
-  for (double v : FibonacciSphere(n))
-  {
-    touching.push_back(v);
-  }
+  // sign; the few splats hidden in the gap follow their sphere. The same
+  // near 1e7, where depths in floats from the coordinates' origin would
+  // keep no digit of the gap.
   const double gap = std::sqrt(4.0 * 3.14159265358979 / n);
-  for (int i = n; i < 2 * n; ++i)
+  for (const double offset : { 0.0, 1e7 })
   {
-    touching[3 * i] += 2.0 + gap;
+    std::vector<double> touching = FibonacciSphere(n);
+    for (double v : FibonacciSphere(n))
+    {
+      touching.push_back(v);
+    }
+    for (int i = 0; i < 2 * n; ++i)
+    {
+      touching[3 * i] += (i < n ? 0.0 : 2.0 + gap) + offset;
+      touching[3 * i + 1] += offset;
+      touching[3 * i + 2] += offset;
+    }
+    BuildResult pair = BuildSplats(touching.data(), 2 * n, nullptr, bounded);
+    orientBuilt(pair);
+    auto fromEither = [gap, offset](const double* p, double* out)
+    {
+      const double cx = p[0] - offset > 1.0 + 0.5 * gap ? 2.0 + gap : 0.0;
+      out[0] = p[0] - offset - cx;
+      out[1] = p[1] - offset;
+      out[2] = p[2] - offset;
+    };
+    const long long wrongPair = outward(fitted, fromEither);
+    std::cout << "touching spheres at " << offset << ": " << fitted.size() << " splats, "
+              << wrongPair << " inward after, " << parts << " parts\n";
+    Check(parts == 1 && wrongPair == 0, "two spheres a spacing apart both point outward");
   }
-  BuildResult pair = BuildSplats(touching.data(), 2 * n, nullptr, bounded);
-  fitted.clear();
-  std::vector<double> radii;
-  for (BuiltSplat& b : pair.Splats)
+
+  // A sphere and a small one far away: the depth images span both, so
+  // their pixels are far coarser than the discs; such views must give no
+  // votes rather than wrong ones (a plane extended from a disc to a pixel's
+  // centre many radii off), which seeded and turned patches the tree and
+  // the flux had right.
+  std::vector<double> lone = FibonacciSphere(n);
+  for (double v : FibonacciSphere(400))
   {
-    fitted.push_back(&b.Fitted);
-    radii.push_back(b.Radius);
+    lone.push_back(0.1 * v);
   }
-  OrientSplats(fitted, 8, &parts, &radii);
-  auto fromEither = [gap](const double* p, double* out)
+  for (int i = n; i < n + 400; ++i)
   {
-    const double cx = p[0] > 1.0 + 0.5 * gap ? 2.0 + gap : 0.0;
-    out[0] = p[0] - cx;
+    lone[3 * i] += 5000.0;
+  }
+  BuildResult apart = BuildSplats(lone.data(), n + 400, nullptr, bounded);
+  orientBuilt(apart);
+  auto fromTheirCentres = [](const double* p, double* out)
+  {
+    out[0] = p[0] - (p[0] > 2500.0 ? 5000.0 : 0.0);
     out[1] = p[1];
     out[2] = p[2];
   };
-  const long long wrongPair = outward(fitted, fromEither);
-  std::cout << "touching spheres: " << fitted.size() << " splats, " << wrongPair
+  const long long wrongApart = outward(fitted, fromTheirCentres);
+  std::cout << "spheres 5000 apart: " << fitted.size() << " splats, " << wrongApart
             << " inward after, " << parts << " parts\n";
-  Check(parts == 1 && wrongPair == 0, "two spheres a spacing apart both point outward");
+  Check(wrongApart == 0 && parts == 2, "spheres far apart point outward");
 
   // A closed surface whose highest splat faces sideways, a little up (as on
   // the underside of a thin tip): "up" at the seed does not tell out, and
