@@ -445,8 +445,7 @@ long long OrientSplats(const std::vector<Splat*>& splats,
     return i;
   };
   std::vector<std::vector<int>> tree(static_cast<size_t>(n));
-  auto span =
-    [&](const std::function<bool(int)>& use, const std::vector<std::vector<long long>>& joined)
+  auto span = [&](auto&& use, const std::vector<std::vector<long long>>& joined)
   {
     std::iota(root.begin(), root.end(), 0);
     for (auto& t : tree)
@@ -521,14 +520,14 @@ long long OrientSplats(const std::vector<Splat*>& splats,
     order.end(),
     [&](long long a, long long b) { return xyz[3 * a + 2] > xyz[3 * b + 2]; });
   // The visibility votes (of every splat, computed when the first closed
-  // part is reached) and which splats were turned then; the seeds of each
-  // closed part where a seed disagrees with its tree.
+  // part is reached) and which splats were turned then; the closed parts
+  // where a seed disagrees with its tree, and their seeds.
   std::vector<double> votes, seen;
   std::vector<char> turnedWhenSeen;
   auto vote = [&](long long i) { return turned[i] != turnedWhenSeen[i] ? -votes[i] : votes[i]; };
   auto isSeed = [&](long long i)
   { return seen[i] >= SeenEnough && std::abs(votes[i]) >= Unanimous * seen[i]; };
-  std::vector<std::vector<long long>> regrow;
+  std::vector<std::vector<long long>> regrow, regrowSeeds;
   std::vector<long long> part;
   for (const long long seed : order)
   {
@@ -636,7 +635,8 @@ long long OrientSplats(const std::vector<Splat*>& splats,
     }
     if (against)
     {
-      regrow.push_back(std::move(seeds));
+      regrow.push_back(part);
+      regrowSeeds.push_back(std::move(seeds));
     }
   }
   if (!regrow.empty())
@@ -644,27 +644,14 @@ long long OrientSplats(const std::vector<Splat*>& splats,
     // The parts to grow again, each from its seeds with their sides.
     std::vector<char> again(static_cast<size_t>(n), 0);
     std::vector<long long> front;
-    for (const auto& seeds : regrow)
+    for (size_t r = 0; r < regrow.size(); ++r)
     {
-      // Every splat of a seed's part: the graph's component.
-      std::vector<long long> component(1, seeds.front());
-      again[seeds.front()] = 1;
-      for (size_t c = 0; c < component.size(); ++c)
+      for (const long long i : regrow[r])
       {
-        for (const int j : tree[component[c]])
-        {
-          if (!again[j])
-          {
-            again[j] = 1;
-            component.push_back(j);
-          }
-        }
-      }
-      for (const long long i : component)
-      {
+        again[i] = 1;
         done[i] = 0;
       }
-      for (const long long i : seeds)
+      for (const long long i : regrowSeeds[r])
       {
         if (vote(i) < 0.0)
         {
@@ -674,7 +661,7 @@ long long OrientSplats(const std::vector<Splat*>& splats,
         front.push_back(i);
       }
     }
-    span([&](int i) { return again[i] != 0; }, regrow);
+    span([&](int i) { return again[i] != 0; }, regrowSeeds);
     grow(front, nullptr);
   }
   long long flipped = 0;
