@@ -5,6 +5,7 @@
 #include "psPointIndex.h"
 #include "psPolynomial.h"
 
+#include "vtkMath.h"
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
 
@@ -60,8 +61,6 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
   const long long n = static_cast<long long>(splats.size());
   votes.assign(static_cast<size_t>(n), 0.0);
   seen.assign(static_cast<size_t>(n), 0.0);
-  auto dot = [](const double* x, const double* y)
-  { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
   std::vector<char> valid(static_cast<size_t>(n), 0);
   std::vector<double> sorted;
   double centre[3] = { 0.0, 0.0, 0.0 };
@@ -69,8 +68,8 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
   for (long long i = 0; i < n; ++i)
   {
     const LocalFrame& f = splats[i]->Frame;
-    valid[i] = std::isfinite(dot(f.Origin, f.Origin)) && std::isfinite(dot(f.Normal, f.Normal)) &&
-      std::isfinite(radii[i]) && radii[i] >= 0.0;
+    valid[i] = std::isfinite(vtkMath::Dot(f.Origin, f.Origin)) &&
+      std::isfinite(vtkMath::Dot(f.Normal, f.Normal)) && std::isfinite(radii[i]) && radii[i] >= 0.0;
     if (valid[i])
     {
       sorted.push_back(radii[i]);
@@ -160,17 +159,10 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
           : (std::abs(u[1]) < std::abs(u[2]) ? 1 : 2);
         double e[3] = { 0.0, 0.0, 0.0 };
         e[least] = 1.0;
-        double a[3] = {
-          u[1] * e[2] - u[2] * e[1], u[2] * e[0] - u[0] * e[2], u[0] * e[1] - u[1] * e[0]
-        };
-        const double la = std::sqrt(dot(a, a));
-        for (double& c : a)
-        {
-          c /= la;
-        }
-        const double b[3] = {
-          u[1] * a[2] - u[2] * a[1], u[2] * a[0] - u[0] * a[2], u[0] * a[1] - u[1] * a[0]
-        };
+        double a[3], b[3];
+        vtkMath::Cross(u, e, a);
+        vtkMath::Normalize(a);
+        vtkMath::Cross(u, a, b);
         // Each disc's centre on the image, and its plane's depth t (along
         // -u) there and its gradient: t = -o.u + ga da + gb db.
         double lo[2] = { std::numeric_limits<double>::max(), std::numeric_limits<double>::max() };
@@ -183,12 +175,12 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
           }
           const double* o = &origins[3 * i];
           const double* m = &normals[3 * i];
-          scratch.A[i] = dot(o, a);
-          scratch.B[i] = dot(o, b);
-          const double nu = dot(m, u);
+          scratch.A[i] = vtkMath::Dot(o, a);
+          scratch.B[i] = vtkMath::Dot(o, b);
+          const double nu = vtkMath::Dot(m, u);
           const bool steep = std::abs(nu) > 1e-6;
-          scratch.Gradient[2 * i] = steep ? dot(m, a) / nu : 0.0;
-          scratch.Gradient[2 * i + 1] = steep ? dot(m, b) / nu : 0.0;
+          scratch.Gradient[2 * i] = steep ? vtkMath::Dot(m, a) / nu : 0.0;
+          scratch.Gradient[2 * i + 1] = steep ? vtkMath::Dot(m, b) / nu : 0.0;
           lo[0] = std::min(lo[0], scratch.A[i] - radii[i]);
           hi[0] = std::max(hi[0], scratch.A[i] + radii[i]);
           lo[1] = std::min(lo[1], scratch.B[i] - radii[i]);
@@ -218,16 +210,16 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
           const double da = lo[0] + (x + 0.5) * pixel - scratch.A[i];
           const double db = lo[1] + (y + 0.5) * pixel - scratch.B[i];
           const double dt = ga * da + gb * db;
-          const double t0 = -dot(&origins[3 * i], u);
+          const double t0 = -vtkMath::Dot(&origins[3 * i], u);
           return da * da + db * db + dt * dt <= radii[i] * radii[i] ? t0 + dt : t0;
         };
         for (long long i = 0; i < n; ++i)
         {
-          if (!valid[i] || !(std::abs(dot(&normals[3 * i], u)) > 1e-6))
+          if (!valid[i] || !(std::abs(vtkMath::Dot(&normals[3 * i], u)) > 1e-6))
           {
             continue; // seen edge on
           }
-          const double t0 = -dot(&origins[3 * i], u), ga = scratch.Gradient[2 * i],
+          const double t0 = -vtkMath::Dot(&origins[3 * i], u), ga = scratch.Gradient[2 * i],
                        gb = scratch.Gradient[2 * i + 1], r2 = radii[i] * radii[i];
           const double ca = scratch.A[i], cb = scratch.B[i];
           // Row by row, the pixels whose rays meet the plane within the
@@ -270,7 +262,7 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
         }
         for (long long i = 0; i < n; ++i)
         {
-          if (!valid[i] || !(std::abs(dot(&normals[3 * i], u)) > Facing))
+          if (!valid[i] || !(std::abs(vtkMath::Dot(&normals[3 * i], u)) > Facing))
           {
             continue;
           }
@@ -290,7 +282,7 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
     {
       if (sight[i])
       {
-        const double nu = dot(&normals[3 * i], axes[axis].data());
+        const double nu = vtkMath::Dot(&normals[3 * i], axes[axis].data());
         const int ends = (sight[i] & 1) + (sight[i] >> 1);
         votes[i] += ((sight[i] & 1) ? nu : 0.0) - ((sight[i] & 2) ? nu : 0.0);
         seen[i] += ends * std::abs(nu);
