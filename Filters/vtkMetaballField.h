@@ -11,14 +11,34 @@
  * one (SetField), as vtkPointInterpolator shares its kernel: a change to the
  * shared field reaches all of them, and they agree ball for ball.
  *
- * Each point is a ball with support radius R_i = RadiusScale times the first
- * component of the RadiusArrayName point array when the input has it, or
- * RadiusScale times the constant Radius otherwise, and strength q_i from
- * the StrengthArrayName point array (1 when none is named). Balls with a
- * NaN or infinite centre, radius or strength, or a radius <= 0, are not
- * part of the field. The kernels are Wyvill's sixth-order polynomial, the
- * quartic (1 - r^2/R^2)^2 and a Gaussian truncated at R (psMetaball.h).
- * pointsurfaces::ExtractBalls (psBallExtraction.h) applies this rule.
+ * Each point is a ball with support radius R_i = RadiusScale times a radius
+ * chosen by the first rule that applies (psBallExtraction.h):
+ * 1. the first component of the point array RadiusArrayName, when it is
+ *    named and the input has it;
+ * 2. the constant Radius, when it is positive;
+ * 3. the first point array the readers write radii in that the input has:
+ *    "Radius", "radius" (vtkPDBReader, vtkAtomRadii, the GROMACS readers,
+ *    LAMMPS dumps), "SmoothingLength" (Gadget), "SmoothingLengths" (SWIFT),
+ *    "pscale" (OpenVDB points), or half of "diameter" (LAMMPS dumps);
+ * 4. 2.5 times the mean nearest-neighbour spacing of the points
+ *    (pointsurfaces::SpacingRadiusFactor, which says why 2.5), measured once
+ *    for points that have not changed; split across processes,
+ *    vtkMetaballGhostBalls measures it over all of them and passes it on in
+ *    the field data, so that every process uses the same;
+ * 5. 1, when there is nothing to measure (fewer than two distinct points).
+ * The strength q_i comes from the StrengthArrayName point array (1 when
+ * none is named). Balls with a NaN or infinite centre, radius or strength,
+ * or a radius <= 0, are not part of the field. The kernels are Wyvill's
+ * sixth-order polynomial, the quartic (1 - r^2/R^2)^2 and a Gaussian
+ * truncated at R (psMetaball.h). pointsurfaces::ExtractBalls
+ * (psBallExtraction.h) applies this rule.
+ *
+ * The automatic rules (3 to 5) are told once, as text (vtkOutputWindow's
+ * DisplayText, not a warning), each time their outcome changes: another
+ * array, another rule, or an automatic radius more than 10 % from the one
+ * last told; a named array that the input lacks is warned about the same
+ * way. GetRadiusRule, GetChosenRadiusArrayName, GetMeanSpacing and
+ * GetRadiusRuleDescription tell the outcome for the last input read.
  */
 #ifndef vtkMetaballField_h
 #define vtkMetaballField_h
@@ -75,13 +95,21 @@ public:
   ///@}
 
   ///@{
-  /** Point array of support radii; when the input lacks it, Radius applies. Default "Radius". */
+  /**
+   * Point array of support radii (its first component); it wins over every
+   * other rule when the input has it. Empty (the default): the rules after
+   * it choose (Radius, then an array the readers write, then the spacing).
+   */
   vtkSetStdStringFromCharMacro(RadiusArrayName);
   vtkGetCharFromStdStringMacro(RadiusArrayName);
   ///@}
 
   ///@{
-  /** The support radius of every ball when the input has no radius array. Default 1. */
+  /**
+   * The support radius of every ball when it is positive and RadiusArrayName
+   * names no array the input has. 0 (the default): automatic, from an array
+   * the readers write or else 2.5 times the mean nearest-neighbour spacing.
+   */
   vtkSetMacro(Radius, double);
   vtkGetMacro(Radius, double);
   ///@}
@@ -122,6 +150,33 @@ public:
    */
   double GetLargestRadius(vtkPointSet* input);
 
+  /** The rules of the radii, in the order they apply (see the class comment). */
+  enum RadiusRules
+  {
+    NamedRadiusArray = 0, ///< RadiusArrayName
+    ConstantRadius = 1,   ///< Radius
+    FoundRadiusArray = 2, ///< the first array the readers write radii in
+    SpacingRadius = 3,    ///< 2.5 times the mean nearest-neighbour spacing
+    UnitRadius = 4        ///< 1: nothing to measure
+  };
+
+  ///@{
+  /**
+   * The outcome for the last input whose radii were read (ExtractBalls,
+   * GetLargestRadius or vtkMetaballGhostBalls): the rule (a RadiusRules
+   * value; -1 before any input), the array it reads ("" when none), the
+   * mean nearest-neighbour spacing (SpacingRadius; 0 otherwise), and the
+   * sentence that tells it (as the message does).
+   */
+  vtkGetMacro(RadiusRule, int);
+  const char* GetChosenRadiusArrayName() { return this->ChosenRadiusArrayName.c_str(); }
+  vtkGetMacro(MeanSpacing, double);
+  const char* GetRadiusRuleDescription() { return this->RadiusRuleDescription.c_str(); }
+  ///@}
+
+  /** The automatic radius in mean nearest-neighbour spacings (2.5). */
+  static double GetSpacingRadiusFactor();
+
 #ifndef __VTK_WRAP__
   /**
    * For the classes that hold a field: put `field` in `slot` (a new default
@@ -134,10 +189,27 @@ public:
   /** The settings as the plain rule of psBallExtraction.h. */
   pointsurfaces::BallRule GetRule() const;
 
-  /** The balls of `input` (radii times `scale` on top of the rule). */
-  pointsurfaces::BallArrays ExtractBalls(vtkPointSet* input, double scale = 1.0) const;
+  /**
+   * How `input`'s radii are found (pointsurfaces::ChooseRadii), the spacing
+   * measured when the rule needs it and the input carries none: once for
+   * the same points (the same vtkPoints, unmodified), so that a mapper that
+   * reads its balls on every upload does not measure them again. Reported
+   * (ReportRadii) when the input has points.
+   */
+  pointsurfaces::RadiusSource ChooseRadii(vtkPointSet* input);
+
+  /**
+   * Keep `choice` for the getters, and tell it when it is automatic and
+   * differs from the last one told (see the class comment); a named array
+   * that is missing is a warning. For vtkMetaballGhostBalls, which chooses
+   * radii over all processes.
+   */
+  void ReportRadii(const pointsurfaces::RadiusChoice& choice);
+
+  /** The balls of `input` (radii times `scale` on top of the rule), by ChooseRadii. */
+  pointsurfaces::BallArrays ExtractBalls(vtkPointSet* input, double scale = 1.0);
   /** The same into `out`, keeping its storage (for every frame of a series). */
-  void ExtractBalls(vtkPointSet* input, double scale, pointsurfaces::BallArrays& out) const;
+  void ExtractBalls(vtkPointSet* input, double scale, pointsurfaces::BallArrays& out);
 #endif
 
 protected:
@@ -146,11 +218,26 @@ protected:
 
   int Kernel = Wyvill;
   double Threshold = 0.5;
-  std::string RadiusArrayName = "Radius";
-  double Radius = 1.0;
+  std::string RadiusArrayName;
+  double Radius = 0.0;
   double RadiusScale = 1.0;
   std::string StrengthArrayName;
   std::string DensityArrayName;
+
+  // The outcome of the last choice of radii (not settings: no Modified()).
+  int RadiusRule = -1;
+  std::string ChosenRadiusArrayName;
+  double MeanSpacing = 0.0;
+  std::string RadiusRuleDescription;
+  // The outcome last told: rule, array and missing array; and its radius.
+  std::string ToldOutcome;
+  double ToldRadius = 0.0;
+  // The spacing last measured, and the points it was measured on: their
+  // address (compared, never followed) and modification time. A vtkPoints
+  // made later at the same address has a later time.
+  const void* MeasuredPoints = nullptr;
+  vtkMTimeType MeasuredTime = 0;
+  double MeasuredSpacing = 0.0;
 
 private:
   vtkMetaballField(const vtkMetaballField&) = delete;

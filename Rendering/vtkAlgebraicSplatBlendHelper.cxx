@@ -283,13 +283,25 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   ostate->vtkglDepthMask(GL_FALSE);
   ostate->vtkglEnable(GL_BLEND);
   // Per-target blending (sum for the colours, minimum for the depth and
-  // coverage) has no vtkOpenGLState wrapper in VTK 9.1; the Pop below
-  // re-applies the cached blend state to every target.
+  // coverage) has no vtkOpenGLState wrapper. The state's Pop re-applies only
+  // what its own cache changed (VTK 9.2 on), so the blend state as it was
+  // is put back on every target by hand after the draw: otherwise the
+  // state's cache and GL disagree ("Error in cache state for
+  // GL_BLEND_SRC_RGB" in ParaView) and later draws blend wrongly.
+  GLint equation[2], func[4];
+  glGetIntegerv(GL_BLEND_EQUATION_RGB, &equation[0]);
+  glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &equation[1]);
+  glGetIntegerv(GL_BLEND_SRC_RGB, &func[0]);
+  glGetIntegerv(GL_BLEND_DST_RGB, &func[1]);
+  glGetIntegerv(GL_BLEND_SRC_ALPHA, &func[2]);
+  glGetIntegerv(GL_BLEND_DST_ALPHA, &func[3]);
   glBlendEquationi(0, GL_FUNC_ADD);
   glBlendFunci(0, GL_ONE, GL_ONE);
   glBlendEquationi(1, GL_MIN);
   glBlendFunci(1, GL_ONE, GL_ONE);
   passes.Draw();
+  glBlendEquationSeparate(equation[0], equation[1]);
+  glBlendFuncSeparate(func[0], func[1], func[2], func[3]);
   if (!offsetWasOn)
   {
     ostate->vtkglDisable(GL_POLYGON_OFFSET_FILL);

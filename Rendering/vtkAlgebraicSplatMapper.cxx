@@ -87,6 +87,12 @@ vtkAlgebraicSplatMapper::vtkAlgebraicSplatMapper()
 vtkAlgebraicSplatMapper::~vtkAlgebraicSplatMapper() = default;
 
 //------------------------------------------------------------------------------
+int vtkAlgebraicSplatMapper::CanUseTextureMapForColoring(vtkDataObject*)
+{
+  return 0;
+}
+
+//------------------------------------------------------------------------------
 void vtkAlgebraicSplatMapper::ReleaseGraphicsResources(vtkWindow* win)
 {
   this->ShaderFailed = false;

@@ -171,6 +171,15 @@ public:
 
   void ReleaseGraphicsResources(vtkWindow* win) override;
 
+  /**
+   * Always 0: scalars are mapped to colours on the splats, one colour per
+   * splat, whatever InterpolateScalarsBeforeMapping says (ParaView turns it
+   * on for every display). A splat carries one value, so there is nothing
+   * to interpolate before mapping; overlapping splats blend the mapped
+   * colours.
+   */
+  int CanUseTextureMapForColoring(vtkDataObject* input) override;
+
 protected:
   vtkAlgebraicSplatMapper();
   ~vtkAlgebraicSplatMapper() override;

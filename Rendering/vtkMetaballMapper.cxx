@@ -13,6 +13,7 @@
 #include "vtkComputeShaderProgram.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
+#include "vtkHardwareSelector.h"
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
@@ -119,6 +120,116 @@ std::string LightCalls(int complexity, int count)
   }
   return code;
 }
+
+// Fills a whole texture from the host (rows from the bottom).
+void UploadImage(vtkTextureObject* texture,
+  int width,
+  int height,
+  GLenum format,
+  GLenum type,
+  const void* data)
+{
+  texture->Bind();
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, format, type, data);
+  texture->Deactivate();
+}
+
+// Reads a whole texture back (rows from the bottom, 4-byte pixels or
+// larger, so that no row padding applies); false on a GL error of its own
+// (errors left pending by others are cleared first).
+bool ReadImage(vtkTextureObject* texture, GLenum format, GLenum type, void* data)
+{
+  for (int k = 0; k < 16 && glGetError() != GL_NO_ERROR; ++k)
+  {
+  }
+  texture->Bind();
+  glGetTexImage(GL_TEXTURE_2D, 0, format, type, data);
+  texture->Deactivate();
+  return glGetError() == GL_NO_ERROR;
+}
+
+// A selection pixel that no ray hit (PickBalls); -1 is a hit without a ball.
+constexpr vtkIdType NoHit = -2;
+// The screen tile side of the selection grid, in pixels.
+constexpr int PickTile = 8;
+
+// The selector's bracket around one prop, as vtkOpenGLPolyDataMapper sets
+// it: BeginRenderProp sets the actor and process passes' colour,
+// RenderCompositeIndex the composite pass's (1 for a plain data set), and
+// the largest ids tell the selector whether the high-24-bit passes run.
+class SelectorProp
+{
+public:
+  SelectorProp(vtkHardwareSelector* selector, vtkIdType count)
+    : Selector(selector)
+  {
+    if (!selector)
+    {
+      return;
+    }
+    selector->BeginRenderProp();
+    if (selector->GetCurrentPass() == vtkHardwareSelector::COMPOSITE_INDEX_PASS)
+    {
+      selector->RenderCompositeIndex(1);
+    }
+    selector->UpdateMaximumPointId(count - 1);
+    selector->UpdateMaximumCellId(count - 1);
+  }
+  ~SelectorProp()
+  {
+    if (this->Selector)
+    {
+      this->Selector->EndRenderProp();
+    }
+  }
+  SelectorProp(const SelectorProp&) = delete;
+  SelectorProp& operator=(const SelectorProp&) = delete;
+
+private:
+  vtkHardwareSelector* Selector;
+};
+
+// The slab of a perspective grid that holds view distance d, clamped.
+int SlabOf(const std::vector<double>& planes, double d)
+{
+  const int k =
+    static_cast<int>(std::upper_bound(planes.begin(), planes.end(), d) - planes.begin());
+  return std::min(std::max(k - 1, 0), static_cast<int>(planes.size()) - 2);
+}
+
+// The view-space point at view distance `distance` on the ray through the
+// centre of pixel (x, y), as the ray casters cast it.
+void HitPoint(const double clipToView[16],
+  int width,
+  int height,
+  int x,
+  int y,
+  double distance,
+  double point[3])
+{
+  const double ndc[2] = { (x + 0.5) / width * 2.0 - 1.0, (y + 0.5) / height * 2.0 - 1.0 };
+  double ends[2][4];
+  for (int e = 0; e < 2; ++e)
+  {
+    const double clip[4] = { ndc[0], ndc[1], e == 0 ? -1.0 : 1.0, 1.0 };
+    for (int r = 0; r < 4; ++r)
+    {
+      ends[e][r] = clipToView[4 * r] * clip[0] + clipToView[4 * r + 1] * clip[1] +
+        clipToView[4 * r + 2] * clip[2] + clipToView[4 * r + 3] * clip[3];
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      ends[e][r] /= ends[e][3];
+    }
+  }
+  const double dz = ends[1][2] - ends[0][2];
+  const double t = dz != 0.0 ? (-distance - ends[0][2]) / dz : 0.0;
+  for (int r = 0; r < 3; ++r)
+  {
+    point[r] = ends[0][r] + t * (ends[1][r] - ends[0][r]);
+  }
+}
 } // namespace
 
 struct vtkMetaballMapper::Internals
@@ -161,6 +272,39 @@ struct vtkMetaballMapper::Internals
   pointsurfaces::MetaballCastImages CastImages;
   int Width = 0;
   int Height = 0;
+
+  // The view of the images' last cast. A selection's passes (the selector
+  // renders once per pass) reuse its hits when the view, the viewport, the
+  // balls and the settings are unchanged, so that every pass, and the frame
+  // drawn before them, has the same hits and depths.
+  struct CastView
+  {
+    double WorldToView[16] = {}; // the float balls (shifted) to view
+    double ViewToClip[16] = {};
+    double ClipToView[16] = {};
+    bool Parallel = false;
+    int Width = 0, Height = 0;
+    vtkMTimeType Upload = 0, Mapper = 0;
+
+    bool Same(const CastView& o) const
+    {
+      return std::equal(this->WorldToView, this->WorldToView + 16, o.WorldToView) &&
+        std::equal(this->ViewToClip, this->ViewToClip + 16, o.ViewToClip) &&
+        this->Parallel == o.Parallel && this->Width == o.Width && this->Height == o.Height &&
+        this->Upload == o.Upload && this->Mapper == o.Mapper;
+    }
+  };
+  CastView Cast;
+  bool CastValid = false;
+  unsigned long CastSerial = 0; // counts casts; selection caches name the one they come from
+  // Selection: the ball id per pixel of the area (NoHit, -1: hit, no ball),
+  // for the cast CastSerial; the pass's colours, the texture and the shader.
+  std::vector<vtkIdType> PickIds;
+  unsigned long PickSerial = 0;
+  int PickArea[4] = { 0, 0, -1, -1 };
+  std::vector<unsigned char> PickPixels;
+  vtkNew<vtkTextureObject> PickImage;
+  std::unique_ptr<vtkOpenGLQuadHelper> PickComposite;
 };
 
 //------------------------------------------------------------------------------
@@ -226,6 +370,12 @@ vtkMTimeType vtkMetaballMapper::GetMTime()
 
 //------------------------------------------------------------------------------
 vtkMetaballMapper::~vtkMetaballMapper() = default;
+
+//------------------------------------------------------------------------------
+int vtkMetaballMapper::CanUseTextureMapForColoring(vtkDataObject*)
+{
+  return 0;
+}
 
 //------------------------------------------------------------------------------
 void vtkMetaballMapper::SetInputData(vtkPointSet* input)
@@ -452,10 +602,13 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
     return;
   }
   auto* renWin = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
-  if (!renWin || ren->GetSelector())
+  if (!renWin)
   {
     return;
   }
+  // A hardware selection's pass (rare: a click or a drag) draws ball ids.
+  vtkHardwareSelector* selector = ren->GetSelector();
+  const SelectorProp selecting(selector, input->GetNumberOfPoints());
   this->InvokeEvent(vtkCommand::StartEvent, nullptr);
   if (!this->Upload(ren, act, input) || in.Count == 0)
   {
@@ -498,6 +651,25 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
     in.Width = width;
     in.Height = height;
   }
+  // A selection pass reuses the last cast when it had this view and these balls.
+  Internals::CastView view;
+  std::copy_n(worldToView->GetData(), 16, view.WorldToView);
+  std::copy_n(viewToClip->GetData(), 16, view.ViewToClip);
+  std::copy_n(clipToView->GetData(), 16, view.ClipToView);
+  view.Parallel = parallel;
+  view.Width = width;
+  view.Height = height;
+  view.Upload = in.UploadTime.GetMTime();
+  view.Mapper = this->GetMTime();
+  if (selector && in.CastValid && view.Same(in.Cast))
+  {
+    this->DrawSelection(ren, selector, x0, y0);
+    this->InvokeEvent(vtkCommand::EndEvent, nullptr);
+    return;
+  }
+  in.Cast = view;
+  in.CastValid = false;
+  ++in.CastSerial;
   const bool cpu = this->RayCaster == CPU || (this->RayCaster == AUTOMATIC && IsSoftwareRenderer());
   this->RayCasterInUse = cpu ? CPU : GPU;
   // This frame's counters: a ring slot whose last use the GPU has passed
@@ -523,9 +695,9 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
     const unsigned int initial[CounterCount] = { inside };
     frameCounters->Upload(initial, sizeof(initial));
   }
-  // Shadows: secondary rays toward the lights.
+  // Shadows: secondary rays toward the lights (none for a selection).
   int shadowLights = 0;
-  if (cast && this->Shadows)
+  if (cast && this->Shadows && !selector)
   {
     vtkNew<vtkMatrix4x4> viewToModel;
     vtkMatrix4x4::Invert(worldToView, viewToModel);
@@ -562,8 +734,15 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   {
     this->GridBuildTime = in.Grid->GetBuildTime();
   }
+  in.CastValid = cast;
   if (!cast)
   {
+    return;
+  }
+  if (selector)
+  {
+    this->DrawSelection(ren, selector, x0, y0);
+    this->InvokeEvent(vtkCommand::EndEvent, nullptr);
     return;
   }
 
@@ -823,17 +1002,9 @@ bool vtkMetaballMapper::CastOnCPU(vtkMatrix4x4* worldToView,
   this->RayCastTime = 1000.0 * stats.CastSeconds;
   inside = static_cast<unsigned int>(std::min<long long>(stats.StartingInside, 0xffffffffLL));
   // Into the textures that the shading pass and the shadow rays read.
-  const auto upload = [width, height](
-                        vtkTextureObject* texture, GLenum format, GLenum type, const void* data)
-  {
-    texture->Bind();
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, format, type, data);
-    texture->Deactivate();
-  };
-  upload(in.ColorImage, GL_RGBA, GL_UNSIGNED_BYTE, images.Color.data());
-  upload(in.NormalImage, GL_RGBA, GL_FLOAT, images.NormalDistance.data());
-  upload(in.DepthImage, GL_RED, GL_FLOAT, images.Depth.data());
+  UploadImage(in.ColorImage, width, height, GL_RGBA, GL_UNSIGNED_BYTE, images.Color.data());
+  UploadImage(in.NormalImage, width, height, GL_RGBA, GL_FLOAT, images.NormalDistance.data());
+  UploadImage(in.DepthImage, width, height, GL_RED, GL_FLOAT, images.Depth.data());
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR)
   {
@@ -1027,6 +1198,294 @@ bool vtkMetaballMapper::ReadHitBuffer(vtkFloatArray* hits)
 }
 
 //------------------------------------------------------------------------------
+void vtkMetaballMapper::DrawSelection(vtkRenderer* ren,
+  vtkHardwareSelector* selector,
+  int x0,
+  int y0)
+{
+  Internals& in = *this->Impl;
+  auto* renWin = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  const int width = in.Cast.Width, height = in.Cast.Height;
+  // The selector's area (window pixels) in the viewport: only it is read.
+  const unsigned int* a = selector->GetArea();
+  const int area[4] = { std::max(static_cast<int>(a[0]) - x0, 0),
+    std::max(static_cast<int>(a[1]) - y0, 0),
+    std::min(static_cast<int>(a[2]) - x0, width - 1),
+    std::min(static_cast<int>(a[3]) - y0, height - 1) };
+  if (area[0] > area[2] || area[1] > area[3])
+  {
+    return;
+  }
+  if (in.PickSerial != in.CastSerial || !std::equal(area, area + 4, in.PickArea))
+  {
+    this->PickBalls(area);
+  }
+
+  // The pass's colour per hit pixel, as vtkHardwareSelector reads it (red
+  // the low byte): the prop's colour (the actor pass's prop id, the process
+  // pass's process id, the composite pass's index, each plus one), or the
+  // ball id, its low or high 24 bits.
+  const int pass = selector->GetCurrentPass();
+  const float* propColor = selector->GetPropColorValue();
+  unsigned int prop = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    const double c = std::min(std::max(static_cast<double>(propColor[k]), 0.0), 1.0);
+    prop |= static_cast<unsigned int>(vtkMath::Round(255.0 * c)) << (8 * k);
+  }
+  const bool low =
+    pass == vtkHardwareSelector::POINT_ID_LOW24 || pass == vtkHardwareSelector::CELL_ID_LOW24;
+  const bool high =
+    pass == vtkHardwareSelector::POINT_ID_HIGH24 || pass == vtkHardwareSelector::CELL_ID_HIGH24;
+  std::vector<unsigned char>& pixels = in.PickPixels;
+  pixels.assign(4 * static_cast<size_t>(width) * height, 0);
+  const int areaWidth = area[2] - area[0] + 1;
+  for (int y = area[1]; y <= area[3]; ++y)
+  {
+    for (int x = area[0]; x <= area[2]; ++x)
+    {
+      const vtkIdType id = in.PickIds[static_cast<size_t>(y - area[1]) * areaWidth + x - area[0]];
+      if (id == NoHit)
+      {
+        continue;
+      }
+      // VTK 9.1's selector reads the id as written (the actor pass tells hits
+      // from the background); a hit without a ball (id -1) writes 0.
+      const long long value = std::max<long long>(id, 0);
+      const unsigned int rgb = low ? static_cast<unsigned int>(value & 0xffffff)
+        : high                     ? static_cast<unsigned int>((value >> 24) & 0xffffff)
+                                   : prop;
+      unsigned char* p = &pixels[4 * (static_cast<size_t>(y) * width + x)];
+      p[0] = static_cast<unsigned char>(rgb & 0xff);
+      p[1] = static_cast<unsigned char>((rgb >> 8) & 0xff);
+      p[2] = static_cast<unsigned char>((rgb >> 16) & 0xff);
+      p[3] = 255;
+    }
+  }
+  if (in.PickImage->GetWidth() != static_cast<unsigned int>(width) ||
+    in.PickImage->GetHeight() != static_cast<unsigned int>(height) || !in.PickImage->GetHandle())
+  {
+    in.PickImage->SetContext(renWin);
+    in.PickImage->Allocate2D(width, height, 4, VTK_UNSIGNED_CHAR);
+  }
+  UploadImage(in.PickImage, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+
+  // The composite shader with lighting off writes the colours as they are
+  // (nearest texels of an rgba8 image: the same bytes), with the hits' depth.
+  if (!in.PickComposite)
+  {
+    std::string source = vtkMetaballCompositeFS;
+    if (!pointsurfaces::ReplaceHook(
+          source, "//VTK::Light::Dec", "#define LIGHTING_COMPLEXITY 0\n") ||
+      !pointsurfaces::ReplaceHook(source, "//VTK::Light::Impl", ""))
+    {
+      vtkErrorMacro(<< "vtkMetaballCompositeFS lacks its //VTK::Light hooks: nothing is selected.");
+      return;
+    }
+    in.PickComposite.reset(new vtkOpenGLQuadHelper(renWin, nullptr, source.c_str(), ""));
+  }
+  else
+  {
+    renWin->GetShaderCache()->ReadyShaderProgram(in.PickComposite->Program);
+  }
+  vtkShaderProgram* program = in.PickComposite->Program;
+  if (!program)
+  {
+    vtkErrorMacro(<< "The metaball selection shader did not compile.");
+    return;
+  }
+  vtkOpenGLState* ostate = renWin->GetState();
+  ostate->Push();
+  in.PickImage->Activate();
+  in.DepthImage->Activate();
+  program->SetUniformi("colorTexture", in.PickImage->GetTextureUnit());
+  program->SetUniformi("depthTexture", in.DepthImage->GetTextureUnit());
+  program->SetUniformi("shadows", 0);
+  program->SetUniformf("opacity", 1.0f);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_LEQUAL);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglDisable(GL_BLEND);
+  in.PickComposite->Render();
+  in.PickImage->Deactivate();
+  in.DepthImage->Deactivate();
+  ostate->Pop();
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballMapper::PickBalls(const int area[4])
+{
+  Internals& in = *this->Impl;
+  const Internals::CastView& cast = in.Cast;
+  const int width = cast.Width, height = cast.Height;
+  const int areaWidth = area[2] - area[0] + 1, areaHeight = area[3] - area[1] + 1;
+  in.PickIds.assign(static_cast<size_t>(areaWidth) * areaHeight, NoHit);
+  in.PickSerial = in.CastSerial;
+  std::copy_n(area, 4, in.PickArea);
+
+  // The hits (colour alpha: 0 where none) and their view distances.
+  std::vector<unsigned char> colors(4 * static_cast<size_t>(width) * height);
+  std::vector<float> hits(4 * static_cast<size_t>(width) * height);
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+  if (!ReadImage(in.ColorImage, GL_RGBA, GL_UNSIGNED_BYTE, colors.data()) ||
+    !ReadImage(in.NormalImage, GL_RGBA, GL_FLOAT, hits.data()))
+  {
+    vtkErrorMacro(<< "The ray-cast hits could not be read back: nothing is selected.");
+    return;
+  }
+  const pointsurfaces::MetaballSet& set = in.Extracted.Set;
+  if (set.Count != in.Count)
+  {
+    return;
+  }
+
+  // The area's own projection: the viewport's, scaled and moved so that its
+  // clip-space square is the area.
+  double areaToClip[16];
+  std::copy_n(cast.ViewToClip, 16, areaToClip);
+  const double sx = static_cast<double>(width) / areaWidth;
+  const double tx = static_cast<double>(width - 2 * area[0]) / areaWidth - 1.0;
+  const double sy = static_cast<double>(height) / areaHeight;
+  const double ty = static_cast<double>(height - 2 * area[1]) / areaHeight - 1.0;
+  for (int c = 0; c < 4; ++c)
+  {
+    areaToClip[c] = sx * cast.ViewToClip[c] + tx * cast.ViewToClip[12 + c];
+    areaToClip[4 + c] = sy * cast.ViewToClip[4 + c] + ty * cast.ViewToClip[12 + c];
+  }
+  double planes[24];
+  pointsurfaces::FrustumPlanes(areaToClip, planes);
+  // The input's points to view: the cast's view without the balls' shift.
+  double toView[16];
+  std::copy_n(cast.WorldToView, 16, toView);
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      toView[4 * r + 3] -= cast.WorldToView[4 * r + k] * in.Shift[k];
+    }
+  }
+  const auto centreInView = [&](vtkIdType i, double out[3])
+  {
+    const double* c = set.Centers + 3 * i;
+    for (int r = 0; r < 3; ++r)
+    {
+      out[r] = toView[4 * r] * c[0] + toView[4 * r + 1] * c[1] + toView[4 * r + 2] * c[2] +
+        toView[4 * r + 3];
+    }
+  };
+
+  // The balls that the ray casters draw (a positive float radius) whose
+  // support reaches into the area's frustum, ascending.
+  vtkSMPThreadLocal<std::vector<unsigned>> reaching;
+  vtkSMPTools::For(0,
+    set.Count,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      std::vector<unsigned>& ids = reaching.Local();
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        if (!(in.HostBalls[4 * i + 3] > 0.0f))
+        {
+          continue;
+        }
+        double c[3];
+        centreInView(i, c);
+        bool inside = true;
+        for (int k = 0; k < 6 && inside; ++k)
+        {
+          const double* e = planes + 4 * k;
+          inside = e[0] * c[0] + e[1] * c[1] + e[2] * c[2] + e[3] >= -set.Radii[i];
+        }
+        if (inside)
+        {
+          ids.push_back(static_cast<unsigned>(i));
+        }
+      }
+    });
+  std::vector<unsigned> ids;
+  for (const std::vector<unsigned>& part : reaching)
+  {
+    ids.insert(ids.end(), part.begin(), part.end());
+  }
+  std::sort(ids.begin(), ids.end());
+
+  // Those balls in view space, binned into a perspective grid over the area.
+  const size_t count = ids.size();
+  std::vector<double> centres(3 * count), radii(count), strengths(set.Strengths ? count : 0);
+  for (size_t k = 0; k < count; ++k)
+  {
+    centreInView(ids[k], &centres[3 * k]);
+    radii[k] = set.Radii[ids[k]];
+    if (set.Strengths)
+    {
+      strengths[k] = set.Strengths[ids[k]];
+    }
+  }
+  pointsurfaces::MetaballSet nearby = set;
+  nearby.Centers = centres.data();
+  nearby.Radii = radii.data();
+  nearby.Strengths = set.Strengths ? strengths.data() : nullptr;
+  nearby.Count = static_cast<long long>(count);
+  pointsurfaces::GridView grid;
+  for (int k = 0; k < 16; ++k)
+  {
+    grid.WorldToView[k] = k % 5 == 0 ? 1.0 : 0.0;
+    grid.ViewToClip[k] = areaToClip[k];
+  }
+  grid.Parallel = cast.Parallel;
+  grid.Width = areaWidth;
+  grid.Height = areaHeight;
+  grid.TileSize = PickTile;
+  grid.Slabs = 16;
+  const pointsurfaces::PerspectiveGrid voxels = pointsurfaces::BuildPerspectiveGrid(nearby, grid);
+  if (voxels.SlabPlanes.size() < 2)
+  {
+    return;
+  }
+
+  // Each hit pixel's surface point against its voxel's balls, which hold
+  // every ball whose support contains it (all of the area's balls where a
+  // rounding error leaves the voxel empty).
+  vtkSMPTools::For(0,
+    areaHeight,
+    [&](vtkIdType rowBegin, vtkIdType rowEnd)
+    {
+      for (vtkIdType row = rowBegin; row < rowEnd; ++row)
+      {
+        const int y = area[1] + static_cast<int>(row);
+        for (int x = area[0]; x <= area[2]; ++x)
+        {
+          const size_t pixel = static_cast<size_t>(y) * width + x;
+          if (colors[4 * pixel + 3] == 0)
+          {
+            continue;
+          }
+          const double distance = hits[4 * pixel + 3];
+          double point[3];
+          HitPoint(cast.ClipToView, width, height, x, y, distance, point);
+          const size_t slab = SlabOf(voxels.SlabPlanes, distance);
+          const size_t voxel =
+            (slab * voxels.TilesY + row / PickTile) * voxels.TilesX + (x - area[0]) / PickTile;
+          long long best = -1;
+          if (voxel + 1 < voxels.Offsets.size() &&
+            voxels.Offsets[voxel + 1] > voxels.Offsets[voxel])
+          {
+            const unsigned first = voxels.Offsets[voxel];
+            best = pointsurfaces::DominantBall(
+              nearby, point, voxels.Balls.data() + first, voxels.Offsets[voxel + 1] - first);
+          }
+          if (best < 0)
+          {
+            best = pointsurfaces::DominantBall(nearby, point);
+          }
+          in.PickIds[static_cast<size_t>(row) * areaWidth + x - area[0]] =
+            best >= 0 ? static_cast<vtkIdType>(ids[best]) : -1;
+        }
+      }
+    });
+}
+
+//------------------------------------------------------------------------------
 void vtkMetaballMapper::ReleaseGraphicsResources(vtkWindow* win)
 {
   Internals& in = *this->Impl;
@@ -1060,6 +1519,14 @@ void vtkMetaballMapper::ReleaseGraphicsResources(vtkWindow* win)
     in.Composite.reset();
   }
   in.CompositeLighting = in.CompositeLights = -1;
+  in.PickImage->ReleaseGraphicsResources(win);
+  if (in.PickComposite)
+  {
+    in.PickComposite->ReleaseGraphicsResources(win);
+    in.PickComposite.reset();
+  }
+  in.CastValid = false;
+  in.PickSerial = 0;
   in.Width = in.Height = 0;
   in.Count = 0;
   in.UploadTime = vtkTimeStamp();

@@ -33,6 +33,32 @@
  * and the colouring are watched). Points with NaN or infinite values, or a
  * radius <= 0, are skipped and counted, with a warning.
  *
+ * Selection (vtkHardwareSelector, and so ParaView's interactive selection)
+ * picks balls: a hit pixel selects the ball that dominates the surface
+ * there, the one whose term q_i K(|x - p_i|^2 / R_i^2) is the largest at the
+ * pixel's surface point x (pointsurfaces::DominantBall). The ids are point
+ * ids, with FIELD_ASSOCIATION_POINTS and FIELD_ASSOCIATION_CELLS alike: the
+ * balls are the input's points, whatever cells it has. For a vtkPolyData
+ * with one vertex cell per point, in point order (the usual point-cloud
+ * layout), they are its cell ids too; for other cells they are not.
+ *
+ * Every pass of the selector draws the hits of one ray cast: the last
+ * frame's when the view, the viewport, the balls and the settings have not
+ * changed since (so its depths match the frame the point passes test
+ * against), else a fresh one, without shadows. The dominant balls are found
+ * on the CPU, once per cast and selection area, for the hit pixels of the
+ * selector's area only: the balls that reach into the area's frustum are
+ * binned into a perspective grid over the area (BuildPerspectiveGrid), and
+ * each hit pixel's surface point (on its ray, at its view distance) is
+ * tested against its voxel's balls. The pass's colour is written unlit,
+ * unblended and exact, with the hit's depth, depth-tested against the other
+ * props: the prop colour that the selector sets (GetPropColorValue: the prop
+ * id in the actor pass, the ProcessID in the process pass, composite index
+ * 1, as vtkOpenGLPolyDataMapper gives a plain data set, in the composite
+ * pass, each plus one), and id + 1 split into its low and high 24 bits in
+ * the id passes. A process id array (UseProcessIdFromData) is not read.
+ * Normal rendering does no selection work.
+ *
  * pointsurfaces::CastRay and BuildPerspectiveGrid (Filters/Core/psMetaball.h)
  * are the double-precision references the tests compare with.
  */
@@ -47,6 +73,7 @@
 #include <memory> // For the implementation
 
 class vtkFloatArray;
+class vtkHardwareSelector;
 class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
 class vtkPointSet;
@@ -239,6 +266,17 @@ public:
 
   void ReleaseGraphicsResources(vtkWindow* win) override;
 
+  /**
+   * Always 0: scalars are mapped to colours on the balls, one colour per
+   * ball, whatever InterpolateScalarsBeforeMapping says (ParaView turns it
+   * on for every display); the surface blends the mapped colours by the
+   * balls' kernel weights.
+   */
+  int CanUseTextureMapForColoring(vtkDataObject* input) override;
+
+  /** True: vtkHardwareSelector picks balls (point ids; see the class comment). */
+  bool GetSupportsSelection() override { return true; }
+
 protected:
   vtkMetaballMapper();
   ~vtkMetaballMapper() override;
@@ -281,6 +319,17 @@ protected:
     int width,
     int height,
     unsigned int& inside);
+  /**
+   * One pass of a hardware selection over the last cast's hits: each hit
+   * pixel of the selector's area in the pass's colour, unlit, with its
+   * depth. (x0, y0): the viewport's origin in the window.
+   */
+  void DrawSelection(vtkRenderer* ren, vtkHardwareSelector* selector, int x0, int y0);
+  /**
+   * The ball that dominates each hit pixel of the last cast in `area`
+   * (viewport pixels xmin, ymin, xmax, ymax), into the selection cache.
+   */
+  void PickBalls(const int area[4]);
   int CastShadows(vtkRenderer* ren,
     vtkActor* act,
     vtkMatrix4x4* model,

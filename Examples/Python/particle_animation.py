@@ -166,6 +166,7 @@ def main():
     poly.SetPoints(points)
     mapper = pointsurfaces.vtkMetaballMapper()
     mapper.SetInputData(poly)
+    mapper.GetField().SetRadiusArrayName("Radius")  # every step gets one (below)
     actor = vtkActor()
     actor.SetMapper(mapper)
     actor.GetProperty().SetSpecular(0.3)
@@ -183,6 +184,8 @@ def main():
     png = vtkPNGWriter()
     png.SetInputConnection(grab.GetOutputPort())
     level_set = pointsurfaces.vtkMetaballLevelSetWriter() if args.vdb else None
+    if level_set:
+        level_set.GetField().SetRadiusArrayName("Radius")
 
     builds, rays, frames = [], [], []
     for k in range(steps):

@@ -356,6 +356,37 @@ double FieldValue(const MetaballSet& set,
 }
 
 //------------------------------------------------------------------------------
+long long DominantBall(const MetaballSet& set,
+  const double x[3],
+  const unsigned* ids,
+  long long idCount)
+{
+  long long best = -1;
+  double bestTerm = 0.0, bestRatio = std::numeric_limits<double>::infinity();
+  const long long n = ids ? idCount : set.Count;
+  for (long long k = 0; k < n; ++k)
+  {
+    const long long i = ids ? static_cast<long long>(ids[k]) : k;
+    if (!ValidBall(set, i))
+    {
+      continue;
+    }
+    const double* c = set.Centers + 3 * i;
+    const double d[3] = { x[0] - c[0], x[1] - c[1], x[2] - c[2] };
+    const double ratio = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / (set.Radii[i] * set.Radii[i]);
+    const double q = set.Strengths ? set.Strengths[i] : 1.0;
+    const double term = ratio < 1.0 ? std::max(q * KernelValue(set.Kernel, ratio), 0.0) : 0.0;
+    if (best < 0 || term > bestTerm || (term == bestTerm && ratio < bestRatio))
+    {
+      best = i;
+      bestTerm = term;
+      bestRatio = ratio;
+    }
+  }
+  return best;
+}
+
+//------------------------------------------------------------------------------
 bool BallVoxels(const GridView& view,
   const std::vector<double>& slabPlanes,
   const double centre[3],

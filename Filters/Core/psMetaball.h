@@ -118,6 +118,19 @@ POINTSURFACESFILTERS_EXPORT double FieldValue(const MetaballSet& set,
   long long idCount = 0);
 
 /**
+ * The ball that dominates the field at x, for picking: the valid ball of
+ * `ids` (all balls when ids is null) whose term q_i K(|x - p_i|^2 / R_i^2)
+ * is the largest, negative terms counting as 0. Among equal terms (all 0
+ * where x lies outside every support, as a point a rounding error off the
+ * surface can), the smallest |x - p_i|^2 / R_i^2 wins, then the earlier
+ * ball of the list. -1 when no ball is valid.
+ */
+POINTSURFACESFILTERS_EXPORT long long DominantBall(const MetaballSet& set,
+  const double x[3],
+  const unsigned* ids = nullptr,
+  long long idCount = 0);
+
+/**
  * The box that the supports of the valid balls cover (centre +- R_i), as
  * xmin, xmax, ymin, ymax, zmin, zmax; min > max on every axis when no ball
  * is valid.

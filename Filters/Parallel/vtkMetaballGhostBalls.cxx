@@ -10,6 +10,7 @@
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
@@ -21,6 +22,7 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -173,6 +175,21 @@ vtkSmartPointer<vtkPolyData> MergePoints(const std::vector<vtkPointSet*>& sets,
   return out;
 }
 
+// The field-data array of the mean spacing of all processes' balls: set to
+// `spacing`, or removed when it is not positive.
+void SetSpacingArray(vtkFieldData* fd, double spacing)
+{
+  fd->RemoveArray(pointsurfaces::MeanSpacingArrayName);
+  if (spacing > 0.0)
+  {
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(pointsurfaces::MeanSpacingArrayName);
+    array->SetNumberOfValues(1);
+    array->SetValue(0, spacing);
+    fd->AddArray(array);
+  }
+}
+
 // All point ids of a set.
 std::vector<vtkIdType> AllIds(vtkIdType n)
 {
@@ -243,6 +260,150 @@ int vtkMetaballGhostBalls::RequestDataObject(vtkInformation*,
 }
 
 //------------------------------------------------------------------------------
+double vtkMetaballGhostBalls::SpacingOfAllProcesses(const std::vector<vtkPointSet*>& leaves,
+  const std::vector<std::vector<vtkIdType>>& own,
+  const std::vector<pointsurfaces::RadiusSource>& sources)
+{
+  // Our own balls of the leaves whose radii follow the spacing, each with
+  // its nearest neighbour among them; measured again only when a leaf
+  // changed.
+  std::vector<const void*> measured;
+  std::vector<vtkMTimeType> times;
+  for (size_t k = 0; k < leaves.size(); ++k)
+  {
+    if (sources[k].Rule == pointsurfaces::RadiusRule::Spacing)
+    {
+      measured.push_back(leaves[k]);
+      times.push_back(leaves[k]->GetMTime());
+    }
+  }
+  if (!this->Neighbours || measured != this->SpacingLeaves || times != this->SpacingTimes)
+  {
+    std::vector<double> xyz;
+    for (size_t k = 0; k < leaves.size(); ++k)
+    {
+      if (sources[k].Rule == pointsurfaces::RadiusRule::Spacing)
+      {
+        for (vtkIdType i : own[k])
+        {
+          double p[3];
+          leaves[k]->GetPoint(i, p);
+          xyz.insert(xyz.end(), p, p + 3);
+        }
+      }
+    }
+    this->Neighbours.reset(
+      new pointsurfaces::NearestNeighbours(xyz.data(), static_cast<long long>(xyz.size() / 3)));
+    this->SpacingLeaves = measured;
+    this->SpacingTimes = times;
+  }
+  const pointsurfaces::NearestNeighbours& mine = *this->Neighbours;
+  std::vector<double> distances = mine.Distances;
+
+  // Points near a cut may have their nearest neighbour on another process.
+  // Each process asks the others about its points whose distance to their
+  // nearest here reaches that process's box (all of them when alone), and
+  // keeps the nearer answer: each point then has its nearest neighbour among
+  // all processes' points, as in one process. (A position held by two
+  // processes counts on each, its copy not being a neighbour.)
+  const int ranks = this->Controller->GetNumberOfProcesses();
+  const int me = this->Controller->GetLocalProcessId();
+  double box[6] = { 1.0, 0.0, 1.0, 0.0, 1.0, 0.0 }; // empty
+  for (long long i = 0; i < mine.Size(); ++i)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = mine.Point(i)[a];
+      box[2 * a] = i ? std::min(box[2 * a], x) : x;
+      box[2 * a + 1] = i ? std::max(box[2 * a + 1], x) : x;
+    }
+  }
+  std::vector<double> boxes(6 * static_cast<size_t>(ranks));
+  this->Controller->AllGather(box, boxes.data(), 6);
+  for (int rank = 0; rank < ranks; ++rank)
+  {
+    // Our questions to `rank`: points whose nearest-neighbour sphere reaches its box.
+    const double* b = boxes.data() + 6 * rank;
+    std::vector<long long> asked;
+    std::vector<double> questions;
+    if (rank != me && b[0] <= b[1])
+    {
+      for (long long i = 0; i < mine.Size(); ++i)
+      {
+        const double* p = mine.Point(i);
+        double d2 = 0.0;
+        for (int a = 0; a < 3; ++a)
+        {
+          const double gap = std::max({ b[2 * a] - p[a], p[a] - b[2 * a + 1], 0.0 });
+          d2 += gap * gap;
+        }
+        if (!(d2 > distances[i] * distances[i]))
+        {
+          asked.push_back(i);
+          questions.insert(questions.end(), p, p + 3);
+        }
+      }
+    }
+    // Gathered on `rank`, answered there, and the answers scattered back.
+    vtkIdType count = static_cast<vtkIdType>(asked.size());
+    std::vector<vtkIdType> counts(ranks, 0), lengths(ranks, 0), offsets(ranks, 0);
+    this->Controller->Gather(&count, counts.data(), 1, rank);
+    vtkIdType total = 0;
+    for (int r = 0; r < ranks; ++r)
+    {
+      lengths[r] = 3 * counts[r];
+      offsets[r] = total;
+      total += counts[r];
+    }
+    std::vector<double> received(3 * static_cast<size_t>(total) + 3);
+    std::vector<vtkIdType> lengthOffsets(ranks, 0);
+    for (int r = 0; r < ranks; ++r)
+    {
+      lengthOffsets[r] = 3 * offsets[r];
+    }
+    questions.resize(questions.size() + 3); // never empty: a valid pointer
+    this->Controller->GatherV(
+      questions.data(), received.data(), 3 * count, lengths.data(), lengthOffsets.data(), rank);
+    std::vector<double> answers(static_cast<size_t>(total) + 1);
+    if (rank == me)
+    {
+      vtkSMPTools::For(0,
+        total,
+        [&](vtkIdType begin, vtkIdType end)
+        {
+          for (vtkIdType q = begin; q < end; ++q)
+          {
+            answers[q] = mine.NearestTo(received.data() + 3 * q);
+          }
+        });
+    }
+    std::vector<double> replies(static_cast<size_t>(count) + 1);
+    this->Controller->ScatterV(
+      answers.data(), replies.data(), counts.data(), offsets.data(), count, rank);
+    for (vtkIdType q = 0; q < count; ++q)
+    {
+      distances[asked[q]] = std::min(distances[asked[q]], replies[q]);
+    }
+  }
+
+  // Every process's sum and count, added in rank order on every process:
+  // the same mean everywhere, to the last bit (a reduction's order may
+  // differ between processes).
+  const pointsurfaces::NeighbourSpacing local =
+    pointsurfaces::NearestNeighbours::Spacing(distances);
+  const double sums[2] = { local.Sum, static_cast<double>(local.Count) };
+  std::vector<double> all(2 * static_cast<size_t>(ranks));
+  this->Controller->AllGather(sums, all.data(), 2);
+  double sum = 0.0, count = 0.0;
+  for (int r = 0; r < ranks; ++r)
+  {
+    sum += all[2 * r];
+    count += all[2 * r + 1];
+  }
+  return count > 0.0 ? sum / count : 0.0;
+}
+
+//------------------------------------------------------------------------------
 int vtkMetaballGhostBalls::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -276,39 +437,49 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
   const int ranks = this->Controller ? this->Controller->GetNumberOfProcesses() : 1;
   const pointsurfaces::BallRule rule = this->Field->GetRule();
   std::vector<std::vector<vtkIdType>> own(leaves.size());
-  std::vector<double> centres, radii;
-  bool negative = false, noRadii = false;
+  std::vector<pointsurfaces::RadiusSource> sources(leaves.size());
   for (size_t k = 0; k < leaves.size(); ++k)
   {
     vtkPointSet* leaf = leaves[k];
-    vtkPointData* pd = leaf->GetPointData();
-    auto* ghosts =
-      vtkUnsignedCharArray::SafeDownCast(pd->GetArray(vtkDataSetAttributes::GhostArrayName()));
-    vtkDataArray* r = pointsurfaces::RadiusArray(leaf, rule);
-    vtkDataArray* q = pointsurfaces::StrengthArray(leaf, rule);
-    noRadii = noRadii || (!rule.RadiusArrayName.empty() && !r && leaf->GetNumberOfPoints() > 0);
+    auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
+      leaf->GetPointData()->GetArray(vtkDataSetAttributes::GhostArrayName()));
     for (vtkIdType i = 0; i < leaf->GetNumberOfPoints(); ++i)
     {
-      if (Duplicate(ghosts, i))
+      if (!Duplicate(ghosts, i))
       {
-        continue;
+        own[k].push_back(i);
       }
-      own[k].push_back(i);
-      if (ranks <= 1)
-      {
-        continue;
-      }
+    }
+    if (ranks > 1)
+    {
+      sources[k] = pointsurfaces::ChooseRadii(leaf, rule);
+    }
+  }
+  const double spacing = ranks > 1 ? this->SpacingOfAllProcesses(leaves, own, sources) : 0.0;
+  std::vector<double> centres, radii;
+  bool negative = false, reported = false;
+  for (size_t k = 0; k < leaves.size() && ranks > 1; ++k)
+  {
+    vtkPointSet* leaf = leaves[k];
+    pointsurfaces::RadiusSource& source = sources[k];
+    if (source.Rule == pointsurfaces::RadiusRule::Spacing)
+    {
+      pointsurfaces::ApplySpacing(source, spacing, true);
+    }
+    if (!reported && !own[k].empty())
+    {
+      this->Field->ReportRadii(source);
+      reported = true;
+    }
+    vtkDataArray* q = pointsurfaces::StrengthArray(leaf, rule);
+    for (vtkIdType i : own[k])
+    {
       double p[3];
       leaf->GetPoint(i, p);
       centres.insert(centres.end(), p, p + 3);
-      radii.push_back(pointsurfaces::SupportRadius(r, i, rule));
+      radii.push_back(source.SupportRadius(i));
       negative = negative || (q && q->GetComponent(i, 0) < 0.0);
     }
-  }
-  if (noRadii)
-  {
-    vtkWarningMacro(<< "No point array \"" << rule.RadiusArrayName
-                    << "\" for the radii: every ball has radius " << rule.Radius << ".");
   }
   if (negative)
   {
@@ -399,6 +570,7 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
       placed = true;
     }
     vtkSmartPointer<vtkPolyData> cloud = MergePoints(sets, keep, missing);
+    cloud->GetFieldData()->PassData(leaves[k]->GetFieldData());
     if (ranks > 1)
     {
       vtkNew<vtkUnsignedCharArray> flags;
@@ -428,6 +600,16 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
                     << names << ": their values there are zero.");
   }
 
+  // Split across processes: every leaf carries the spacing of all the
+  // processes' balls (or none, whatever the input carried), for the mappers.
+  if (ranks > 1)
+  {
+    for (vtkPolyData* cloud : clouds)
+    {
+      SetSpacingArray(cloud->GetFieldData(), spacing);
+    }
+  }
+
   if (composite)
   {
     vtkCompositeDataSet* out = vtkCompositeDataSet::SafeDownCast(output);
@@ -440,7 +622,6 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
       vtkDataObject* leaf = it->GetCurrentDataObject();
       if (vtkPointSet::SafeDownCast(leaf))
       {
-        clouds[k]->GetFieldData()->PassData(leaf->GetFieldData());
         out->SetDataSet(it, clouds[k++]);
       }
       else
@@ -452,7 +633,6 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
   }
   else if (!clouds.empty())
   {
-    clouds[0]->GetFieldData()->PassData(leaves[0]->GetFieldData());
     vtkPolyData::SafeDownCast(output)->ShallowCopy(clouds[0]);
   }
   return 1;

@@ -24,9 +24,25 @@
  * own and ghost balls: occluders further away on other ranks cast none.
  *
  * Radii are found by the rule of vtkMetaballField, the one the mapper
- * uses; give the filter the mapper's field (SetField). The
- * exchange is collective (an all-gather of boxes, then a gather to each
- * rank in turn), so every rank must execute the filter.
+ * uses; give the filter the mapper's field (SetField). Where that rule
+ * takes the radii from the spacing of the balls (no radius array, no
+ * constant radius), each process alone would measure another spacing, and
+ * the surfaces would not meet at the cuts. With more than one process this
+ * filter therefore measures the mean nearest-neighbour spacing of all
+ * processes' own balls together: each process finds its balls' nearest
+ * neighbours among its own (pointsurfaces::NearestNeighbours), asks the
+ * processes whose boxes the distance reaches for a nearer one (balls near
+ * the cuts), and the sums and counts of all processes are added in rank
+ * order, so that every process gets the same number, the serial one up to
+ * rounding (a position held by two processes counts on each). The balls
+ * are exchanged with radii from it, and it goes into each output leaf's
+ * field data as the one-value array "MetaballMeanSpacing"
+ * (pointsurfaces::MeanSpacingArrayName), which the mappers' rule reads
+ * instead of measuring their piece. The measuring is kept for unchanged
+ * leaves. The exchange is collective (all-gathers of boxes and spacings,
+ * then gathers and scatters to each rank in turn), so every rank must
+ * execute the filter. With one process, or no controller, nothing is
+ * measured here (the mapper measures what it draws).
  *
  * Output: the balls as point clouds (one vertex per point; input cells and
  * cell data are not kept): a vtkPolyData for a vtkPointSet input, or, for a
@@ -50,7 +66,11 @@
 #include "vtkMetaballField.h" // For the field
 #include "vtkSmartPointer.h"  // For the field
 
+#include <memory> // For the neighbours
+#include <vector> // For the leaves
+
 class vtkMultiProcessController;
+class vtkPointSet;
 
 class POINTSURFACESFILTERSPARALLEL_EXPORT vtkMetaballGhostBalls : public vtkDataObjectAlgorithm
 {
@@ -67,9 +87,9 @@ public:
 
   ///@{
   /**
-   * The metaball field whose balls are exchanged: their radii (radius array
-   * or constant radius, times the radius scale) decide which balls reach
-   * other processes, and negative strengths are warned about (see
+   * The metaball field whose balls are exchanged: their radii (by the
+   * field's rule, the spacing measured over all processes) decide which
+   * balls reach other processes, and negative strengths are warned about (see
    * vtkMetaballField). Share the mapper's field (SetField) so that both
    * read the same balls; null restores a field of its own. Default: a field
    * of its own.
@@ -96,9 +116,30 @@ protected:
     vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
+#ifndef __VTK_WRAP__
+  /**
+   * The mean nearest-neighbour spacing of all processes' own balls of the
+   * leaves whose radii follow the spacing (`sources`), each ball's nearest
+   * neighbour sought on every process; 0 when no process has two such
+   * balls. The same number on every process; collective.
+   */
+  double SpacingOfAllProcesses(const std::vector<vtkPointSet*>& leaves,
+    const std::vector<std::vector<vtkIdType>>& own,
+    const std::vector<pointsurfaces::RadiusSource>& sources);
+#endif
+
   vtkMultiProcessController* Controller = nullptr;
   vtkSmartPointer<vtkMetaballField> Field;
   vtkIdType NumberOfGhostBalls = 0;
+
+#ifndef __VTK_WRAP__
+  // This process's balls whose radii follow the spacing, with their nearest
+  // neighbours here, and the leaves (addresses, compared and never
+  // followed, and modification times) they were taken from.
+  std::unique_ptr<pointsurfaces::NearestNeighbours> Neighbours;
+  std::vector<const void*> SpacingLeaves;
+  std::vector<vtkMTimeType> SpacingTimes;
+#endif
 
 private:
   vtkMetaballGhostBalls(const vtkMetaballGhostBalls&) = delete;

@@ -67,6 +67,7 @@ def main():
     poly = vtkPolyData()
     mapper = pointsurfaces.vtkMetaballMapper()
     mapper.SetInputData(poly)
+    mapper.GetField().SetRadiusArrayName("Radius")  # every frame gets one (below)
     mapper.SetRayCaster({"auto": mapper.AUTOMATIC, "cpu": mapper.CPU, "gpu": mapper.GPU}[args.caster])
     mapper.CollectStatisticsOn()  # this frame's times, waited for
     actor = vtkActor()

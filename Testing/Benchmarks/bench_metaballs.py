@@ -368,6 +368,7 @@ def main():
 
             def metaballs(step, bisections, caster=vtkMetaballMapper.CPU):
                 mapper = vtkMetaballMapper()
+                mapper.GetField().SetRadiusArrayName("Radius")  # poly_of's
                 mapper.SetRayCaster(caster)
                 mapper.SetInputDataObject(poly)
                 mapper.SetStepScale(step)
@@ -461,6 +462,7 @@ def main():
                 for fraction in fractions:
                     voxel = max(median / fraction, budget)
                     mesher = vtkOpenVDBParticleMesher()
+                    mesher.GetField().SetRadiusArrayName("Radius")  # poly_of's
                     mesher.SetInputData(poly)
                     mesher.SetMethod(method)
                     mesher.SetVoxelSize(voxel)

@@ -47,6 +47,7 @@ int main(int argc, char* argv[])
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
 
   vtkSmartPointer<vtkPolyData> balls;
+  std::string radiusArray = "Radius"; // the point array of radii, when the input has it
   vtkNew<vtkMetaballMapper> mapper;
   vtkNew<vtkMetaballLevelSetWriter> levelSet;
   // One field for both: the level set holds the surface that the window shows.
@@ -57,7 +58,7 @@ int main(int argc, char* argv[])
     reader->SetFileName(input.c_str());
     reader->Update();
     balls = reader->GetOutput();
-    mapper->GetField()->SetRadiusArrayName("pscale");
+    radiusArray = "pscale";
   }
   else if (ext == "pdb")
   {
@@ -67,7 +68,7 @@ int main(int argc, char* argv[])
     balls = reader->GetOutput();
     // Wyvill's kernel at T = 0.5 shows a lone atom at half its support: a
     // support of twice the van der Waals radius shows the atom at its radius.
-    mapper->GetField()->SetRadiusArrayName("radius");
+    radiusArray = "radius";
     mapper->GetField()->SetRadiusScale(2.0);
     mapper->SetColorModeToDirectScalars();
     mapper->SetScalarModeToUsePointFieldData();
@@ -85,7 +86,11 @@ int main(int argc, char* argv[])
     std::cerr << "ParticleMetaballs: no points in " << input << "\n";
     return EXIT_FAILURE;
   }
-  if (!balls->GetPointData()->GetArray(mapper->GetField()->GetRadiusArrayName()))
+  if (balls->GetPointData()->GetArray(radiusArray.c_str()))
+  {
+    mapper->GetField()->SetRadiusArrayName(radiusArray.c_str());
+  }
+  else
   {
     double b[6];
     balls->GetBounds(b);

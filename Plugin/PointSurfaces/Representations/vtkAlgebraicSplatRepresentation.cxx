@@ -54,6 +54,17 @@ PS_FORWARD(LODPixelError, double)
 #undef PS_FORWARD
 
 //------------------------------------------------------------------------------
+void vtkAlgebraicSplatRepresentation::SetOpacity(double opacity)
+{
+  if (opacity < 1.0)
+  {
+    vtkWarningMacro(<< "The Algebraic Splats representation draws an opaque surface: Opacity " << opacity
+                    << " is drawn as 1.");
+  }
+  this->Superclass::SetOpacity(1.0);
+}
+
+//------------------------------------------------------------------------------
 void vtkAlgebraicSplatRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -133,6 +133,17 @@ PS_FORWARD(Shadows, Shadows, bool)
 #undef PS_FORWARD_FIELD
 
 //------------------------------------------------------------------------------
+void vtkMetaballRepresentation::SetOpacity(double opacity)
+{
+  if (opacity < 1.0)
+  {
+    vtkWarningMacro(<< "The Metaballs representation draws an opaque surface: Opacity " << opacity
+                    << " is drawn as 1.");
+  }
+  this->Superclass::SetOpacity(1.0);
+}
+
+//------------------------------------------------------------------------------
 void vtkMetaballRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -67,6 +67,13 @@ public:
   void SetSuppressLOD(bool) override { this->Superclass::SetSuppressLOD(true); }
 
   /**
+   * The surface is drawn opaque: an Opacity below 1 is kept at 1, with a
+   * warning. (The mapper's own passes do not take part in ParaView's depth
+   * peeling; drawn translucent, the surface broke into stripes and holes.)
+   */
+  void SetOpacity(double opacity) override;
+
+  /**
    * As the superclass, but the view must not move this data between ranks:
    * its ghost balls are made for this split (and ordered compositing is
    * never needed for it: the surface is opaque). Unless the view renders

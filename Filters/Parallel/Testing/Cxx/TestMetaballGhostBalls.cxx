@@ -18,14 +18,20 @@
 //   without arrays): the same structure back, the copy dropped, the same
 //   ghosts, which follow the first leaf, and every leaf keeps its arrays;
 // - bad input: a rank with no balls, NaN centres and zero radii take part
-//   without hanging or sending them.
+//   without hanging or sending them;
+// - no radius array and no radius: the automatic radii follow the mean
+//   nearest-neighbour spacing of all the balls (the serial one to 1e-12),
+//   the same number on every rank, passed on in the field data, where the
+//   mappers' rule takes it.
 #include "vtkMetaballGhostBalls.h"
 
+#include "psBallExtraction.h"
 #include "psMetaball.h"
 
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkMPIController.h"
 #include "vtkMetaballMapper.h"
@@ -344,6 +350,50 @@ int TestMetaballGhostBalls(int argc, char* argv[])
       nans += std::isnan(p[0]) ? 1 : 0;
     }
     check(nans == 1, "NaN balls are not sent");
+  }
+
+  // No radius array and no radius: the radii follow the mean spacing, the
+  // same on every rank, that of all the balls (each ball's nearest
+  // neighbour sought on every rank), passed on in the field data.
+  {
+    vtkSmartPointer<vtkPolyData> bare = MakeBalls(rank, ranks, false);
+    bare->GetPointData()->RemoveArray("Radius");
+    vtkSmartPointer<vtkPolyData> whole = MakeBalls(0, 1, true);
+    const double serial = pointsurfaces::MeasureSpacing(whole).Mean();
+    vtkNew<vtkMetaballGhostBalls> spaced;
+    spaced->SetInputDataObject(bare);
+    spaced->Update();
+    auto* result = vtkPolyData::SafeDownCast(spaced->GetOutputDataObject(0));
+    vtkDataArray* passed =
+      result ? result->GetFieldData()->GetArray(pointsurfaces::MeanSpacingArrayName) : nullptr;
+    const double spacing = passed ? passed->GetComponent(0, 0) : 0.0;
+    std::vector<double> spacings(ranks);
+    controller->AllGather(&spacing, spacings.data(), 1);
+    if (ranks > 1)
+    {
+      check(passed && std::abs(spacing - serial) <= 1e-12 * serial,
+        "automatic radii: the spacing of all the balls");
+      check(std::all_of(spacings.begin(), spacings.end(), [&](double s) { return s == spacing; }),
+        "automatic radii: the same spacing on every rank");
+      check(spaced->GetField()->GetRadiusRule() == vtkMetaballField::SpacingRadius &&
+          spaced->GetNumberOfGhostBalls() > 0,
+        "automatic radii: ghosts exchanged by the spacing rule");
+      // What the mappers read: the spacing passed on, not their piece's.
+      vtkNew<vtkMetaballField> field;
+      const pointsurfaces::RadiusSource source = field->ChooseRadii(result);
+      check(source.Rule == pointsurfaces::RadiusRule::Spacing && source.SpacingOfAllProcesses &&
+          source.Radius == pointsurfaces::SpacingRadiusFactor * spacing,
+        "automatic radii: the mapper's rule takes the spacing passed on");
+    }
+    else
+    {
+      check(!passed, "automatic radii: nothing passed on by one process");
+    }
+    if (rank == 0)
+    {
+      std::cout << "automatic radii: mean spacing " << spacing << " on " << ranks
+                << " rank(s), serial " << serial << "\n";
+    }
   }
 
   int total = 0;

@@ -1,0 +1,164 @@
+# SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+# SPDX-License-Identifier: BSD-3-Clause
+"""Every reader of the plugin, from files named as their codes name them, shown
+as Metaballs with the defaults (pvbatch).
+
+    pvbatch TestPointSurfacesReaders.py PLUGIN DATA_DIR BASELINE_DIR OUT_DIR IO_DATA_DIR [--mpi]
+
+- OpenDataFile (the reader factory behind File > Open) must pick the
+  plugin's reader for `dump.meoh`, `dump.1000.melt`, `melt.lammpstrj`,
+  `confout.gro`, `traj_comp.xtc`, `snapshot_000.hdf5`, `snap_000.0.hdf5`,
+  `output_0000.hdf5`, `points.vdb` and `cloud.off` (copies of the test data
+  under those names);
+- each reader's output, shown as Metaballs with no property touched (the
+  radii come from the data: the readers' `radius` or `SmoothingLength`
+  arrays, else a multiple of the mean nearest-neighbour spacing), is compared
+  with a baseline picture, and must cover a sane share of the view: balls of
+  one unit, whatever the data's scale, filled the view with one blob or
+  vanished (a GROMACS box is 3 nm across, a Gadget subset 2e4 kpc).
+
+With --mpi (pvbatch --symmetric under mpiexec -n 2) the particles are split
+between the ranks first; the automatic radius is the same on every rank
+(vtkMetaballGhostBalls reduces the spacing over the ranks), so the pictures
+match the serial baselines.
+"""
+import os
+import shutil
+import sys
+
+from paraview import servermanager
+from paraview.simple import *  # noqa: F401,F403
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from pointsurfaces_plugin_test import SIZE, differing_pixels, pixels  # noqa: E402
+
+plugin, data, baselines, out, io_data = sys.argv[1:6]
+mpi = "--mpi" in sys.argv[6:]
+RANK = servermanager.vtkProcessModule.GetProcessModule().GetPartitionId()
+os.makedirs(out, exist_ok=True)
+failures = []
+
+
+def check(ok, what):
+    if RANK != 0:
+        return
+    print(("ok:     " if ok else "FAILED: ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+
+
+LoadPlugin(plugin, ns=globals())
+
+# The test data under the names the codes give their files.
+named = os.path.join(out, "named")
+os.makedirs(named, exist_ok=True)
+COPIES = {
+    "dump.meoh": os.path.join(io_data, "lammps", "melt.lammpstrj"),
+    "dump.1000.melt": os.path.join(io_data, "lammps", "melt.lammpstrj"),
+    "melt.lammpstrj": os.path.join(io_data, "lammps", "melt.lammpstrj"),
+    "confout.gro": os.path.join(io_data, "gromacs", "water_traj.gro"),
+    "traj_comp.xtc": os.path.join(io_data, "gromacs", "water_p3.xtc"),
+    "snapshot_000.hdf5": os.path.join(io_data, "gadget", "lcdm_gas_z5_subset.hdf5"),
+    "snap_000.0.hdf5": os.path.join(io_data, "gadget", "lcdm_gas_z5_subset.hdf5"),
+    "output_0000.hdf5": os.path.join(io_data, "gadget", "lcdm_gas_z5_subset.hdf5"),
+    "points.vdb": os.path.join(data, "..", "Fuzz", "Corpus", "OpenVDBPoints", "points-blosc.vdb"),
+    "cloud.off": os.path.join(data, "..", "Fuzz", "Corpus", "OpenMesh", "cloud-off"),
+}
+if RANK == 0:
+    for name, source in COPIES.items():
+        shutil.copyfile(source, os.path.join(named, name))
+if mpi:
+    servermanager.vtkProcessModule.GetProcessModule().GetGlobalController().Barrier()
+
+READERS = {
+    "dump.meoh": "LAMMPSDumpReader",
+    "dump.1000.melt": "LAMMPSDumpReader",
+    "melt.lammpstrj": "LAMMPSDumpReader",
+    "confout.gro": "GromacsGroReader",
+    "traj_comp.xtc": "GromacsXtcReader",
+    "snapshot_000.hdf5": "GadgetHDF5Reader",
+    "snap_000.0.hdf5": "GadgetHDF5Reader",
+    "output_0000.hdf5": "GadgetHDF5Reader",
+    "points.vdb": "OpenVDBPointsReader",
+    "cloud.off": "OpenMeshReader",
+}
+opened = {}
+for name, expected in READERS.items():
+    reader = OpenDataFile(os.path.join(named, name))
+    got = reader.GetXMLName() if reader is not None else None
+    check(got == expected, "%s opens with %s (%s)" % (name, expected, got))
+    opened[name] = reader
+
+view = CreateRenderView()
+view.ViewSize = SIZE
+view.OrientationAxesVisibility = 0
+view.Background = [0.32, 0.34, 0.43]
+view.UseColorPaletteForBackground = 0
+view.UseFXAA = 0
+
+
+def show_defaults(name, label, setup=None):
+    """`name`'s reader output as Metaballs with the defaults, against a baseline."""
+    source = opened[name]
+    if source is None:
+        return
+    if setup:
+        setup(source)
+    source.UpdatePipeline()
+    bounds = source.GetDataInformation().GetBounds()
+    shown = RedistributeDataSet(Input=source) if mpi else source
+    display = Show(shown, view)
+    display.SetRepresentationType("Metaballs")
+    display.MetaballRayCaster = 2  # the native CPU caster: llvmpipe, as in CI
+    ColorBy(display, None)
+    display.AmbientColor = display.DiffuseColor = [0.9, 0.85, 0.75]
+    Render(view)
+    # One camera for serial and split runs: from the reader's whole bounds.
+    centre = [0.5 * (bounds[2 * k] + bounds[2 * k + 1]) for k in range(3)]
+    size = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-30)
+    view.CameraFocalPoint = centre
+    view.CameraPosition = [centre[0] + 1.2 * size, centre[1] - 1.6 * size, centre[2] + 1.1 * size]
+    view.CameraViewUp = [0, 0, 1]
+    view.CameraViewAngle = 30
+    Render(view)
+    path = os.path.join(out, label + (".mpi" if mpi else "") + ".png")
+    SaveScreenshot(path, view, ImageResolution=SIZE)
+    Hide(shown, view)
+    if RANK != 0:
+        return
+    dims, image = pixels(path)
+    background = [round(255 * c) for c in view.Background]
+    covered = (abs(image - background).max(axis=1) > 12).mean()
+    check(0.01 < covered < 0.8,
+          "%s as Metaballs with the defaults covers %.1f %% of the view" % (name, 100 * covered))
+    baseline = os.path.join(baselines, label + ".png")
+    if os.environ.get("POINTSURFACES_UPDATE_BASELINES") and not mpi:
+        shutil.copyfile(path, baseline)
+        print("wrote baseline " + baseline)
+        return
+    differ, why = differing_pixels(path, baseline)
+    if why:
+        check(False, "%s: %s" % (label, why))
+        return
+    tolerance = 0.002 if mpi else 0.001
+    check(differ <= tolerance, "%s: %.3f %% of the pixels differ from the baseline (at most %.1f %%)"
+          % (label, 100 * differ, 100 * tolerance))
+
+
+show_defaults("dump.meoh", "ReaderDefaultsLAMMPS")
+show_defaults("confout.gro", "ReaderDefaultsGRO")
+
+
+def structure(xtc):
+    xtc.StructureFile = os.path.join(named, "confout.gro")
+
+
+show_defaults("traj_comp.xtc", "ReaderDefaultsXTC", structure)
+show_defaults("snapshot_000.hdf5", "ReaderDefaultsGadget")
+show_defaults("points.vdb", "ReaderDefaultsOpenVDB")
+show_defaults("cloud.off", "ReaderDefaultsOpenMesh")
+
+if RANK == 0:
+    print("TestPointSurfacesReaders: %d failure(s)" % len(failures), flush=True)
+Delete(view)
+del view
