@@ -20,8 +20,8 @@
  *    "Radius", "radius" (vtkPDBReader, vtkAtomRadii, the GROMACS readers,
  *    LAMMPS dumps), "SmoothingLength" (Gadget), "SmoothingLengths" (SWIFT),
  *    "pscale" (OpenVDB points), or half of "diameter" (LAMMPS dumps);
- * 4. 2.5 times the mean nearest-neighbour spacing of the points
- *    (pointsurfaces::SpacingRadiusFactor, which says why 2.5), measured once
+ * 4. 1.5 times the mean nearest-neighbour spacing of the points
+ *    (pointsurfaces::SpacingRadiusFactor, which says why 1.5), measured once
  *    for points that have not changed; split across processes,
  *    vtkMetaballGhostBalls measures it over all of them and passes it on in
  *    the field data, so that every process uses the same;
@@ -108,7 +108,7 @@ public:
   /**
    * The support radius of every ball when it is positive and RadiusArrayName
    * names no array the input has. 0 (the default): automatic, from an array
-   * the readers write or else 2.5 times the mean nearest-neighbour spacing.
+   * the readers write or else 1.5 times the mean nearest-neighbour spacing.
    */
   vtkSetMacro(Radius, double);
   vtkGetMacro(Radius, double);
@@ -156,7 +156,7 @@ public:
     NamedRadiusArray = 0, ///< RadiusArrayName
     ConstantRadius = 1,   ///< Radius
     FoundRadiusArray = 2, ///< the first array the readers write radii in
-    SpacingRadius = 3,    ///< 2.5 times the mean nearest-neighbour spacing
+    SpacingRadius = 3,    ///< 1.5 times the mean nearest-neighbour spacing
     UnitRadius = 4        ///< 1: nothing to measure
   };
 
@@ -174,7 +174,7 @@ public:
   const char* GetRadiusRuleDescription() { return this->RadiusRuleDescription.c_str(); }
   ///@}
 
-  /** The automatic radius in mean nearest-neighbour spacings (2.5). */
+  /** The automatic radius in mean nearest-neighbour spacings (1.5). */
   static double GetSpacingRadiusFactor();
 
 #ifndef __VTK_WRAP__

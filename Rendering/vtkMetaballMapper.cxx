@@ -1237,6 +1237,15 @@ void vtkMetaballMapper::DrawSelection(vtkRenderer* ren,
     pass == vtkHardwareSelector::POINT_ID_LOW24 || pass == vtkHardwareSelector::CELL_ID_LOW24;
   const bool high =
     pass == vtkHardwareSelector::POINT_ID_HIGH24 || pass == vtkHardwareSelector::CELL_ID_HIGH24;
+  // Ids through the input's id array when it has one (ParaView's original ids).
+  vtkPointSet* input = this->GetInput();
+  vtkDataArray* idArray = input && !this->PointIdArrayName.empty()
+    ? input->GetPointData()->GetArray(this->PointIdArrayName.c_str())
+    : nullptr;
+  if (idArray && idArray->GetNumberOfTuples() != input->GetNumberOfPoints())
+  {
+    idArray = nullptr;
+  }
   std::vector<unsigned char>& pixels = in.PickPixels;
   pixels.assign(4 * static_cast<size_t>(width) * height, 0);
   const int areaWidth = area[2] - area[0] + 1;
@@ -1244,10 +1253,14 @@ void vtkMetaballMapper::DrawSelection(vtkRenderer* ren,
   {
     for (int x = area[0]; x <= area[2]; ++x)
     {
-      const vtkIdType id = in.PickIds[static_cast<size_t>(y - area[1]) * areaWidth + x - area[0]];
+      vtkIdType id = in.PickIds[static_cast<size_t>(y - area[1]) * areaWidth + x - area[0]];
       if (id == NoHit)
       {
         continue;
+      }
+      if (idArray && id >= 0)
+      {
+        id = static_cast<vtkIdType>(idArray->GetComponent(id, 0));
       }
       // VTK 9.1's selector reads the id as written (the actor pass tells hits
       // from the background); a hit without a ball (id -1) writes 0.

@@ -71,6 +71,7 @@
 #include "vtkSmartPointer.h"  // For the field
 
 #include <memory> // For the implementation
+#include <string> // For PointIdArrayName
 
 class vtkFloatArray;
 class vtkHardwareSelector;
@@ -277,6 +278,18 @@ public:
   /** True: vtkHardwareSelector picks balls (point ids; see the class comment). */
   bool GetSupportsSelection() override { return true; }
 
+  ///@{
+  /**
+   * Under a hardware selector, the id a ball reports: the value of this
+   * integer point array of the input when it has it (ParaView's
+   * "vtkOriginalPointIds", which maps the geometry it draws back to the
+   * data set the user selects from), else the ball's point index. Default
+   * empty: the point index.
+   */
+  vtkSetStdStringFromCharMacro(PointIdArrayName);
+  vtkGetCharFromStdStringMacro(PointIdArrayName);
+  ///@}
+
 protected:
   vtkMetaballMapper();
   ~vtkMetaballMapper() override;
@@ -366,6 +379,8 @@ protected:
   vtkIdType NumberOfBisectionSamples = 0;
   vtkIdType NumberOfKernelTerms = 0;
   double ShadowTime = 0.0;
+
+  std::string PointIdArrayName;
 
 private:
   struct Internals;

@@ -19,7 +19,7 @@
  *      a LAMMPS dump's radius column), "SmoothingLength" (Gadget),
  *      "SmoothingLengths" (SWIFT), "pscale" (OpenVDB points), or half of
  *      "diameter" (a LAMMPS dump's diameter column);
- *   4. Spacing: SpacingRadiusFactor (2.5) times the mean nearest-neighbour
+ *   4. Spacing: SpacingRadiusFactor (1.5) times the mean nearest-neighbour
  *      spacing of the points (MeasureSpacing), or the spacing that
  *      vtkMetaballGhostBalls measured over all processes and wrote as the
  *      field-data array MeanSpacingArrayName;
@@ -91,15 +91,17 @@ inline constexpr RadiusArrayCandidate AutomaticRadiusArrays[6] = { { "Radius", 1
  * kernel at T = 0.5 a lone ball shows at half its support R, two balls at
  * distance d join when R >= 0.75 d, and deep inside a cloud of density rho
  * the field is about 0.82 rho R^3. On a cubic lattice of spacing a (its mean
- * spacing) 2.5 a gives a field of 12.7 inside: one smooth body, a lone
- * particle a sphere of 1.25 a. A uniform random cloud is the hard case (its
- * mean spacing is 0.55 rho^(-1/3)): sampled inside one of 1 500 points, the
- * field was below T at 0.9 % of the places at 2.5 spacings (small pores), at
- * 15 % at 2 (a sponge) and at 54 % at 1.5 (loose blobs), and every particle
- * joined its nearest neighbour from 2 on. So 2.5: particles at their typical
- * spacing make one connected surface. RadiusScale multiplies it.
+ * spacing) 1.5 a gives a field of 2.8 inside: one body whose particles still
+ * show as bumps, a lone particle a sphere of 0.75 a. At 2.5 a (field 12.7)
+ * a dense liquid (LAMMPS's melt example, 256 atoms) showed as one smooth
+ * featureless box: the particles were lost in their sum. A uniform random
+ * cloud (mean spacing 0.55 rho^(-1/3)) is the loose case: sampled inside one
+ * of 1 500 points, the field was below T at 54 % of the places at 1.5
+ * spacings (loose blobs), 15 % at 2 and 0.9 % at 2.5. So 1.5: particles at
+ * their typical spacing join their neighbours and stay visible; RadiusScale
+ * (or an explicit Radius) makes a smoother, closed surface.
  */
-inline constexpr double SpacingRadiusFactor = 2.5;
+inline constexpr double SpacingRadiusFactor = 1.5;
 
 /**
  * The field-data array (one double) in which vtkMetaballGhostBalls passes the

@@ -26,6 +26,12 @@ to it than to any other ball's colour. A white, grey or missing surface
 fails, and so does the crash this test was written for (colouring splats
 with InterpolateScalarsBeforeMapping on died in vtkOpenGLPolyDataMapper).
 
+Selection as a user drags a rectangle (SelectSurfacePoints, then
+ExtractSelection): around each ball's centre it holds that ball alone, and
+around a sample of each half-sphere only splats of that half (serially:
+under pvbatch --symmetric the selection's fetch did not return, which is
+left open).
+
 With --mpi (pvbatch --symmetric under mpiexec -n 2) both data sets are split
 between the ranks first (RedistributeDataSet), and the same checks hold on
 the composited picture.
@@ -242,6 +248,7 @@ def exercise(display, label, samples, values, vectors, colours):
         # Opacity below 1: both representations draw opaque surfaces (they warn),
         # never the stripes and holes that ParaView's depth peeling made of them.
         ColorBy(display, ("POINTS", "s"))
+        lut.RescaleTransferFunction(0.0, 4.0)
         display.Opacity = 0.5
         Render(view)
         check_colours(tag + "-opacity", samples, [lut_colour(lut, s) for s in values])
@@ -261,6 +268,47 @@ ball_samples = [pixel_of(x, 0.0, ball_centre, 8.0) for x in BALL_X]
 
 
 exercise(balls, "metaballs", ball_samples, BALL_S, BALL_V, BALL_RGB)
+
+
+def check_selection(name, source, rectangle, values):
+    """Select surface points in `rectangle` (pixels) as a user drags; the
+    extracted points' `s` values must be exactly `values` (point ids are
+    not compared: RedistributeDataSet renumbers them per rank)."""
+    SelectSurfacePoints(Rectangle=rectangle, View=view)
+    extracted = ExtractSelection(Input=source)
+    result = servermanager.Fetch(extracted)
+    got = set()
+    if result is not None:
+        from vtkmodules.vtkCommonDataModel import vtkCompositeDataSet, vtkDataSet
+
+        pieces = []
+        if isinstance(result, vtkCompositeDataSet):
+            it = result.NewIterator()
+            it.InitTraversal()
+            while not it.IsDoneWithTraversal():
+                pieces.append(it.GetCurrentDataObject())
+                it.GoToNextItem()
+        elif isinstance(result, vtkDataSet):
+            pieces.append(result)
+        for piece in pieces:
+            array = piece.GetPointData().GetArray("s")
+            if array is not None:
+                got.update(array.GetValue(i) for i in range(array.GetNumberOfTuples()))
+    ClearSelection(source)
+    Delete(extracted)
+    check(got == set(values), "%s: the selection holds s = %s (%s expected)"
+          % (name, sorted(got), sorted(values)))
+
+
+# Picking: a drag around each ball's centre selects that ball alone. Serial
+# only: under pvbatch --symmetric the selection's fetch did not return.
+balls.Opacity = 1.0
+ColorBy(balls, ("POINTS", "s"))
+Render(view)
+for k in (() if mpi else (0, 2, 4)):
+    column, row = ball_samples[k]
+    check_selection("metaballs: rectangle on ball %d" % k, balls_input,
+                    [column - 4, row - 4, column + 4, row + 4], [BALL_S[k]])
 Hide(balls_input, view)
 
 # Algebraic splats.
@@ -273,6 +321,12 @@ splat_samples = [pixel_of(0.0, z, splat_centre, 1.3) for z in HALF_Z]
 
 
 exercise(splats, "splats", splat_samples, HALF_S, HALF_V, HALF_RGB)
+splats.Opacity = 1.0
+Render(view)
+for k in (() if mpi else (0, 1)):
+    column, row = splat_samples[k]
+    check_selection("splats: rectangle on the %s half" % ("upper" if k == 0 else "lower"),
+                    splats_input, [column - 4, row - 4, column + 4, row + 4], [HALF_S[k]])
 
 if RANK == 0:
     print("TestPointSurfacesColoring: %d failure(s)" % len(failures), flush=True)

@@ -9,7 +9,7 @@ as Metaballs with the defaults (pvbatch).
   plugin's reader for `dump.meoh`, `dump.1000.melt`, `melt.lammpstrj`,
   `confout.gro`, `traj_comp.xtc`, `snapshot_000.hdf5`, `snap_000.0.hdf5`,
   `output_0000.hdf5`, `points.vdb` and `cloud.off` (copies of the test data
-  under those names);
+  under those names, and a lattice of points written here);
 - each reader's output, shown as Metaballs with no property touched (the
   radii come from the data: the readers' `radius` or `SmoothingLength`
   arrays, else a multiple of the mean nearest-neighbour spacing), is compared
@@ -62,11 +62,18 @@ COPIES = {
     "snap_000.0.hdf5": os.path.join(io_data, "gadget", "lcdm_gas_z5_subset.hdf5"),
     "output_0000.hdf5": os.path.join(io_data, "gadget", "lcdm_gas_z5_subset.hdf5"),
     "points.vdb": os.path.join(data, "..", "Fuzz", "Corpus", "OpenVDBPoints", "points-blosc.vdb"),
-    "cloud.off": os.path.join(data, "..", "Fuzz", "Corpus", "OpenMesh", "cloud-off"),
 }
 if RANK == 0:
     for name, source in COPIES.items():
         shutil.copyfile(source, os.path.join(named, name))
+    # A point cloud without radii: a 6 x 6 x 3 lattice of spacing 0.02 with
+    # every second point of its top layer missing, so the radius comes from
+    # the spacing rule.
+    with open(os.path.join(named, "cloud.off"), "w") as f:
+        cloud = [(0.02 * i, 0.02 * j, 0.02 * k) for i in range(6) for j in range(6)
+                 for k in range(3) if k < 2 or (i + j) % 2 == 0]
+        f.write("OFF\n%d 0 0\n" % len(cloud))
+        f.writelines("%g %g %g\n" % p for p in cloud)
 if mpi:
     servermanager.vtkProcessModule.GetProcessModule().GetGlobalController().Barrier()
 
@@ -110,14 +117,15 @@ def show_defaults(name, label, setup=None):
     display = Show(shown, view)
     display.SetRepresentationType("Metaballs")
     display.MetaballRayCaster = 2  # the native CPU caster: llvmpipe, as in CI
-    ColorBy(display, None)
+    display.ColorArrayName = ["POINTS", ""]
     display.AmbientColor = display.DiffuseColor = [0.9, 0.85, 0.75]
     Render(view)
     # One camera for serial and split runs: from the reader's whole bounds.
     centre = [0.5 * (bounds[2 * k] + bounds[2 * k + 1]) for k in range(3)]
     size = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], 1e-30)
     view.CameraFocalPoint = centre
-    view.CameraPosition = [centre[0] + 1.2 * size, centre[1] - 1.6 * size, centre[2] + 1.1 * size]
+    # Far enough for balls of a few spacings beyond the points' bounds.
+    view.CameraPosition = [centre[0] + 2.0 * size, centre[1] - 2.7 * size, centre[2] + 1.9 * size]
     view.CameraViewUp = [0, 0, 1]
     view.CameraViewAngle = 30
     Render(view)

@@ -9,7 +9,7 @@
 //   and over the arrays found; a positive constant Radius over the arrays
 //   found; a named array that is missing is warned about once, and the
 //   rules after it apply;
-// - the spacing rule: 2.5 times the mean nearest-neighbour spacing, which
+// - the spacing rule: 1.5 times the mean nearest-neighbour spacing, which
 //   on a lattice of spacing a is a exactly: with every point repeated
 //   (duplicates count once), with NaN and infinite points among them
 //   (left out), at an offset of 1e7, and the same to the last bit with one
@@ -151,8 +151,8 @@ int TestMetaballRadii(int, char*[])
     Check(std::string(field->GetRadiusArrayName()).empty() && field->GetRadius() == 0.0 &&
         rule.RadiusArrayName.empty() && rule.Radius == 0.0 && field->GetRadiusRule() == -1,
       "defaults: no radius array named, Radius 0 (automatic)");
-    Check(vtkMetaballField::GetSpacingRadiusFactor() == 2.5 && SpacingRadiusFactor == 2.5,
-      "the automatic radius is 2.5 spacings");
+    Check(vtkMetaballField::GetSpacingRadiusFactor() == 1.5 && SpacingRadiusFactor == 1.5,
+      "the automatic radius is 1.5 spacings");
   }
 
   // Each array the readers write radii in, found; the first of several.
@@ -242,10 +242,10 @@ int TestMetaballRadii(int, char*[])
     vtkNew<vtkMetaballField> field;
     output->Reset();
     BallArrays b = field->ExtractBalls(lattice);
-    Check(AllRadii(b, 2.5 * a) && field->GetRadiusRule() == vtkMetaballField::SpacingRadius &&
+    Check(AllRadii(b, 1.5 * a) && field->GetRadiusRule() == vtkMetaballField::SpacingRadius &&
         Near(field->GetMeanSpacing(), a, 1e-12) &&
         std::string(field->GetChosenRadiusArrayName()).empty(),
-      "lattice: radii of 2.5 spacings, and the getters say so");
+      "lattice: radii of 1.5 spacings, and the getters say so");
     const std::string told = output->Last;
     Check(output->Texts == 1 && output->Warnings == 0 &&
         told.find("mean nearest-neighbour spacing") != std::string::npos &&
@@ -254,7 +254,7 @@ int TestMetaballRadii(int, char*[])
     std::cout << "description: " << field->GetRadiusRuleDescription() << "\n";
     // Again, and the bounds: neither measured nor told again.
     field->ExtractBalls(lattice);
-    Check(Near(field->GetLargestRadius(lattice), 2.5 * a, 1e-12) && output->Texts == 1,
+    Check(Near(field->GetLargestRadius(lattice), 1.5 * a, 1e-12) && output->Texts == 1,
       "lattice: told once per outcome, not once per read");
     // Coordinates changed without Modified(): the spacing kept (not
     // measured again); marked Modified: measured and told again.
@@ -267,19 +267,21 @@ int TestMetaballRadii(int, char*[])
       }
     }
     BallArrays kept = field->ExtractBalls(lattice);
-    Check(AllRadii(kept, 2.5 * a), "the spacing of unchanged points is not measured again");
+    Check(AllRadii(kept, 1.5 * a), "the spacing of unchanged points is not measured again");
     lattice->GetPoints()->Modified();
     BallArrays moved = field->ExtractBalls(lattice);
-    Check(AllRadii(moved, 5.0 * a) && output->Texts == 2,
+    Check(AllRadii(moved, SpacingRadiusFactor * 2.0 * a) && output->Texts == 2,
       "modified points: measured again, and the new radius told");
     // The plain rule measures by itself.
     BallArrays plain = ExtractBalls(lattice, BallRule());
-    Check(AllRadii(plain, 5.0 * a) && plain.RadiiFrom.Rule == RadiusRule::Spacing,
+    Check(
+      AllRadii(plain, SpacingRadiusFactor * 2.0 * a) && plain.RadiiFrom.Rule == RadiusRule::Spacing,
       "the plain rule measures the spacing");
     // The radius scale multiplies the automatic radius.
     field->SetRadiusScale(2.0);
     BallArrays scaled = field->ExtractBalls(lattice);
-    Check(AllRadii(scaled, 10.0 * a), "RadiusScale multiplies the automatic radius");
+    Check(AllRadii(scaled, 2.0 * SpacingRadiusFactor * 2.0 * a),
+      "RadiusScale multiplies the automatic radius");
   }
 
   // Duplicates count once; NaN and infinite points are left out.
@@ -301,7 +303,7 @@ int TestMetaballRadii(int, char*[])
     {
       invalid += ValidBall(b.Set, i) ? 0 : 1;
     }
-    Check(AllRadii(b, 2.5 * a) && invalid == 3, "NaN points: invalid balls, the rest 2.5 a");
+    Check(AllRadii(b, 1.5 * a) && invalid == 3, "NaN points: invalid balls, the rest 1.5 a");
   }
 
   // One point, or all at one place: nothing to measure, radius 1.
@@ -407,14 +409,14 @@ int TestMetaballRadii(int, char*[])
     vtkNew<vtkMetaballField> field;
     output->Reset();
     BallArrays b = field->ExtractBalls(lattice);
-    Check(AllRadii(b, 1.25) && b.RadiiFrom.SpacingOfAllProcesses &&
+    Check(AllRadii(b, SpacingRadiusFactor * 0.5) && b.RadiiFrom.SpacingOfAllProcesses &&
         field->GetMeanSpacing() == 0.5 &&
         std::string(field->GetRadiusRuleDescription()).find("all processes") != std::string::npos,
       "the spacing of all processes, from the field data");
     // Not positive: measured here instead.
     spacing->SetValue(0, 0.0);
     BallArrays c = ExtractBalls(lattice, BallRule());
-    Check(AllRadii(c, 2.5 * a) && !c.RadiiFrom.SpacingOfAllProcesses,
+    Check(AllRadii(c, 1.5 * a) && !c.RadiiFrom.SpacingOfAllProcesses,
       "a field-data spacing of 0 is not taken");
     AddArray(lattice, "radius", 0.1);
     BallArrays d = field->ExtractBalls(lattice);

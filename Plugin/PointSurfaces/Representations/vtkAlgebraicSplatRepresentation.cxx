@@ -54,12 +54,22 @@ PS_FORWARD(LODPixelError, double)
 #undef PS_FORWARD
 
 //------------------------------------------------------------------------------
+void vtkAlgebraicSplatRepresentation::SetArrayIdNames(const char* pointArray, const char* cellArray)
+{
+  for (vtkAlgebraicSplatMapper* mapper : this->Splats)
+  {
+    mapper->SetPointIdArrayName(pointArray ? pointArray : "vtkOriginalPointIds");
+    mapper->SetCellIdArrayName(cellArray ? cellArray : "vtkOriginalCellIds");
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkAlgebraicSplatRepresentation::SetOpacity(double opacity)
 {
   if (opacity < 1.0)
   {
-    vtkWarningMacro(<< "The Algebraic Splats representation draws an opaque surface: Opacity " << opacity
-                    << " is drawn as 1.");
+    vtkWarningMacro(<< "The Algebraic Splats representation draws an opaque surface: Opacity "
+                    << opacity << " is drawn as 1.");
   }
   this->Superclass::SetOpacity(1.0);
 }

@@ -50,6 +50,14 @@ public:
    */
   void SetOpacity(double opacity) override;
 
+  /**
+   * The id arrays that selection reports through (ParaView's
+   * "vtkOriginalPointIds" by default), handed to both mappers. The
+   * superclass would cast its mapper to vtkCompositePolyDataMapper2 and
+   * crash on these mappers when the user selects.
+   */
+  void SetArrayIdNames(const char* pointArray, const char* cellArray) override;
+
 protected:
   vtkAlgebraicSplatRepresentation();
   ~vtkAlgebraicSplatRepresentation() override;

@@ -133,6 +133,16 @@ PS_FORWARD(Shadows, Shadows, bool)
 #undef PS_FORWARD_FIELD
 
 //------------------------------------------------------------------------------
+void vtkMetaballRepresentation::SetArrayIdNames(const char* pointArray, const char* cellArray)
+{
+  for (vtkMetaballMapper* mapper : this->Balls)
+  {
+    mapper->SetPointIdArrayName(pointArray ? pointArray : "vtkOriginalPointIds");
+    (void)cellArray; // a ball reports its point id for cells too
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkMetaballRepresentation::SetOpacity(double opacity)
 {
   if (opacity < 1.0)

@@ -74,6 +74,14 @@ public:
   void SetOpacity(double opacity) override;
 
   /**
+   * The id arrays that selection reports through (ParaView's
+   * "vtkOriginalPointIds" by default), handed to both mappers. The
+   * superclass would cast its mapper to vtkCompositePolyDataMapper2 and
+   * crash on these mappers when the user selects.
+   */
+  void SetArrayIdNames(const char* pointArray, const char* cellArray) override;
+
+  /**
    * As the superclass, but the view must not move this data between ranks:
    * its ghost balls are made for this split (and ordered compositing is
    * never needed for it: the surface is opaque). Unless the view renders

@@ -2,9 +2,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPointSurfacesDelegatingMapper.h"
 
+#include "psBallExtraction.h" // For the spacing array's name
 #include "vtkAppendPolyData.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
+#include "vtkFieldData.h"
 #include "vtkInformation.h"
 #include "vtkMath.h"
 #include "vtkMetaballGhostBalls.h"
@@ -149,6 +151,14 @@ vtkDataObject* vtkPointSurfacesDelegatingMapper::Flatten()
     }
     append->Update();
     this->Flat = append->GetOutput();
+    // The append drops field data. vtkMetaballGhostBalls's spacing over all
+    // processes is the same in every piece: keep it (not the splats' octree,
+    // which indexes one piece only).
+    if (vtkAbstractArray* spacing =
+          leaves[0]->GetFieldData()->GetAbstractArray(pointsurfaces::MeanSpacingArrayName))
+    {
+      this->Flat->GetFieldData()->AddArray(spacing);
+    }
   }
   this->FlatTime.Modified();
   return this->Flat;
@@ -212,6 +222,12 @@ bool vtkPointSurfacesDelegatingMapper::HasOpaqueGeometry()
 bool vtkPointSurfacesDelegatingMapper::HasTranslucentPolygonalGeometry()
 {
   return this->Delegate ? this->Delegate->HasTranslucentPolygonalGeometry() : false;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPointSurfacesDelegatingMapper::GetSupportsSelection()
+{
+  return this->Delegate ? this->Delegate->GetSupportsSelection() : false;
 }
 
 //------------------------------------------------------------------------------

@@ -56,6 +56,8 @@ public:
   void ReleaseGraphicsResources(vtkWindow* window) override;
   bool HasOpaqueGeometry() override;
   bool HasTranslucentPolygonalGeometry() override;
+  /** As the delegate: both mappers draw ids under a hardware selector. */
+  bool GetSupportsSelection() override;
 
 protected:
   vtkPointSurfacesDelegatingMapper();
