@@ -46,21 +46,13 @@ from paraview.simple import *  # noqa: F401,F403
 
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pointsurfaces_plugin_test import SIZE, pixels  # noqa: E402
+from pointsurfaces_plugin_test import Checks, SIZE, pixels  # noqa: E402
 
 plugin, data, baselines, out = sys.argv[1:5]
 mpi = "--mpi" in sys.argv[5:]
 RANK = servermanager.vtkProcessModule.GetProcessModule().GetPartitionId()
 os.makedirs(out, exist_ok=True)
-failures = []
-
-
-def check(ok, what):
-    if RANK != 0:
-        return
-    print(("ok:     " if ok else "FAILED: ") + what, flush=True)
-    if not ok:
-        failures.append(what)
+check = Checks(RANK)
 
 
 # ns=globals(): the plugin's proxies as names here; ParaView refreshes that namespace
@@ -329,6 +321,6 @@ for k in (() if mpi else (0, 1)):
                     splats_input, [column - 4, row - 4, column + 4, row + 4], [HALF_S[k]])
 
 if RANK == 0:
-    print("TestPointSurfacesColoring: %d failure(s)" % len(failures), flush=True)
+    print("TestPointSurfacesColoring: %d failure(s)" % len(check.failures), flush=True)
 Delete(view)
 del view

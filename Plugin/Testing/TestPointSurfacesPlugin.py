@@ -39,23 +39,13 @@ from paraview.simple import *  # noqa: F401,F403
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pointsurfaces_plugin_test import SIZE, differing_pixels, new_view, show_protein  # noqa: E402
+from pointsurfaces_plugin_test import Checks, SIZE, differing_pixels, new_view, show_protein  # noqa: E402
 
 plugin, data, baselines, out = sys.argv[1:5]
 mpi = "--mpi" in sys.argv[5:]
 RANK = servermanager.vtkProcessModule.GetProcessModule().GetPartitionId()
 os.makedirs(out, exist_ok=True)
-failures = []
-
-
-def check(ok, what):
-    # Rank 0 decides: under --symmetric the other rank's data information
-    # holds only its own piece.
-    if RANK != 0:
-        return
-    print(("ok:     " if ok else "FAILED: ") + what, flush=True)
-    if not ok:
-        failures.append(what)
+check = Checks(RANK)
 
 
 def compare(view, name, tolerance=0.005):
@@ -200,7 +190,7 @@ show_protein(view, data, split=mpi)
 compare(view, "PluginMetaballs", tolerance=0.001 if mpi else 0.005)
 
 if RANK == 0:
-    print("TestPointSurfacesPlugin: %d failure(s)" % len(failures), flush=True)
+    print("TestPointSurfacesPlugin: %d failure(s)" % len(check.failures), flush=True)
 # Debian's pvbatch 5.11 crashes in its teardown (an X error releasing the
 # view's FXAA textures) when a script exits with a render view alive, plain
 # ParaView too: delete the view first.

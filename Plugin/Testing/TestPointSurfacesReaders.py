@@ -30,21 +30,13 @@ from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pointsurfaces_plugin_test import SIZE, differing_pixels, pixels  # noqa: E402
+from pointsurfaces_plugin_test import Checks, SIZE, differing_pixels, pixels  # noqa: E402
 
 plugin, data, baselines, out, io_data = sys.argv[1:6]
 mpi = "--mpi" in sys.argv[6:]
 RANK = servermanager.vtkProcessModule.GetProcessModule().GetPartitionId()
 os.makedirs(out, exist_ok=True)
-failures = []
-
-
-def check(ok, what):
-    if RANK != 0:
-        return
-    print(("ok:     " if ok else "FAILED: ") + what, flush=True)
-    if not ok:
-        failures.append(what)
+check = Checks(RANK)
 
 
 LoadPlugin(plugin, ns=globals())
@@ -167,6 +159,6 @@ show_defaults("points.vdb", "ReaderDefaultsOpenVDB")
 show_defaults("cloud.off", "ReaderDefaultsOpenMesh")
 
 if RANK == 0:
-    print("TestPointSurfacesReaders: %d failure(s)" % len(failures), flush=True)
+    print("TestPointSurfacesReaders: %d failure(s)" % len(check.failures), flush=True)
 Delete(view)
 del view

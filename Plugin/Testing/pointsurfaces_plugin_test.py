@@ -15,6 +15,26 @@ from vtkmodules.vtkIOImage import vtkPNGReader
 SIZE = [320, 320]
 
 
+class Checks:
+    """Verdicts printed as ctest reads them: "ok:" or "FAILED:" lines.
+
+    Only `rank` 0 decides: under --symmetric the other rank's data
+    information holds only its own piece. Call it as check(ok, what); the
+    failures are kept in `failures`.
+    """
+
+    def __init__(self, rank):
+        self.rank = rank
+        self.failures = []
+
+    def __call__(self, ok, what):
+        if self.rank != 0:
+            return
+        print(("ok:     " if ok else "FAILED: ") + what, flush=True)
+        if not ok:
+            self.failures.append(what)
+
+
 def new_view():
     """A render view as the baselines were taken: 320 x 320, no axes, plain background."""
     view = CreateRenderView()
