@@ -288,12 +288,24 @@ std::string RadiusRuleDescription(const RadiusChoice& choice)
       text += "the constant Radius " + Number(choice.Radius);
       break;
     case RadiusRule::FoundArray:
+    {
+      // The candidates as AutomaticRadiusArrays lists them.
+      std::string candidates;
+      const size_t count = sizeof(AutomaticRadiusArrays) / sizeof(AutomaticRadiusArrays[0]);
+      for (size_t k = 0; k < count; ++k)
+      {
+        const RadiusArrayCandidate& c = AutomaticRadiusArrays[k];
+        candidates += (k == 0              ? ""
+                          : k + 1 == count ? " and "
+                                           : ", ") +
+          std::string("\"") + c.Name + "\"" +
+          (c.Factor != 1.0 ? " x " + Number(c.Factor) : std::string());
+      }
       text += "point array \"" + choice.ArrayName + "\"" +
         (choice.ArrayFactor != 1.0 ? " x " + Number(choice.ArrayFactor) : std::string()) +
-        " (chosen automatically, the first of \"Radius\", \"radius\", \"SmoothingLength\", "
-        "\"SmoothingLengths\", \"pscale\" and \"diameter\" / 2 present; " +
-        choose + ")";
+        " (chosen automatically, the first of " + candidates + " present; " + choose + ")";
       break;
+    }
     case RadiusRule::Spacing:
       text += Number(SpacingRadiusFactor) + " x the mean nearest-neighbour spacing" +
         (choice.SpacingOfAllProcesses ? " of all processes' balls " : " ") +

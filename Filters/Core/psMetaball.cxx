@@ -310,15 +310,17 @@ std::vector<long long> BallsReachingBox(const MetaballSet& set, const double bou
   return ids;
 }
 
-//------------------------------------------------------------------------------
-double FieldValue(const MetaballSet& set,
-  const double x[3],
-  double gradient[3],
-  const unsigned* ids,
-  long long idCount)
+namespace
 {
-  double sum = 0.0;
-  double g[3] = { 0.0, 0.0, 0.0 };
+// Calls f(i, x - centre_i, |x - centre_i|^2, R_i^2) for each valid ball of
+// `set` (those of `ids` when given), in order.
+template<typename F>
+void ForEachValidBall(const MetaballSet& set,
+  const double x[3],
+  const unsigned* ids,
+  long long idCount,
+  F&& f)
+{
   const long long n = ids ? idCount : set.Count;
   for (long long k = 0; k < n; ++k)
   {
@@ -329,23 +331,41 @@ double FieldValue(const MetaballSet& set,
     }
     const double* c = set.Centers + 3 * i;
     const double d[3] = { x[0] - c[0], x[1] - c[1], x[2] - c[2] };
-    const double r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    const double R2 = set.Radii[i] * set.Radii[i];
-    if (r2 >= R2)
-    {
-      continue;
-    }
-    const double q = set.Strengths ? set.Strengths[i] : 1.0;
-    double slope = 0.0;
-    sum += q * KernelValue(set.Kernel, r2 / R2, gradient ? &slope : nullptr);
-    if (gradient)
-    {
-      const double s = q * slope * 2.0 / R2;
-      g[0] += s * d[0];
-      g[1] += s * d[1];
-      g[2] += s * d[2];
-    }
+    f(i, d, d[0] * d[0] + d[1] * d[1] + d[2] * d[2], set.Radii[i] * set.Radii[i]);
   }
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+double FieldValue(const MetaballSet& set,
+  const double x[3],
+  double gradient[3],
+  const unsigned* ids,
+  long long idCount)
+{
+  double sum = 0.0;
+  double g[3] = { 0.0, 0.0, 0.0 };
+  ForEachValidBall(set,
+    x,
+    ids,
+    idCount,
+    [&](long long i, const double d[3], double r2, double R2)
+    {
+      if (r2 >= R2)
+      {
+        return;
+      }
+      const double q = set.Strengths ? set.Strengths[i] : 1.0;
+      double slope = 0.0;
+      sum += q * KernelValue(set.Kernel, r2 / R2, gradient ? &slope : nullptr);
+      if (gradient)
+      {
+        const double s = q * slope * 2.0 / R2;
+        g[0] += s * d[0];
+        g[1] += s * d[1];
+        g[2] += s * d[2];
+      }
+    });
   if (gradient)
   {
     gradient[0] = g[0];
@@ -363,26 +383,22 @@ long long DominantBall(const MetaballSet& set,
 {
   long long best = -1;
   double bestTerm = 0.0, bestRatio = std::numeric_limits<double>::infinity();
-  const long long n = ids ? idCount : set.Count;
-  for (long long k = 0; k < n; ++k)
-  {
-    const long long i = ids ? static_cast<long long>(ids[k]) : k;
-    if (!ValidBall(set, i))
+  ForEachValidBall(set,
+    x,
+    ids,
+    idCount,
+    [&](long long i, const double*, double r2, double R2)
     {
-      continue;
-    }
-    const double* c = set.Centers + 3 * i;
-    const double d[3] = { x[0] - c[0], x[1] - c[1], x[2] - c[2] };
-    const double ratio = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / (set.Radii[i] * set.Radii[i]);
-    const double q = set.Strengths ? set.Strengths[i] : 1.0;
-    const double term = ratio < 1.0 ? std::max(q * KernelValue(set.Kernel, ratio), 0.0) : 0.0;
-    if (best < 0 || term > bestTerm || (term == bestTerm && ratio < bestRatio))
-    {
-      best = i;
-      bestTerm = term;
-      bestRatio = ratio;
-    }
-  }
+      const double ratio = r2 / R2;
+      const double q = set.Strengths ? set.Strengths[i] : 1.0;
+      const double term = ratio < 1.0 ? std::max(q * KernelValue(set.Kernel, ratio), 0.0) : 0.0;
+      if (best < 0 || term > bestTerm || (term == bestTerm && ratio < bestRatio))
+      {
+        best = i;
+        bestTerm = term;
+        bestRatio = ratio;
+      }
+    });
   return best;
 }
 

@@ -46,7 +46,7 @@ from paraview.simple import *  # noqa: F401,F403
 
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pointsurfaces_plugin_test import Checks, SIZE, pixels  # noqa: E402
+from pointsurfaces_plugin_test import Checks, SIZE, new_view, pixels  # noqa: E402
 
 plugin, data, baselines, out = sys.argv[1:5]
 mpi = "--mpi" in sys.argv[5:]
@@ -122,12 +122,8 @@ HALF_S = [4.0, 0.0]
 HALF_V = [(0.0, 1.0, 0.0), (4.0, 1.0, 0.0)]
 HALF_RGB = [(255, 255, 0), (0, 0, 255)]
 
-view = CreateRenderView()
-view.ViewSize = SIZE
-view.OrientationAxesVisibility = 0
+view = new_view()
 view.Background = [1.0, 1.0, 1.0]
-view.UseColorPaletteForBackground = 0
-view.UseFXAA = 0
 view.CameraParallelProjection = 1
 
 

@@ -97,29 +97,26 @@ view.OrientationAxesVisibility = 0
 view.UseColorPaletteForBackground = 0
 view.Background = [1.0, 1.0, 1.0]
 
-if dump is not None:
-    balls = Show(dump, view)
-    balls.SetRepresentationType("Metaballs")
-    ColorBy(balls, ("POINTS", "id"))
-    balls.RescaleTransferFunctionToDataRange(True, False)
-    view.ResetCamera()
-    Render(view)
-    path = os.path.join(out, "gui-metaballs.png")
-    SaveScreenshot(path, view, ImageResolution=[400, 400])
-    inspect(path, [255, 255, 255], "Metaballs coloured by id")
-    Hide(dump, view)
 
-if scan is not None:
-    fitter = AlgebraicSplatFitter(Input=scan)
-    splats = Show(fitter, view)
-    splats.SetRepresentationType("Algebraic Splats")
-    ColorBy(splats, ("POINTS", "SplatRadius"))
-    splats.RescaleTransferFunctionToDataRange(True, False)
+
+def show_coloured(source, representation, array, name):
+    """`source` as `representation` coloured by `array`, screenshot checked."""
+    display = Show(source, view)
+    display.SetRepresentationType(representation)
+    ColorBy(display, ("POINTS", array))
+    display.RescaleTransferFunctionToDataRange(True, False)
     view.ResetCamera()
     Render(view)
-    path = os.path.join(out, "gui-splats.png")
+    path = os.path.join(out, name + ".png")
     SaveScreenshot(path, view, ImageResolution=[400, 400])
-    inspect(path, [255, 255, 255], "Algebraic Splats coloured by SplatRadius")
+    inspect(path, [255, 255, 255], "%s coloured by %s" % (representation, array))
+    Hide(source, view)
+
+
+if dump is not None:
+    show_coloured(dump, "Metaballs", "id", "gui-metaballs")
+if scan is not None:
+    show_coloured(AlgebraicSplatFitter(Input=scan), "Algebraic Splats", "SplatRadius", "gui-splats")
 
 result.write("TestPointSurfacesGUI: %d failure(s)\n" % len(failures))
 result.close()

@@ -31,7 +31,6 @@ more than 40/255; the test fails when more than 0.5 % of the pixels differ.
 POINTSURFACES_UPDATE_BASELINES=1 writes the baselines instead.
 """
 import os
-import shutil
 import sys
 
 from paraview import servermanager
@@ -39,7 +38,8 @@ from paraview.simple import *  # noqa: F401,F403
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pointsurfaces_plugin_test import Checks, SIZE, differing_pixels, new_view, show_protein  # noqa: E402
+from pointsurfaces_plugin_test import (Checks, SIZE, compare_baseline, new_view,  # noqa: E402
+                                       show_protein)
 
 plugin, data, baselines, out = sys.argv[1:5]
 mpi = "--mpi" in sys.argv[5:]
@@ -51,20 +51,8 @@ check = Checks(RANK)
 def compare(view, name, tolerance=0.005):
     path = os.path.join(out, name + (".mpi" if mpi else "") + ".png")
     SaveScreenshot(path, view, ImageResolution=SIZE)
-    if RANK != 0:
-        return
-    baseline = os.path.join(baselines, name + ".png")
-    if os.environ.get("POINTSURFACES_UPDATE_BASELINES") and not mpi:
-        shutil.copyfile(path, baseline)
-        print("wrote baseline " + baseline)
-        return
-
-    differ, why = differing_pixels(path, baseline)
-    if why:
-        check(False, "%s: %s" % (name, why))
-        return
-    check(differ <= tolerance, "%s: %.3f %% of the pixels differ from the baseline (at most %.1f %%)"
-          % (name, 100 * differ, 100 * tolerance))
+    if RANK == 0:
+        compare_baseline(check, path, baselines, name, mpi, tolerance)
 
 
 LoadPlugin(plugin, ns=globals())

@@ -30,7 +30,7 @@ from paraview import servermanager
 from paraview.simple import *  # noqa: F401,F403
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pointsurfaces_plugin_test import Checks, SIZE, differing_pixels, pixels  # noqa: E402
+from pointsurfaces_plugin_test import Checks, SIZE, compare_baseline, new_view, pixels  # noqa: E402
 
 plugin, data, baselines, out, io_data = sys.argv[1:6]
 mpi = "--mpi" in sys.argv[6:]
@@ -88,12 +88,7 @@ for name, expected in READERS.items():
     check(got == expected, "%s opens with %s (%s)" % (name, expected, got))
     opened[name] = reader
 
-view = CreateRenderView()
-view.ViewSize = SIZE
-view.OrientationAxesVisibility = 0
-view.Background = [0.32, 0.34, 0.43]
-view.UseColorPaletteForBackground = 0
-view.UseFXAA = 0
+view = new_view()
 
 
 def show_defaults(name, label, setup=None):
@@ -131,18 +126,7 @@ def show_defaults(name, label, setup=None):
     covered = (abs(image - background).max(axis=1) > 12).mean()
     check(0.01 < covered < 0.8,
           "%s as Metaballs with the defaults covers %.1f %% of the view" % (name, 100 * covered))
-    baseline = os.path.join(baselines, label + ".png")
-    if os.environ.get("POINTSURFACES_UPDATE_BASELINES") and not mpi:
-        shutil.copyfile(path, baseline)
-        print("wrote baseline " + baseline)
-        return
-    differ, why = differing_pixels(path, baseline)
-    if why:
-        check(False, "%s: %s" % (label, why))
-        return
-    tolerance = 0.002 if mpi else 0.001
-    check(differ <= tolerance, "%s: %.3f %% of the pixels differ from the baseline (at most %.1f %%)"
-          % (label, 100 * differ, 100 * tolerance))
+    compare_baseline(check, path, baselines, label, mpi, 0.002 if mpi else 0.001)
 
 
 show_defaults("dump.meoh", "ReaderDefaultsLAMMPS")

@@ -6,6 +6,7 @@ Imported by TestPointSurfacesPlugin.py (pvbatch) and TestPointSurfacesClient.py
 (pvpython client), after paraview.simple can be imported.
 """
 import os
+import shutil
 
 from paraview.simple import ColorBy, CreateRenderView, PDBReader, Plane, RedistributeDataSet
 from paraview.simple import Render, Show
@@ -93,3 +94,22 @@ def differing_pixels(path, baseline):
     if dims != dims_b:
         return None, "image size %s, baseline %s" % (dims, dims_b)
     return (abs(a - b).max(axis=1) > 40).mean(), None
+
+
+def compare_baseline(check, path, baselines, name, mpi, tolerance):
+    """Rank 0's picture at `path` against BASELINES/NAME.png, through `check`.
+
+    With POINTSURFACES_UPDATE_BASELINES=1 a serial run writes the baseline
+    instead.
+    """
+    baseline = os.path.join(baselines, name + ".png")
+    if os.environ.get("POINTSURFACES_UPDATE_BASELINES") and not mpi:
+        shutil.copyfile(path, baseline)
+        print("wrote baseline " + baseline)
+        return
+    differ, why = differing_pixels(path, baseline)
+    if why:
+        check(False, "%s: %s" % (name, why))
+        return
+    check(differ <= tolerance, "%s: %.3f %% of the pixels differ from the baseline (at most %.1f %%)"
+          % (name, 100 * differ, 100 * tolerance))
