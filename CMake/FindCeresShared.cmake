@@ -10,7 +10,10 @@ shared libceres.so (with glog and Eigen) and defines CeresShared::CeresShared.
 find_path(CeresShared_INCLUDE_DIR ceres/ceres.h)
 find_library(CeresShared_LIBRARY NAMES libceres.so.3 libceres.so ceres NAMES_PER_DIR)
 find_library(CeresShared_GLOG_LIBRARY glog)
-find_package(Eigen3 3.3 QUIET NO_MODULE)
+# No version: Eigen 5's package refuses a request for 3.x (same-major rule).
+if (NOT TARGET Eigen3::Eigen)
+  find_package(Eigen3 QUIET NO_MODULE)
+endif ()
 include(FindPackageHandleStandardArgs)
 find_package_handle_standard_args(CeresShared
   REQUIRED_VARS CeresShared_INCLUDE_DIR CeresShared_LIBRARY CeresShared_GLOG_LIBRARY Eigen3_FOUND)

@@ -9,10 +9,13 @@ configure. The io library itself links fine, so it is found directly here.
 
 Defines the imported target PCLIO::PCLIO (pcl_io, pcl_common, headers, Eigen).
 #]==]
-find_path(PCLIO_INCLUDE_DIR pcl/io/pcd_io.h PATH_SUFFIXES pcl-1.13 pcl-1.14 pcl-1.12)
+find_path(PCLIO_INCLUDE_DIR pcl/io/pcd_io.h PATH_SUFFIXES pcl-1.15 pcl-1.14 pcl-1.13 pcl-1.12)
 find_library(PCLIO_IO_LIBRARY pcl_io)
 find_library(PCLIO_COMMON_LIBRARY pcl_common)
-find_package(Eigen3 3.3 QUIET NO_MODULE)
+# No version: Eigen 5's package refuses a request for 3.x (same-major rule).
+if (NOT TARGET Eigen3::Eigen)
+  find_package(Eigen3 QUIET NO_MODULE)
+endif ()
 
 include(FindPackageHandleStandardArgs)
 find_package_handle_standard_args(PCLIO

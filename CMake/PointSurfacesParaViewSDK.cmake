@@ -1,14 +1,19 @@
 # SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 # SPDX-License-Identifier: BSD-3-Clause
 #[==[
-Find Debian's ParaView 5.11 SDK (paraview-dev) for the `paraview` preset.
+Find Debian's ParaView SDK (paraview-dev) for the `paraview` preset: 5.11
+(bookworm), 5.13 (trixie) or 6.1 (forky), whichever is installed.
 
-Debian's ParaView CMake package imports targets whose files only
-python3-paraview ships (the Python modules of ParaView's own VTK 9.2, and
-pvpython), and python3-paraview can never be installed beside python3-vtk9.
-`scripts/install-deps.sh --paraview` therefore unpacks python3-paraview into
-POINTSURFACES_PARAVIEW_ROOT (default build/paraview-sdk/root), and this file
-copies the CMake package into the build tree with two edits:
+Where ParaView uses Debian's VTK (forky), python3-paraview is installed as
+usual and ParaView's CMake package is used as it is.
+
+Where ParaView bundles its own VTK (bookworm, trixie), its CMake package
+imports targets whose files only python3-paraview ships (the Python modules
+of that VTK, and pvpython), and python3-paraview can never be installed
+beside python3-vtk9. `scripts/install-deps.sh --paraview` therefore unpacks
+python3-paraview into POINTSURFACES_PARAVIEW_ROOT (default
+build/paraview-sdk/root), and this file copies the CMake package into the
+build tree with two edits:
 
 - each targets file's install prefix (and VTK-m's package prefix, and the
   module properties' import prefix) is the original one (/usr), not the
@@ -17,15 +22,36 @@ copies the CMake package into the build tree with two edits:
   unpacked package.
 
 It then sets ParaView_DIR to the copy. Only the non-GUI components are
-requested, so Qt is not needed.
+requested, so Qt is not needed. POINTSURFACES_PARAVIEW_PYTHONPATH is where
+ParaView's Python package is (empty when it is installed system-wide).
 #]==]
 set(POINTSURFACES_PARAVIEW_ROOT "${CMAKE_SOURCE_DIR}/build/paraview-sdk/root"
   CACHE PATH "Where python3-paraview is unpacked (scripts/install-deps.sh --paraview)")
-set(_ps_pv_system "/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/paraview-5.11")
-if (NOT EXISTS "${_ps_pv_system}/paraview-config.cmake")
-  message(FATAL_ERROR "No ParaView 5.11 CMake package in ${_ps_pv_system}: "
+file(GLOB _ps_pv_candidates LIST_DIRECTORIES true
+  "/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/paraview-*")
+list(SORT _ps_pv_candidates COMPARE NATURAL ORDER DESCENDING)
+set(_ps_pv_system "")
+foreach (_ps_pv_candidate IN LISTS _ps_pv_candidates)
+  if (EXISTS "${_ps_pv_candidate}/paraview-config.cmake")
+    set(_ps_pv_system "${_ps_pv_candidate}")
+    break ()
+  endif ()
+endforeach ()
+if (NOT _ps_pv_system)
+  message(FATAL_ERROR "No ParaView CMake package in /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake: "
     "run scripts/install-deps.sh --paraview (installs paraview-dev).")
 endif ()
+get_filename_component(_ps_pv_name "${_ps_pv_system}" NAME)
+string(REGEX REPLACE "^paraview-" "" POINTSURFACES_PARAVIEW_SERIES "${_ps_pv_name}")
+message(STATUS "PointSurfaces: ParaView ${POINTSURFACES_PARAVIEW_SERIES} SDK in ${_ps_pv_system}")
+
+if (EXISTS "/usr/lib/python3/dist-packages/paraview/simple.py")
+  # Installed system-wide beside Debian's VTK (forky): nothing to patch.
+  set(ParaView_DIR "${_ps_pv_system}" CACHE PATH "Debian's ParaView package" FORCE)
+  set(POINTSURFACES_PARAVIEW_PYTHONPATH "")
+  return ()
+endif ()
+
 set(_ps_pv_python "${POINTSURFACES_PARAVIEW_ROOT}/usr/lib/python3/dist-packages")
 if (NOT EXISTS "${_ps_pv_python}/paraview/simple.py")
   message(FATAL_ERROR "python3-paraview is not unpacked in ${POINTSURFACES_PARAVIEW_ROOT}: "

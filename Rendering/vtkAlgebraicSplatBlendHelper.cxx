@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtk_glew.h"
+#include "psOpenGL.h"
 
 #include "vtkAlgebraicSplatBlendHelper.h"
 
@@ -133,6 +133,17 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   const int depthFormat = ReadDepthFormat(static_cast<GLuint>(scene));
   if (width != t.Width || height != t.Height || depthFormat != t.DepthFormat)
   {
+    // New textures, not new storage in the old ones: VTK 9.6's AllocateDepth
+    // on a texture that has storage keeps the old format (seen on Mesa 26: a
+    // Float32 request after a Fixed32 one stayed GL_DEPTH_COMPONENT32, and
+    // the depth blit failed on the mismatch).
+    for (vtkTextureObject* texture : { t.Accumulation.GetPointer(),
+           t.DepthCoverage.GetPointer(),
+           t.Depth.GetPointer(),
+           t.VisibleDepth.GetPointer() })
+    {
+      texture->ReleaseGraphicsResources(renWin);
+    }
     t.Framebuffer->SetContext(renWin);
     t.Accumulation->SetContext(renWin);
     t.DepthCoverage->SetContext(renWin);
@@ -153,12 +164,17 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
           width, height, depthFormat >= 0 ? depthFormat : vtkTextureObject::Float32);
       }
     }
+    // Detach first: the framebuffers know their attachments by object and
+    // would keep the released textures' names.
     t.CopyFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+    t.CopyFramebuffer->RemoveDepthAttachment();
     t.CopyFramebuffer->AddDepthAttachment(t.VisibleDepth);
     // Depth only: no colour buffer to draw to (without this the framebuffer
     // is incomplete before GL 4.1).
     ostate->vtkglDrawBuffer(GL_NONE);
     t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+    t.Framebuffer->RemoveColorAttachments(2);
+    t.Framebuffer->RemoveDepthAttachment();
     t.Framebuffer->AddColorAttachment(0, t.Accumulation);
     t.Framebuffer->AddColorAttachment(1, t.DepthCoverage);
     t.Framebuffer->AddDepthAttachment(t.Depth);

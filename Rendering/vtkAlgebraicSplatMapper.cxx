@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtk_glew.h"
+#include "psOpenGL.h"
 
 #include "vtkAlgebraicSplatMapper.h"
 
@@ -10,6 +10,7 @@
 #include "vtkAlgebraicSplatFS.h"
 #include "vtkAlgebraicSplatGS.h"
 #include "vtkAlgebraicSplatVS.h"
+#include "vtkCallbackCommand.h"
 #include "vtkSplatRoots.h"
 
 #include "vtkActor.h"
@@ -244,8 +245,10 @@ void vtkAlgebraicSplatMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkS
     {
       list += "\n  " + m;
     }
-    vtkErrorMacro(<< "The splat shaders lack hooks or markers that the mapper fills in (pass "
-                  << this->Variant.Pass << "); the splats are not drawn. Missing:" << list);
+    // Reported by UseVariant, once.
+    this->MissingHooksMessage =
+      "The splat shaders lack hooks or markers that the mapper fills in (pass " +
+      std::to_string(this->Variant.Pass) + "); the splats are not drawn. Missing:" + list;
   }
 }
 
@@ -644,22 +647,48 @@ vtkShaderProgram* vtkAlgebraicSplatMapper::UseVariant(const ShaderVariant& varia
     variant.Pass == 1 ? this->VisibilityBO : this->Primitives[PrimitiveTris];
   this->CurrentBO = &cellBO;
   this->MissingHooks = false;
+  // VTK 9.6's UpdateShaders reports a failed compile itself, on every frame,
+  // and may leave the previous program in cellBO; VTK 9.1's leaves a null
+  // program and says nothing. The errors raised on this mapper while the
+  // shaders are built are caught here, so that either way a failure is
+  // reported once, by the message below (or the missing hooks' own).
+  std::string caught;
+  vtkNew<vtkCallbackCommand> catcher;
+  catcher->SetClientData(&caught);
+  catcher->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void* callData)
+    {
+      auto* text = static_cast<std::string*>(clientData);
+      if (text->empty() && callData)
+      {
+        // "ERROR: In file, line n\nclass (address): message": the message.
+        std::string message = static_cast<const char*>(callData);
+        const size_t start = message.find("): ");
+        message = start == std::string::npos ? message : message.substr(start + 3);
+        *text = message.substr(0, message.find_last_not_of("\n") + 1);
+      }
+    });
+  catcher->SetAbortFlagOnExecute(1);
+  const unsigned long catching = this->AddObserver(vtkCommand::ErrorEvent, catcher, 1000.0f);
   this->UpdateShaders(cellBO, ren, act);
+  this->RemoveObserver(catching);
   vtkShaderProgram* program = cellBO.Program;
-  if (program && this->MissingHooks)
+  if (this->MissingHooks)
   {
-    // Reported by ReplaceShaderValues; the program lacks the splat code.
+    // ReplaceShaderValues named the hooks; the program lacks the splat code.
+    vtkErrorMacro(<< this->MissingHooksMessage);
     this->ShaderFailed = true;
     this->ShaderFailedTime.Modified();
     this->BuiltVariants.erase(&cellBO);
     return nullptr;
   }
-  if (!program)
+  if (!program || !caught.empty())
   {
-    // VTK's UpdateShaders would reuse the null program on the next frame
+    // VTK 9.1's UpdateShaders would reuse the null program on the next frame
     // (and crash): remember the failure, and rebuild once something changes.
     vtkErrorMacro(<< "The splat shader (pass " << variant.Pass
-                  << ") did not compile: the splats are not drawn.");
+                  << ") did not compile: the splats are not drawn."
+                  << (caught.empty() ? "" : " VTK: ") << caught);
     this->ShaderFailed = true;
     this->ShaderFailedTime.Modified();
     this->BuiltVariants.erase(&cellBO);

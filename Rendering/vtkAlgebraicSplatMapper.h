@@ -65,6 +65,7 @@
 
 #include <map>    // For the built variants
 #include <memory> // For the octree
+#include <string> // For the missing hooks message
 
 class vtkAlgebraicSplatBlendHelper;
 namespace pointsurfaces
@@ -239,7 +240,8 @@ protected:
   // A splat shader failed to compile: nothing is drawn (and no compile
   // retried) until the mapper or the actor's shader property changes.
   bool ShaderFailed = false;
-  bool MissingHooks = false; // the last shader build lacked a hook or marker
+  bool MissingHooks = false;       // the last shader build lacked a hook or marker
+  std::string MissingHooksMessage; // which ones, reported once by UseVariant
   vtkTimeStamp ShaderFailedTime;
   // ComputeBounds' cache: the splats' bounds, for the input they were computed from.
   vtkTimeStamp SplatBoundsTime;

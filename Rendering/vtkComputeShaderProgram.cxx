@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtk_glew.h"
+#include "psOpenGL.h"
 
 #include "vtkComputeShaderProgram.h"
 
@@ -85,14 +85,17 @@ bool vtkComputeShaderProgram::Compile(vtkOpenGLRenderWindow* renWin)
   {
     return true;
   }
-  if (!renWin || !GLEW_VERSION_4_3)
+  if (renWin)
+  {
+    renWin->MakeCurrent();
+  }
+  if (!renWin || !pointsurfaces::HasOpenGLVersion(4, 3))
   {
     vtkErrorMacro(<< "Program '" << this->Name
                   << "': compute shaders need an OpenGL 4.3 context, and this one has "
                   << (renWin ? "an older version" : "no window"));
     return false;
   }
-  renWin->MakeCurrent();
   this->ReleaseGraphicsResources(renWin);
   this->SourceChanged = false;
   // `//VTK::System::Dec` opens every .glsl file of the project: for compute

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtk_glew.h"
+#include "psOpenGL.h"
 
 #include "vtkEGLHeadlessRenderWindow.h"
 
@@ -370,6 +370,19 @@ void vtkEGLHeadlessRenderWindow::OpenGLInitContext()
   {
     return;
   }
+#if POINTSURFACES_VTK_GLAD
+  // VTK 9.4 and later load GL with glad: through EGL's own resolver here.
+  if (gladLoadGL(reinterpret_cast<GLADloadfunc>(eglGetProcAddress)) == 0)
+  {
+    this->Internal->Error = "glad could not load OpenGL through eglGetProcAddress";
+    return;
+  }
+  if (!GLAD_GL_VERSION_3_2)
+  {
+    this->Internal->Error = "the EGL context does not provide OpenGL 3.2 or later";
+    return;
+  }
+#else
   // Debian's GLEW is built for GLX: glewInit() loads every GL entry point,
   // then fails its GLX part with GLEW_ERROR_NO_GLX_DISPLAY. That is harmless here.
   const GLenum result = glewInit();
@@ -385,6 +398,7 @@ void vtkEGLHeadlessRenderWindow::OpenGLInitContext()
     return;
   }
   this->GlewInitValid = true;
+#endif
   this->Initialized = true;
   GLfloat range[2] = { 1.0f, 1.0f };
   glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE, range);

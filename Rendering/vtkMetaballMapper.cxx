@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtk_glew.h"
+#include "psOpenGL.h"
 
 #include "vtkMetaballMapper.h"
 
@@ -747,8 +747,6 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   }
 
   // Shade and composite with the true depth, depth-tested against the scene.
-  vtkOpenGLState* ostate = renWin->GetState();
-  ostate->Push();
   // VTK's lights: the renderer's declarations and uniforms, one light
   // call per light compiled in; rebuilt when the lighting changes.
   vtkProperty* prop = act->GetProperty();
@@ -763,7 +761,6 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
     if (!pointsurfaces::ReplaceHook(source, "//VTK::Light::Dec", declarations) ||
       !pointsurfaces::ReplaceHook(source, "//VTK::Light::Impl", LightCalls(complexity, lights)))
     {
-      ostate->Pop();
       vtkErrorMacro(<< "vtkMetaballCompositeFS lacks its //VTK::Light hooks: nothing is drawn.");
       return;
     }
@@ -782,10 +779,17 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   vtkShaderProgram* program = in.Composite->Program;
   if (!program)
   {
-    ostate->Pop();
     vtkErrorMacro(<< "The metaball shading shader did not compile.");
     return;
   }
+  // Only what is changed here is saved and restored (not Push and Pop: VTK
+  // 9.6's Pop binds again the buffers its cache holds, which may have been
+  // deleted since, by this mapper's shader rebuild or by another mapper).
+  vtkOpenGLState* ostate = renWin->GetState();
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
   in.ColorImage->Activate();
   in.NormalImage->Activate();
   in.DepthImage->Activate();
@@ -831,7 +835,6 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   {
     in.ShadowImage->Deactivate();
   }
-  ostate->Pop();
   this->InvokeEvent(vtkCommand::EndEvent, nullptr);
 }
 
@@ -1307,8 +1310,11 @@ void vtkMetaballMapper::DrawSelection(vtkRenderer* ren,
     vtkErrorMacro(<< "The metaball selection shader did not compile.");
     return;
   }
-  vtkOpenGLState* ostate = renWin->GetState();
-  ostate->Push();
+  vtkOpenGLState* ostate = renWin->GetState(); // what changes is restored (see Render)
+  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
+  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
+  vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
+  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
   in.PickImage->Activate();
   in.DepthImage->Activate();
   program->SetUniformi("colorTexture", in.PickImage->GetTextureUnit());
@@ -1322,7 +1328,6 @@ void vtkMetaballMapper::DrawSelection(vtkRenderer* ren,
   in.PickComposite->Render();
   in.PickImage->Deactivate();
   in.DepthImage->Deactivate();
-  ostate->Pop();
 }
 
 //------------------------------------------------------------------------------

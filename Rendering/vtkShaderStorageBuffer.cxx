@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
-#include "vtk_glew.h"
+#include "psOpenGL.h"
 
 #include "vtkShaderStorageBuffer.h"
 

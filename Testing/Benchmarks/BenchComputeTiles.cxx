@@ -18,7 +18,7 @@
 #include "vtkSMPTools.h"
 #include "vtkShaderStorageBuffer.h"
 
-#include "vtk_glew.h"
+#include "psOpenGL.h"
 
 #include <algorithm>
 #include <chrono>
@@ -116,7 +116,7 @@ int main(int argc, char* argv[])
   renWin->SetMultiSamples(0);
   renWin->Render();
   auto* gl = vtkOpenGLRenderWindow::SafeDownCast(renWin);
-  if (!gl || !GLEW_VERSION_4_3)
+  if (!gl || !pointsurfaces::HasOpenGLVersion(4, 3))
   {
     std::fprintf(stderr, "BenchComputeTiles: no OpenGL 4.3 context\n");
     return 1;

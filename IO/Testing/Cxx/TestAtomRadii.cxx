@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <string>
 
 using namespace pointsurfaces_test;
@@ -31,7 +32,11 @@ std::string Atom(int serial, const char* name, const char* residue, double x)
   char line[100];
   std::snprintf(line,
     sizeof(line),
-    "ATOM  %5d %-4s %-3s A%4d    %8.3f%8.3f%8.3f  1.00  0.00\n",
+    // Columns as CHARMM writes them: a four-letter residue (TIP3) fills
+    // 18-21 and the chain stays in 22. (With the chain pushed into the
+    // residue number's columns, VTK 9.6's vtkPDBReader aborts on a failed
+    // number parse.)
+    "ATOM  %5d %-4s %-4sA%4d    %8.3f%8.3f%8.3f  1.00  0.00\n",
     serial,
     name,
     residue,

@@ -44,6 +44,7 @@
 // 5.3e-4, 4.1e-5 and 16.7, 1.3, 0.56, 0.047 deg. The maxima are printed too:
 // a handful of torus pixels reach 0.24 r at degree 4, where a quartic patch
 // bends away from the data near the rim of its disc.
+#include "psOpenGL.h"
 #include "vtkActor.h"
 #include "vtkAlgebraicSplatFitter.h"
 #include "vtkAlgebraicSplatMapper.h"
@@ -64,7 +65,6 @@
 #include "vtkShaderProperty.h"
 #include "vtkSplatDataModel.h"
 #include "vtkTextureObject.h"
-#include "vtk_glew.h"
 
 #include "psSplatTestSupport.h"
 

@@ -18,6 +18,7 @@
 //   it, nothing drawn, and the splats back once the template is whole;
 // - an empty input and an input that is not a splat set: nothing is drawn
 //   and no GL error, with an error message for the latter.
+#include "psOpenGL.h"
 #include "vtkActor.h"
 #include "vtkAlgebraicSplatFitter.h"
 #include "vtkAlgebraicSplatMapper.h"
@@ -40,7 +41,6 @@
 #include "vtkStringOutputWindow.h"
 #include "vtkTransform.h"
 #include "vtkTransformFilter.h"
-#include "vtk_glew.h"
 
 #include "psSplatTestSupport.h"
 
@@ -242,6 +242,7 @@ int TestAlgebraicSplatMapperBadInput(int, char*[])
     const vtkLogger::Verbosity verbosity = vtkLogger::GetCurrentVerbosityCutoff();
     vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
     Errors = 0;
+    Messages.clear();
     renWin->Render();
     renWin->Render();
     int coveredBroken = 0;
@@ -258,7 +259,8 @@ int TestAlgebraicSplatMapperBadInput(int, char*[])
               << " pixels; fixed: " << coveredFixed << " pixels\n";
     if (brokenErrors != 1 || coveredBroken != 0 || coveredFixed < coveredOrigin / 2)
     {
-      std::cerr << "a shader compile failure is not handled\n";
+      std::cerr << "a shader compile failure is not handled; the mapper said:\n"
+                << Messages.substr(0, 4000) << "\n";
       ++failures;
     }
     mapper->SetInputData(nullptr);

@@ -12,6 +12,7 @@
 #include "vtkTestErrorObserver.h"
 
 #include <cstdlib>
+#include <iostream>
 #include <string>
 
 int TestComputeCompileError(int, char*[])

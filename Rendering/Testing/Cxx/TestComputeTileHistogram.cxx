@@ -26,10 +26,11 @@
 #include "vtkShaderStorageBuffer.h"
 #include "vtkSphereSource.h"
 
-#include "vtk_glew.h"
+#include "psOpenGL.h"
 
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 #include <vector>
 
 namespace

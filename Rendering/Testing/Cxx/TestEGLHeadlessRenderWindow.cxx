@@ -19,6 +19,7 @@
 #include "vtkSphereSource.h"
 
 #include <cstdlib>
+#include <iostream>
 #include <string>
 
 int TestEGLHeadlessRenderWindow(int argc, char* argv[])

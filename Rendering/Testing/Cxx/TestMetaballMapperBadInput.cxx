@@ -12,6 +12,7 @@
 // - balls behind the camera: culled and counted, the others drawn;
 // - more balls than a storage buffer may hold (a capped limit): one clear
 //   error and an empty image, then a normal frame once the cap is lifted.
+#include "psOpenGL.h"
 #include "vtkActor.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
@@ -25,7 +26,6 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkShaderStorageBuffer.h"
-#include "vtk_glew.h"
 
 #include "psMetaball.h"
 

@@ -15,6 +15,7 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <cstdlib>
+#include <iostream>
 #include <string>
 
 int TestNoUsableDisplay(int, char*[])

@@ -270,7 +270,7 @@ int TestMetaballGhostBalls(int argc, char* argv[])
     // duplicate point: dropped, with one process too (ParaView's client).
     vtkSmartPointer<vtkPolyData> other = MakeBalls((rank + 1) % ranks, ranks, false);
     const vtkIdType copy = rest->GetPoints()->InsertNextPoint(other->GetPoint(0));
-    rest->GetPointData()->CopyData(other->GetPointData(), 0, copy);
+    rest->GetPointData()->CopyData(other->GetPointData(), vtkIdType(0), copy);
     vtkNew<vtkUnsignedCharArray> flags2;
     flags2->SetName(vtkDataSetAttributes::GhostArrayName());
     flags2->SetNumberOfValues(rest->GetNumberOfPoints());
