@@ -45,15 +45,20 @@ get_filename_component(_ps_pv_name "${_ps_pv_system}" NAME)
 string(REGEX REPLACE "^paraview-" "" POINTSURFACES_PARAVIEW_SERIES "${_ps_pv_name}")
 message(STATUS "PointSurfaces: ParaView ${POINTSURFACES_PARAVIEW_SERIES} SDK in ${_ps_pv_system}")
 
-if (EXISTS "/usr/lib/python3/dist-packages/paraview/simple.py")
-  # Installed system-wide beside Debian's VTK (forky): nothing to patch.
-  set(ParaView_DIR "${_ps_pv_system}" CACHE PATH "Debian's ParaView package" FORCE)
+# paraview.simple: a module up to 5.13, a package from 6.0.
+if (EXISTS "/usr/lib/python3/dist-packages/paraview/simple.py" OR
+    EXISTS "/usr/lib/python3/dist-packages/paraview/simple/__init__.py")
+  # Installed system-wide beside Debian's VTK (forky): the files are where
+  # the package says, but for the Python modules' names (below).
+  set(_ps_pv_pyroot "")
   set(POINTSURFACES_PARAVIEW_PYTHONPATH "")
-  return ()
+else ()
+  set(_ps_pv_pyroot "${POINTSURFACES_PARAVIEW_ROOT}")
+  set(POINTSURFACES_PARAVIEW_PYTHONPATH "${_ps_pv_pyroot}/usr/lib/python3/dist-packages")
 endif ()
-
-set(_ps_pv_python "${POINTSURFACES_PARAVIEW_ROOT}/usr/lib/python3/dist-packages")
-if (NOT EXISTS "${_ps_pv_python}/paraview/simple.py")
+set(_ps_pv_python "${_ps_pv_pyroot}/usr/lib/python3/dist-packages")
+if (NOT EXISTS "${_ps_pv_python}/paraview/simple.py" AND
+    NOT EXISTS "${_ps_pv_python}/paraview/simple/__init__.py")
   message(FATAL_ERROR "python3-paraview is not unpacked in ${POINTSURFACES_PARAVIEW_ROOT}: "
     "run scripts/install-deps.sh --paraview.")
 endif ()
@@ -79,7 +84,7 @@ if (NOT EXISTS "${_ps_pv_copy}/paraview-config.cmake")
       "set(_vtk_module_import_prefix \"${_ps_pv_origin}\")" _ps_pv_edited "${_ps_pv_edited}")
     # The wrapping hierarchy files ship in python3-paraview too.
     string(REPLACE "\${_vtk_module_import_prefix}/lib/${CMAKE_LIBRARY_ARCHITECTURE}/vtk/hierarchy"
-      "${POINTSURFACES_PARAVIEW_ROOT}/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/vtk/hierarchy"
+      "${_ps_pv_pyroot}/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/vtk/hierarchy"
       _ps_pv_edited "${_ps_pv_edited}")
     if (_ps_pv_text MATCHES "_IMPORT_PREFIX")
       string(REPLACE
@@ -88,13 +93,25 @@ if (NOT EXISTS "${_ps_pv_copy}/paraview-config.cmake")
         _ps_pv_edited "${_ps_pv_edited}")
       string(REPLACE "\${_IMPORT_PREFIX}/lib/python3/dist-packages" "${_ps_pv_python}"
         _ps_pv_edited "${_ps_pv_edited}")
-      string(REPLACE "\${_IMPORT_PREFIX}/bin/pvpython" "${POINTSURFACES_PARAVIEW_ROOT}/usr/bin/pvpython"
+      string(REPLACE "\${_IMPORT_PREFIX}/bin/pvpython" "${_ps_pv_pyroot}/usr/bin/pvpython"
         _ps_pv_edited "${_ps_pv_edited}")
     endif ()
+    # Debian 13 and forky: the targets name paraview/.../X.so (and vtkmodules/X.so), the
+    # package ships X.cpython-3XX-<arch>.so. Point at the file that exists.
+    string(REGEX MATCHALL "${_ps_pv_python}/[A-Za-z0-9_/]+\\.so\""
+      _ps_pv_modules "${_ps_pv_edited}")
+    list(REMOVE_DUPLICATES _ps_pv_modules)
+    foreach (_ps_pv_module IN LISTS _ps_pv_modules)
+      string(REGEX REPLACE "\\.so\"$" "" _ps_pv_stem "${_ps_pv_module}")
+      file(GLOB _ps_pv_tagged "${_ps_pv_stem}.cpython-*.so")
+      if (NOT EXISTS "${_ps_pv_stem}.so" AND _ps_pv_tagged)
+        list(GET _ps_pv_tagged 0 _ps_pv_tagged)
+        string(REPLACE "${_ps_pv_module}" "${_ps_pv_tagged}\"" _ps_pv_edited "${_ps_pv_edited}")
+      endif ()
+    endforeach ()
     if (NOT _ps_pv_edited STREQUAL _ps_pv_text)
       file(WRITE "${_ps_pv_file}" "${_ps_pv_edited}")
     endif ()
   endforeach ()
 endif ()
 set(ParaView_DIR "${_ps_pv_copy}" CACHE PATH "The patched copy of Debian's ParaView package" FORCE)
-set(POINTSURFACES_PARAVIEW_PYTHONPATH "${_ps_pv_python}")

@@ -4,10 +4,13 @@
  * @class   vtkEGLHeadlessRenderWindow
  * @brief   OpenGL 4.5 core render window on EGL, with no X server and no surface.
  *
- * Debian's VTK 9.1 is built for X11 only: without a DISPLAY its
+ * Debian's VTK 9.1 and 9.3 are built for X11 only: without a DISPLAY their
  * vtkXOpenGLRenderWindow aborts the process. This window opens an EGL display
  * instead and renders into VTK's own framebuffer objects, so tests, batch
- * renders and benchmarks run headless:
+ * renders and benchmarks run headless. (VTK 9.4 and later ship their own
+ * vtkEGLRenderWindow, which vtkPointSurfacesRenderWindowFactory uses there
+ * whenever an EGL display can be initialised; this window stays for the
+ * case where none can, which it reports instead of crashing.)
  *
  * - on NVIDIA (or any vendor with EGL_EXT_platform_device), through an EGL
  *   device of a real GPU (`EGL_PLATFORM_DEVICE_EXT`);
@@ -17,7 +20,8 @@
  * The context is created without a surface (EGL_KHR_surfaceless_context) and
  * VTK's framebuffers are never blitted to a window. It overrides
  * OpenGLInitContext() because Debian's GLEW, built for GLX, returns
- * GLEW_ERROR_NO_GLX_DISPLAY after it has already loaded every GL entry point.
+ * GLEW_ERROR_NO_GLX_DISPLAY after it has already loaded every GL entry point
+ * (from VTK 9.4 on, it loads GL with glad through eglGetProcAddress).
  *
  * When no EGL display or context can be had, Render() reports a clear
  * vtkErrorMacro once, draws nothing and returns: it never aborts.

@@ -4,9 +4,25 @@
 
 #include "vtkAutoInit.h"
 #include "vtkEGLHeadlessRenderWindow.h"
+#include "vtkRenderingOpenGLConfigure.h"
 #include "vtkVersion.h"
+#include "vtkVersionMacros.h"
 #include "vtkXOpenGLRenderWindow.h"
 
+// VTK 9.4 and later, built with EGL (Debian's 9.6 is), choose between X and
+// EGL at run time themselves and select EGL devices (VTK_DEFAULT_EGL_DEVICE_INDEX):
+// there, `auto` leaves vtkRenderWindow to VTK when X works, and otherwise
+// (and in `egl` mode) the factory gives VTK's own vtkEGLRenderWindow. Older VTK (Debian's 9.1 and 9.3) is X only: there the
+// factory supplies vtkEGLHeadlessRenderWindow.
+#if (VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 4)) &&               \
+  defined(VTK_OPENGL_HAS_EGL)
+#define POINTSURFACES_VTK_EGL_WINDOW 1
+#include "vtkEGLRenderWindow.h"
+#else
+#define POINTSURFACES_VTK_EGL_WINDOW 0
+#endif
+
+#include <EGL/egl.h>
 #include <X11/Xlib.h>
 
 #include <cstdlib>
@@ -46,6 +62,20 @@ bool ProbeXDisplay()
   return dpy != nullptr;
 }
 
+// Whether any EGL display can be initialised. VTK 9.6's vtkEGLRenderWindow
+// crashes in Render() when none can; vtkEGLHeadlessRenderWindow reports it.
+bool EGLUsable()
+{
+  static const bool usable = []
+  {
+    const EGLDisplay display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
+    EGLint major = 0, minor = 0;
+    // Left initialised: the window initialises the same display again.
+    return display != EGL_NO_DISPLAY && eglInitialize(display, &major, &minor) == EGL_TRUE;
+  }();
+  return usable;
+}
+
 bool UseX11()
 {
   switch (CurrentMode)
@@ -78,6 +108,17 @@ vtkObject* CreateRenderWindow()
   {
     return vtkXOpenGLRenderWindow::New();
   }
+#if POINTSURFACES_VTK_EGL_WINDOW
+  if (EGLUsable())
+  {
+    vtkEGLRenderWindow* window = vtkEGLRenderWindow::New();
+    if (const char* device = std::getenv("POINTSURFACES_EGL_DEVICE"))
+    {
+      window->SetDeviceIndex(std::atoi(device));
+    }
+    return window;
+  }
+#endif
   return vtkEGLHeadlessRenderWindow::New();
 }
 
@@ -128,6 +169,18 @@ bool vtkPointSurfacesRenderWindowFactory::SetMode(int mode)
     vtkGenericWarningMacro(<< "Unknown render window mode " << mode);
     return false;
   }
+#if POINTSURFACES_VTK_EGL_WINDOW
+  if (mode == Auto && IsXDisplayUsable())
+  {
+    // VTK's own factory gives its X window (and ParaView 6.1's client crashes
+    // deleting an X window made outside it). Without X, VTK would go on from
+    // EGL to OSMesa and crash in Render() when libOSMesa is missing, so the
+    // override stays, with VTK's EGL window.
+    Uninstall();
+    CurrentMode = Auto;
+    return true;
+  }
+#endif
   if (!Installed)
   {
     // The registry owns the factory; VTK frees it with the other factories at exit.
@@ -202,9 +255,16 @@ const char* vtkPointSurfacesRenderWindowFactory::GetSelectedWindowClassName()
 {
   if (CurrentMode < 0)
   {
-    return "vtkXOpenGLRenderWindow";
+    return "vtkXOpenGLRenderWindow"; // VTK's own choice, with a display
   }
-  return UseX11() ? "vtkXOpenGLRenderWindow" : "vtkEGLHeadlessRenderWindow";
+  return UseX11() ? "vtkXOpenGLRenderWindow" : GetEGLWindowClassName();
+}
+
+//------------------------------------------------------------------------------
+const char* vtkPointSurfacesRenderWindowFactory::GetEGLWindowClassName()
+{
+  return POINTSURFACES_VTK_EGL_WINDOW && EGLUsable() ? "vtkEGLRenderWindow"
+                                                     : "vtkEGLHeadlessRenderWindow";
 }
 
 //------------------------------------------------------------------------------

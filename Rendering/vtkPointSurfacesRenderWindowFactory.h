@@ -4,14 +4,20 @@
  * @class   vtkPointSurfacesRenderWindowFactory
  * @brief   Object-factory override that decides what vtkRenderWindow::New() returns.
  *
- * Debian's VTK 9.1 only knows vtkXOpenGLRenderWindow, which aborts the process
- * when there is no X display. This factory overrides `vtkRenderWindow` so that
- * every VTK pipeline (C++, Python, the test drivers) gets a window that works:
+ * Debian's VTK 9.1 and 9.3 only know vtkXOpenGLRenderWindow, which aborts the
+ * process when there is no X display. This factory overrides `vtkRenderWindow`
+ * so that every VTK pipeline (C++, Python, the test drivers) gets a window that
+ * works. "The EGL window" below is vtkEGLHeadlessRenderWindow on those VTK
+ * versions, and VTK's own vtkEGLRenderWindow on VTK 9.4 and later built with
+ * EGL (Debian's 9.6), which choose between X and EGL at run time themselves:
+ * there `Auto` with a usable X display leaves vtkRenderWindow to VTK (whose
+ * chain, without X, ends in an OSMesa window that crashes when libOSMesa is
+ * missing; GetEGLWindowClassName() says which EGL window is used).
  *
  * | mode   | vtkRenderWindow::New() returns |
  * |--------|--------------------------------|
- * | `Auto` | VTK's X window when an X display can be opened, else vtkEGLHeadlessRenderWindow |
- * | `EGL`  | always vtkEGLHeadlessRenderWindow |
+ * | `Auto` | VTK's X window when an X display can be opened, else the EGL window |
+ * | `EGL`  | always the EGL window |
  * | `X11`  | VTK's X window; without a usable display, a warning and the EGL window |
  *
  * The one switch is the environment variable `POINTSURFACES_RENDER_WINDOW`,
@@ -52,7 +58,7 @@ public:
   /** The current mode, or -1 when the factory is not installed. */
   static int GetMode();
 
-  /** SetMode(EGL): every new vtkRenderWindow is a vtkEGLHeadlessRenderWindow. */
+  /** SetMode(EGL): every new vtkRenderWindow is the EGL window (GetEGLWindowClassName()). */
   static bool InstallAsDefault() { return SetMode(EGL); }
 
   /** Unregister the factory and give vtkRenderWindow back to VTK's own overrides. */
@@ -69,6 +75,14 @@ public:
 
   /** The class a vtkRenderWindow::New() would get in the current mode. */
   static const char* GetSelectedWindowClassName();
+
+  /**
+   * The headless window of this VTK: vtkEGLHeadlessRenderWindow (VTK 9.1 to
+   * 9.3) or VTK's vtkEGLRenderWindow (9.4 and later, built with EGL, when an
+   * EGL display can be initialised: VTK's window crashes in Render() when
+   * none can, ours reports it and draws nothing).
+   */
+  static const char* GetEGLWindowClassName();
 
   const char* GetVTKSourceVersion() override;
   const char* GetDescription() override;

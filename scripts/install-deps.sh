@@ -5,16 +5,18 @@
 # ParaView 6.1). Idempotent: one `apt-get update`, and a no-op when all is
 # present. Runs as root, or through sudo otherwise.
 #
-# Usage: scripts/install-deps.sh [--dry-run] [--paraview] [--release NAME]
+# Usage: scripts/install-deps.sh [--dry-run] [--paraview] [--release=NAME]
 #   --dry-run   only list the packages that are missing
 #   --paraview  also what the `paraview` preset needs: paraview, paraview-dev
-#               and, on bookworm, Qt's xmlpatterns (the plugin's help pages).
+#               and an XSLT tool for the plugin's help pages (Qt's
+#               xmlpatterns on bookworm, xsltproc on trixie and forky, and
+#               on forky Qt 6 Help, which ParaView 6.1's plugin macros ask for).
 #               Where python3-paraview conflicts with python3-vtk9 (bookworm
 #               and trixie: ParaView bundles its own VTK there) it is
 #               downloaded and unpacked into build/paraview-sdk/root, never
 #               installed; on forky ParaView uses Debian's VTK and
 #               python3-paraview is installed as usual.
-#   --release   the package names of this release (default: this machine's,
+#   --release=NAME  the package names of this release (default: this machine's,
 #               from /etc/os-release; an unknown one gets forky's)
 set -euo pipefail
 
@@ -78,8 +80,8 @@ if [ "$paraview" = 1 ]; then
   packages+=(paraview paraview-dev)
   case "$release" in
     bookworm) packages+=(qtxmlpatterns5-dev-tools); pv_unpack=1 ;;
-    trixie) pv_unpack=1 ;;
-    *) packages+=(python3-paraview) ;;
+    trixie) packages+=(xsltproc); pv_unpack=1 ;;
+    *) packages+=(python3-paraview xsltproc qt6-tools-dev qt6-tools-dev-tools) ;;
   esac
 fi
 missing=()

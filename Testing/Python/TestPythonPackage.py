@@ -15,12 +15,16 @@ for name in ("vtkEGLHeadlessRenderWindow", "vtkPointSurfacesRenderWindowFactory"
     if not hasattr(pointsurfaces, name):
         fail("pointsurfaces has no " + name)
 
+# vtkEGLHeadlessRenderWindow up to VTK 9.3, VTK's vtkEGLRenderWindow from 9.4.
+egl_class = pointsurfaces.egl_window_class()
+if egl_class not in ("vtkEGLHeadlessRenderWindow", "vtkEGLRenderWindow"):
+    fail("egl_window_class() names " + egl_class)
 if not pointsurfaces.use_egl():
     fail("use_egl() returned False")
 window = vtkRenderWindow()
-if window.GetClassName() != "vtkEGLHeadlessRenderWindow":
+if window.GetClassName() != egl_class:
     fail("after use_egl(), vtkRenderWindow() is a " + window.GetClassName())
-if pointsurfaces.render_window_class() != "vtkEGLHeadlessRenderWindow":
+if pointsurfaces.render_window_class() != egl_class:
     fail("render_window_class() disagrees with use_egl()")
 
 try:
@@ -32,9 +36,9 @@ except ValueError:
 # 'vtk' hands window creation back to VTK itself.
 pointsurfaces.set_render_window_mode("vtk")
 if vtkRenderWindow().GetClassName() == "vtkEGLHeadlessRenderWindow":
-    fail("mode 'vtk' still creates the EGL window")
+    fail("mode 'vtk' still creates our EGL window")
 pointsurfaces.set_render_window_mode("auto")
-expected = "vtkXOpenGLRenderWindow" if os.environ.get("DISPLAY") else "vtkEGLHeadlessRenderWindow"
+expected = "vtkXOpenGLRenderWindow" if os.environ.get("DISPLAY") else egl_class
 if not os.environ.get("DISPLAY") and vtkRenderWindow().GetClassName() != expected:
     fail("auto without DISPLAY should give the EGL window")
 

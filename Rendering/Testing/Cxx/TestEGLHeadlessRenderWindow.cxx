@@ -27,8 +27,9 @@ int TestEGLHeadlessRenderWindow(int argc, char* argv[])
   vtkNew<vtkRenderWindow> renWin;
   const char* env = std::getenv("POINTSURFACES_RENDER_WINDOW");
   const std::string mode = env ? env : "auto";
-  const std::string expected =
-    mode == "egl" ? "vtkEGLHeadlessRenderWindow" : (mode == "x11" ? "vtkXOpenGLRenderWindow" : "");
+  const std::string expected = mode == "egl"
+    ? vtkPointSurfacesRenderWindowFactory::GetEGLWindowClassName()
+    : (mode == "x11" ? "vtkXOpenGLRenderWindow" : "");
   if (!expected.empty() && expected != renWin->GetClassName())
   {
     std::cerr << "POINTSURFACES_RENDER_WINDOW=" << mode << " gave a " << renWin->GetClassName()

@@ -33,8 +33,14 @@ _MODES = {"auto": _Factory.Auto, "egl": _Factory.EGL, "x11": _Factory.X11}
 
 
 def use_egl():
-    """Make every new vtkRenderWindow a headless vtkEGLHeadlessRenderWindow."""
+    """Make every new vtkRenderWindow headless, through EGL (egl_window_class())."""
     return bool(_Factory.InstallAsDefault())
+
+
+def egl_window_class():
+    """The headless window of this VTK: vtkEGLHeadlessRenderWindow (VTK 9.1 to
+    9.3) or VTK's own vtkEGLRenderWindow (9.4 and later, built with EGL)."""
+    return _Factory.GetEGLWindowClassName()
 
 
 def set_render_window_mode(mode):
