@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The main job: set everything up on a fresh Debian 12 machine, then render a
+# The main job: set everything up on a fresh Debian 12, 13 or forky machine, then render a
 # real scan headless to a PNG and print what it cost.
 #
 # Usage: scripts/demo.sh [input.{ply,vtp,pcd,xyz,obj,off,om,stl}] [output.png]

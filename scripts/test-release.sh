@@ -91,7 +91,6 @@ if [ ! -d "$root" ]; then
   if ! $SUDO debootstrap --variant=minbase --include="$base" \
       --keyring="$keyring" "$release" "$root" "$mirror" \
       "/usr/share/debootstrap/scripts/$script" >"$dir/debootstrap.log" 2>&1; then
-    tail -n 5 "$dir/debootstrap.log" >&2
     die "$release: step 'debootstrap' failed (log: $dir/debootstrap.log)"
   fi
   echo "deb $mirror $release main" | $SUDO tee "$root/etc/apt/sources.list" >/dev/null
