@@ -10,9 +10,10 @@
 #include "vtkXOpenGLRenderWindow.h"
 
 // VTK 9.4 and later, built with EGL (Debian's 9.6 is), choose between X and
-// EGL at run time themselves and select EGL devices (VTK_DEFAULT_EGL_DEVICE_INDEX):
-// there, `auto` leaves vtkRenderWindow to VTK when X works, and otherwise
-// (and in `egl` mode) the factory gives VTK's own vtkEGLRenderWindow. Older VTK (Debian's 9.1 and 9.3) is X only: there the
+// EGL at run time themselves and select EGL devices
+// (VTK_DEFAULT_EGL_DEVICE_INDEX): there, `auto` leaves vtkRenderWindow to VTK
+// when X works, and otherwise (and in `egl` mode) the factory gives VTK's own
+// vtkEGLRenderWindow. Older VTK (Debian's 9.1 and 9.3) is X only: there the
 // factory supplies vtkEGLHeadlessRenderWindow.
 #if (VTK_MAJOR_VERSION > 9 || (VTK_MAJOR_VERSION == 9 && VTK_MINOR_VERSION >= 4)) &&               \
   defined(VTK_OPENGL_HAS_EGL)
