@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# The whole test suite from nothing: install the Debian packages, configure,
-# build and run ctest (which also installs into a scratch prefix, builds the
-# C++ example against the installed package and imports the installed Python
-# package).
+# The whole test suite from nothing, on Debian 12, 13 or forky: install that
+# release's packages (scripts/install-deps.sh), configure, build and run
+# ctest (which also installs into a scratch prefix, builds the C++ example
+# against the installed package and imports the installed Python package).
 #
 # Usage: scripts/test.sh [PRESET] [-- extra ctest arguments]
 #   PRESET: vtk (default), debug, asan (the unit tests only), fuzz (the
