@@ -230,6 +230,30 @@ void HitPoint(const double clipToView[16],
     point[r] = ends[0][r] + t * (ends[1][r] - ends[0][r]);
   }
 }
+// The composite passes' depth and blend state: depth-tested against the
+// scene (LEQUAL, written), no blending; the previous state comes back when it
+// goes out of scope. Only what is changed is saved, not Push and Pop: VTK
+// 9.6's Pop binds again the buffers its cache holds, which may have been
+// deleted since (by this mapper's shader rebuild or by another mapper).
+struct CompositeDepthState
+{
+  vtkOpenGLState::ScopedglEnableDisable DepthTest;
+  vtkOpenGLState::ScopedglEnableDisable Blend;
+  vtkOpenGLState::ScopedglDepthFunc DepthFunc;
+  vtkOpenGLState::ScopedglDepthMask DepthMask;
+
+  explicit CompositeDepthState(vtkOpenGLState* ostate)
+    : DepthTest(ostate, GL_DEPTH_TEST)
+    , Blend(ostate, GL_BLEND)
+    , DepthFunc(ostate)
+    , DepthMask(ostate)
+  {
+    ostate->vtkglEnable(GL_DEPTH_TEST);
+    ostate->vtkglDepthFunc(GL_LEQUAL);
+    ostate->vtkglDepthMask(GL_TRUE);
+    ostate->vtkglDisable(GL_BLEND);
+  }
+};
 } // namespace
 
 struct vtkMetaballMapper::Internals
@@ -782,14 +806,7 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
     vtkErrorMacro(<< "The metaball shading shader did not compile.");
     return;
   }
-  // Only what is changed here is saved and restored (not Push and Pop: VTK
-  // 9.6's Pop binds again the buffers its cache holds, which may have been
-  // deleted since, by this mapper's shader rebuild or by another mapper).
-  vtkOpenGLState* ostate = renWin->GetState();
-  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
-  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  const CompositeDepthState depthState(renWin->GetState());
   in.ColorImage->Activate();
   in.NormalImage->Activate();
   in.DepthImage->Activate();
@@ -823,10 +840,6 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
   program->SetUniform3f("ambientColor", ac);
   program->SetUniform3f("specularColor", sc);
   program->SetUniformf("opacity", static_cast<float>(prop->GetOpacity()));
-  ostate->vtkglEnable(GL_DEPTH_TEST);
-  ostate->vtkglDepthFunc(GL_LEQUAL);
-  ostate->vtkglDepthMask(GL_TRUE);
-  ostate->vtkglDisable(GL_BLEND);
   in.Composite->Render();
   in.ColorImage->Deactivate();
   in.NormalImage->Deactivate();
@@ -1310,21 +1323,13 @@ void vtkMetaballMapper::DrawSelection(vtkRenderer* ren,
     vtkErrorMacro(<< "The metaball selection shader did not compile.");
     return;
   }
-  vtkOpenGLState* ostate = renWin->GetState(); // what changes is restored (see Render)
-  vtkOpenGLState::ScopedglEnableDisable depthTest(ostate, GL_DEPTH_TEST);
-  vtkOpenGLState::ScopedglEnableDisable blend(ostate, GL_BLEND);
-  vtkOpenGLState::ScopedglDepthFunc depthFunc(ostate);
-  vtkOpenGLState::ScopedglDepthMask depthMask(ostate);
+  const CompositeDepthState depthState(renWin->GetState());
   in.PickImage->Activate();
   in.DepthImage->Activate();
   program->SetUniformi("colorTexture", in.PickImage->GetTextureUnit());
   program->SetUniformi("depthTexture", in.DepthImage->GetTextureUnit());
   program->SetUniformi("shadows", 0);
   program->SetUniformf("opacity", 1.0f);
-  ostate->vtkglEnable(GL_DEPTH_TEST);
-  ostate->vtkglDepthFunc(GL_LEQUAL);
-  ostate->vtkglDepthMask(GL_TRUE);
-  ostate->vtkglDisable(GL_BLEND);
   in.PickComposite->Render();
   in.PickImage->Deactivate();
   in.DepthImage->Deactivate();
