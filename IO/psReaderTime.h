@@ -111,6 +111,11 @@ struct FrameIndex
       error = "cannot be opened";
       return true;
     }
+    if (in.peek() == std::ifstream::traits_type::eof())
+    {
+      error = "is empty"; // said once, here, rather than as damage after 0 frames
+      return true;
+    }
     std::string damage;
     this->Frames = scan(in, damage);
     this->Stamp.Take(file);

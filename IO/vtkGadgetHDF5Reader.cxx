@@ -23,6 +23,7 @@
 #include "vtkTypeInt64Array.h"
 #include "vtkTypeUInt32Array.h"
 #include "vtkTypeUInt64Array.h"
+#include "vtksys/SystemTools.hxx"
 
 #include <cstring>
 
@@ -116,6 +117,12 @@ int vtkGadgetHDF5Reader::RequestData(vtkInformation*,
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   if (this->FileName.empty() || pointsurfaces::LaterPiece(info))
   {
+    return 1;
+  }
+  if (vtksys::SystemTools::FileExists(this->FileName, true) &&
+    vtksys::SystemTools::FileLength(this->FileName) == 0)
+  {
+    vtkErrorMacro(<< this->FileName << " is empty.");
     return 1;
   }
   const pointsurfaces::Snapshot snapshot =

@@ -16,6 +16,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
 #include "vtkType.h"
+#include "vtksys/SystemTools.hxx"
 
 #include <openvdb/io/Archive.h>
 #include <openvdb/io/GridDescriptor.h>
@@ -423,6 +424,12 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
   if (this->FileName.empty())
   {
     vtkErrorMacro(<< "No FileName set.");
+    return 1;
+  }
+  if (vtksys::SystemTools::FileExists(this->FileName, true) &&
+    vtksys::SystemTools::FileLength(this->FileName) == 0)
+  {
+    vtkErrorMacro(<< "\"" << this->FileName << "\" is empty.");
     return 1;
   }
   if (!vtkOpenVDBPointsReader::CanReadFile(this->FileName.c_str()))

@@ -14,6 +14,7 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
+#include "vtksys/SystemTools.hxx"
 
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/console/print.h>
@@ -245,6 +246,12 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
   if (this->FileName.empty())
   {
     vtkErrorMacro(<< "No FileName to read.");
+    return 1;
+  }
+  if (vtksys::SystemTools::FileExists(this->FileName, true) &&
+    vtksys::SystemTools::FileLength(this->FileName) == 0)
+  {
+    vtkErrorMacro(<< "'" << this->FileName << "' is empty.");
     return 1;
   }
   if (!CanReadFile(this->FileName.c_str()))

@@ -9,7 +9,7 @@ report what it cost.
 
 The scan is read by pointsurfaces.scanio.read_scan: PLY with any elements
 (MeshLab's range maps, with a camera before the vertices, included), ASCII
-or binary, by that module's own reader; VTP by VTK; PCD by PCL; OBJ, OFF, OM
+or binary, by pointsurfaces.vtkPLYScanReader; VTP by VTK; PCD by PCL; OBJ, OFF, OM
 and STL by OpenMesh; XYZ as x y z per line. A file that cannot be read (a
 missing, truncated or damaged file, an unknown extension) ends the script
 with one line on stderr naming the file, and exit status 1.
@@ -38,9 +38,12 @@ DEFAULT_INPUT = os.path.join(HERE, "..", "..", "Testing", "Data", "bunny.vtp")
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("input", nargs="?", default=DEFAULT_INPUT)
-    parser.add_argument("output", nargs="?", default="scan.png")
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("input", nargs="?", default=DEFAULT_INPUT,
+                        help="the scan (default: Testing/Data/bunny.vtp, the Stanford Bunny)")
+    parser.add_argument("output", nargs="?", default="scan.png",
+                        help="the PNG (default: scan.png)")
     parser.add_argument("--size", type=int, default=800)
     parser.add_argument("--degree", type=int, default=3)
     parser.add_argument("--quality", type=float, default=1.0)

@@ -66,7 +66,7 @@ pxm = servermanager.ProxyManager()
 for proxy in ("AlgebraicSplatFitter", "MultiResolutionSplatBuilder", "SplatErrorMetric"):
     check(pxm.GetPrototypeProxy("filters", proxy) is not None, "filter " + proxy)
 for proxy in ("OpenMeshReader", "OpenVDBPointsReader", "LAMMPSDumpReader", "GromacsGroReader",
-              "GromacsXtcReader", "GadgetHDF5Reader"):
+              "GromacsXtcReader", "GadgetHDF5Reader", "PLYScanReader"):
     check(pxm.GetPrototypeProxy("sources", proxy) is not None, "reader " + proxy)
 
 # A LAMMPS run's dump, animated over its snapshots.

@@ -11,7 +11,7 @@
 //   Code "SWIFT", BoxSize of three numbers;
 // - the real snapshot: 2000 gas particles with SmoothingLength and Density,
 //   Masses from its MassTable, redshift 5.04;
-// - bad input: a missing file, a text file, truncated copies, no Header, no
+// - bad input: a missing file, an empty file, a text file, truncated copies, no Header, no
 //   Coordinates, Coordinates of two columns, parts whose Coordinates differ
 //   in type, a missing part of a split snapshot: one error each and an empty
 //   output.
@@ -257,6 +257,7 @@ int TestGadgetHDF5Reader(int, char*[])
 
   // Bad input.
   ExpectReadError<vtkGadgetHDF5Reader>(Temp("no_such_snapshot.hdf5"), "cannot be opened");
+  ExpectEmptyFileError<vtkGadgetHDF5Reader>(Temp("empty.hdf5"));
   const std::string text = Temp("not_a_snapshot.hdf5");
   std::ofstream(text) << "ITEM: TIMESTEP\n0\n";
   ExpectReadError<vtkGadgetHDF5Reader>(text, "HDF5 cannot open it");
@@ -265,7 +266,8 @@ int TestGadgetHDF5Reader(int, char*[])
   const size_t bytes = static_cast<size_t>(sized.tellg());
   for (size_t cut : { size_t(0), size_t(100), bytes / 4, bytes / 2, bytes - 1 })
   {
-    ExpectReadError<vtkGadgetHDF5Reader>(Truncated(gadget, cut), "HDF5 cannot open it");
+    ExpectReadError<vtkGadgetHDF5Reader>(
+      Truncated(gadget, cut), cut == 0 ? "is empty" : "HDF5 cannot open it");
   }
   {
     const std::string empty = Temp("no_header.hdf5");

@@ -4,7 +4,7 @@
 // (IO/Testing/Data/gromacs: SPC water, 4 frames with velocities, and the
 // inputs that made it): time steps, frame choice, positions, velocities,
 // elements and radii against the file's own columns; elements of ions and
-// protein atoms; and missing, truncated, damaged and garbage files.
+// protein atoms; and missing, empty, truncated, damaged and garbage files.
 #include "psIOTestSupport.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
@@ -147,6 +147,7 @@ int TestGromacsGroReader(int, char*[])
     Check(r->GetOutput()->GetNumberOfPoints() == 327, "a frame before the damage reads");
   }
   ExpectReadError<vtkGromacsGroReader>(temp + "/missing.gro", "cannot be opened");
+  ExpectEmptyFileError<vtkGromacsGroReader>(temp + "/empty.gro");
   ExpectReadError<vtkGromacsGroReader>(
     Write(temp + "/garbage.gro", "garbage\nnot a count\n"), "no atom count");
   ExpectReadError<vtkGromacsGroReader>(

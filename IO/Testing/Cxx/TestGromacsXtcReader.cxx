@@ -226,7 +226,7 @@ int TestGromacsXtcReader(int, char*[])
   };
   const size_t block = static_cast<size_t>(frames[0].Offset) + 56; // precision onwards
   ExpectReadError<vtkGromacsXtcReader>(temp + "/missing.xtc", "cannot be opened");
-  ExpectReadError<vtkGromacsXtcReader>(Write(temp + "/empty.xtc", ""), "empty");
+  ExpectEmptyFileError<vtkGromacsXtcReader>(temp + "/empty.xtc");
   ExpectReadError<vtkGromacsXtcReader>(Write(temp + "/garbage.xtc", "garbage, not XDR"), "magic");
   ExpectReadError<vtkGromacsXtcReader>(
     patched("count.xtc", 4, std::string("\x00\x01\x00\x00", 4)), "atom counts");

@@ -4,7 +4,7 @@
 // with the inputs that made them): time steps, snapshot choice, points and
 // arrays against the file's own numbers, sorting by id, scaled coordinates
 // in a triclinic box against the same run's unscaled dump; and missing,
-// truncated, damaged and garbage files (one error, empty or partial output,
+// empty, truncated, damaged and garbage files (one error, empty or partial output,
 // no crash).
 #include "psIOTestSupport.h"
 #include "vtkCommand.h"
@@ -205,6 +205,7 @@ int TestLAMMPSDumpReader(int, char*[])
     Check(ReadAt(r, 0.2)->GetNumberOfPoints() == 256, "a snapshot before the damage reads");
   }
   ExpectReadError<vtkLAMMPSDumpReader>(temp + "/missing.lammpstrj", "cannot be opened", 0);
+  ExpectEmptyFileError<vtkLAMMPSDumpReader>(temp + "/empty.lammpstrj");
   ExpectReadError<vtkLAMMPSDumpReader>(
     Write(temp + "/garbage.lammpstrj", "solid garbage\n\x01\x02\x03"), "expected an ITEM line", 0);
   ExpectReadError<vtkLAMMPSDumpReader>(

@@ -164,5 +164,6 @@ int TestOpenMeshReader(int, char*[])
         out->GetNumberOfCells() == 0,
       "bad file " + path);
   }
+  ExpectEmptyFileError<vtkOpenMeshReader>(dir + "/empty.obj");
   return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }

@@ -283,6 +283,7 @@ int TestOpenVDBPointsReader(int, char*[])
     Check(clean || (path.find("flipped") != std::string::npos && Errors == 0), "bad file " + path);
   }
   std::cout << badOk << " of " << bad.size() << " bad files rejected with one error\n";
+  ExpectEmptyFileError<vtkOpenVDBPointsReader>(dir + "/empty-again.vdb");
   Check(read(good)->GetNumberOfPoints() == 5000 && Errors == 0, "reads again after errors");
   return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }

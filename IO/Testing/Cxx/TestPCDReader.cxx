@@ -1,7 +1,7 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
 // vtkPCDReader on a real binary_compressed Kinect subset, on an ASCII file
-// with normals, colours and a NaN point, and on missing, truncated and
+// with normals, colours and a NaN point, and on missing, empty, truncated and
 // garbage files (clear error, empty output, no crash).
 #include "psIOTestSupport.h"
 #include "vtkCommand.h"
@@ -85,6 +85,7 @@ int TestPCDReader(int, char*[])
   const std::string garbage = temp + "/garbage.pcd";
   std::ofstream(garbage) << "# .PCD v0.7\nthis is not a header\n\x01\x02\x03";
   ExpectReadError<vtkPCDReader>(garbage, "Cannot read");
+  ExpectEmptyFileError<vtkPCDReader>(temp + "/empty.pcd");
 
   if (Failures)
   {

@@ -10,6 +10,7 @@
 #ifndef psIOTestSupport_h
 #define psIOTestSupport_h
 
+#include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
@@ -85,6 +86,36 @@ void ExpectReadError(const std::string& file, const std::string& expected, vtkId
       "')");
   Check(reader->GetOutput()->GetNumberOfPoints() == points,
     "an output of " + std::to_string(points) + " points for " + file);
+}
+
+/**
+ * Read an empty (0-byte) file, written at `path`, with a new `Reader`:
+ * exactly one error, naming the file and saying that it is empty, and an
+ * output without points.
+ */
+template<typename Reader>
+void ExpectEmptyFileError(const std::string& path)
+{
+  Write(path, "");
+  vtkNew<Reader> reader;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  vtkNew<vtkCallbackCommand> count;
+  count->SetCallback(CountError);
+  for (vtkObject* o :
+    { static_cast<vtkObject*>(reader), static_cast<vtkObject*>(reader->GetExecutive()) })
+  {
+    o->AddObserver(vtkCommand::ErrorEvent, errors);
+    o->AddObserver(vtkCommand::ErrorEvent, count);
+  }
+  const int before = Errors;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  const std::string message = errors->GetErrorMessage();
+  Check(Errors - before == 1 && message.find(path) != std::string::npos &&
+      message.find("is empty") != std::string::npos,
+    "one error naming the empty file " + path + " (got " + std::to_string(Errors - before) + ": '" +
+      message + "')");
+  Check(reader->GetOutput()->GetNumberOfPoints() == 0, "no points from the empty file " + path);
 }
 
 /** Balls at `xyz` with point arrays "Radius" and, when given, "Strength". */
