@@ -5,6 +5,10 @@
 
     molecule_metaballs.py [input.pdb] [output.png] [--size N] [--shadows]
 
+input.pdb is any PDB file (default: Testing/Data/hemoglobin_chainA.pdb, chain
+A of hemoglobin 3GQP, 1 079 atoms, which a clone has); output.png defaults to
+molecule.png in the current folder.
+
 Atoms are read by VTK's vtkPDBReader; each becomes a metaball whose support
 radius is twice its van der Waals radius (RadiusScale 2: with Wyvill's kernel
 and T = 0.5 a lone atom shows at its van der Waals radius), coloured by
@@ -24,13 +28,17 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkLight, vtkRenderer, vtkRen
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-DEFAULT_INPUT = os.path.join(HERE, "..", "..", "..", "shared", "data", "molecules", "1tii.pdb")
+# Chain A of hemoglobin (PDB 3GQP, 1 079 atoms), which a clone has.
+DEFAULT_INPUT = os.path.join(HERE, "..", "..", "Testing", "Data", "hemoglobin_chainA.pdb")
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("input", nargs="?", default=DEFAULT_INPUT)
-    parser.add_argument("output", nargs="?", default="molecule.png")
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("input", nargs="?", default=DEFAULT_INPUT,
+                        help="any PDB file (default: Testing/Data/hemoglobin_chainA.pdb)")
+    parser.add_argument("output", nargs="?", default="molecule.png",
+                        help="the PNG (default: molecule.png)")
     parser.add_argument("--size", type=int, default=800)
     parser.add_argument("--shadows", action="store_true")
     args = parser.parse_args()

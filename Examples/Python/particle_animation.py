@@ -137,7 +137,8 @@ class Vortex:
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("inputs", nargs="*", help="one file a time step (default: a simulation)")
     parser.add_argument("--out", default="frames")
     parser.add_argument("--frames", type=int, default=60, help="simulated frames (no input)")

@@ -1,9 +1,37 @@
 # SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 # SPDX-License-Identifier: BSD-3-Clause
-"""What the benchmark scripts share: their rows as CSV, to a file and to stdout, and
---fitter-option NAME VALUE pairs."""
+"""What the benchmark scripts share: their rows as CSV, to a file and to stdout,
+--fitter-option NAME VALUE pairs, and the inputs they read (committed data, or
+full-size files in a --data folder)."""
 import csv
+import glob
+import os
 import sys
+
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+TEST_DATA = os.path.join(ROOT, "Testing", "Data")  # small inputs a clean clone has
+IO_DATA = os.path.join(ROOT, "IO", "Testing", "Data")
+
+
+def find_input(folder, name, what):
+    """The path of the file `name` in `folder` (or in a folder one level below it), or
+    None after one line on stderr saying that `what` is skipped and why."""
+    for path in [os.path.join(folder, name)] + sorted(glob.glob(os.path.join(folder, "*", name))):
+        if os.path.isfile(path):
+            return path
+    skip(what, "no %s in %s" % (name, folder))
+    return None
+
+
+def skip(what, why):
+    """The one line a benchmark prints for an input it skips."""
+    print("%s: skipped %s: %s" % (os.path.basename(sys.argv[0]), what, why), file=sys.stderr)
+
+
+def skip_unreadable(path, error):
+    """skip() for a file that cannot be read (error: a ScanReadError, which names it)."""
+    text = str(error)
+    skip(path, text[len(path) + 2:] if text.startswith(path + ": ") else text)
 
 
 def write_rows(path, rows, fields=None):

@@ -45,7 +45,8 @@ def resident_mb():
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("trajectory", nargs="?", help="a .lammpstrj, .dump or .gro (default: vortex)")
     parser.add_argument("--frames", type=int, default=200)
     parser.add_argument("--particles", type=int, default=20000)

@@ -3,16 +3,36 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Per-frame cost and image error of vtkMetaballMapper against a sample-and-contour pipeline.
 
-For each input (scattered balls at N = 10K, 100K and 1M; the halo, HYG-star
-and solvated-protein sets of ../shared/data; the halo as SPH gas, each
-particle's radius its smoothing length from its 32 nearest neighbours, spread
-over 30x; the gas of a Gadget-4 snapshot, radius its smoothing length; a
-coarse-grained vesicle of two bead leaflets (made by the script); the SDS
-surfactant monolayers of LAMMPS's CG-SDK example (from Debian's
-lammps-examples, skipped without it); a sparse
-liquid, SPC water from a GROMACS run, and a Lennard-Jones
-melt from a LAMMPS run, both committed under IO/Testing/Data) the same window
-draws:
+    bench_metaballs.py [INPUT ...] [--data DIR] [--out DIR] [--frames N] [--smoke]
+                       [--grids N ...]
+
+INPUT names a scene (default: all of them):
+
+    scattered-10K, -100K, -1M  balls scattered in a cube (made by the script)
+    halo           a dark-matter halo from an N-body run, radius 1.5 x spacing
+    hyg-stars      the HYG star catalogue within 100 pc
+    adk-solvated   adenylate kinase in water (PDB), radius 2 x van der Waals
+    halo-sph       the halo as SPH gas, each particle's radius its smoothing
+                   length from its 32 nearest neighbours (spread over 30x)
+    gadget-gas     the gas of a Gadget-4 snapshot, radius its smoothing length
+    water-gro      SPC water from a GROMACS run (IO/Testing/Data/gromacs)
+    lammps-melt    a Lennard-Jones melt from a LAMMPS run (IO/Testing/Data/lammps)
+    vesicle        a coarse-grained vesicle of two bead leaflets (made by the script)
+    sds-monolayer  the SDS surfactant monolayers of LAMMPS's CG-SDK example
+                   (from Debian's lammps-examples; skipped without it)
+
+By default the data sets are the small ones a clone has: halo and halo-sph read
+Testing/Data/halo_2k.xyz (the first 2 000 particles of the halo), adk-solvated
+Testing/Data/adk_solvated_2k.pdb (its first 2 000 atoms), gadget-gas
+IO/Testing/Data/gadget/lcdm_gas_z5_subset.hdf5; hyg-stars has no committed
+sample and is skipped. --data DIR reads the full-size files from DIR (or a
+folder one level below it) instead: halo_32k.xyz, hyg_stars.vtp,
+adk_solvated.pdb and gadget4_lcdm_gas_z5.hdf5; a scene whose file is not there
+is skipped, with one line on stderr. --smoke (what ctest runs): 2 000 scattered
+balls, at most the first 2 000 of the halo, star, protein and Gadget files, one
+96 x 96 size, one frame.
+
+For each scene the same window draws:
 
 - vtkMetaballMapper's CPU ray caster at its defaults (step scale 0.1, 10
   bisections) and at a coarser and a finer setting, and its GPU ray caster
@@ -62,16 +82,23 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderW
 from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLFluidMapper, vtkOpenGLSphereMapper
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SHARED = os.path.join(HERE, "..", "..", "..", "shared", "data")
-# The smoke run (what ctest runs) reads the 2 000-particle subsets committed
-# in Testing/Data, so that it passes in a clean clone with nothing beside it.
-TEST_DATA = os.path.join(HERE, "..", "Data")
+sys.path.insert(0, HERE)
+from bench_csv import IO_DATA, TEST_DATA, find_input, skip  # noqa: E402
 
+# The scenes read from files: (the committed file, the full-size file's name in --data).
+FILES = {"halo": (os.path.join(TEST_DATA, "halo_2k.xyz"), "halo_32k.xyz"),
+         "halo-sph": (os.path.join(TEST_DATA, "halo_2k.xyz"), "halo_32k.xyz"),
+         "hyg-stars": (None, "hyg_stars.vtp"),
+         "adk-solvated": (os.path.join(TEST_DATA, "adk_solvated_2k.pdb"), "adk_solvated.pdb"),
+         "gadget-gas": (os.path.join(IO_DATA, "gadget", "lcdm_gas_z5_subset.hdf5"),
+                        "gadget4_lcdm_gas_z5.hdf5")}
+SCENES = ["scattered-10K", "scattered-100K", "scattered-1M", "halo", "hyg-stars",
+          "adk-solvated", "halo-sph", "gadget-gas", "water-gro", "lammps-melt", "vesicle",
+          "sds-monolayer"]
 
 FIELDS = ["input", "balls", "size", "method", "setting", "frame_ms", "build_ms", "render_ms",
           "pairs", "incomplete", "rmse", "reference", "samples_per_ray", "empty_visits",
           "vs_imposters"]
-IO_DATA = os.path.join(HERE, "..", "..", "IO", "Testing", "Data")
 
 
 def wyvill(x):
@@ -86,20 +113,35 @@ def scattered(n, seed=1):
     return centres, np.full(n, radius)
 
 
-def load(name, smoke):
+def input_file(name, data):
+    """The file scene `name` reads: committed, or its full-size file in `data`; None
+    (after one line on stderr) where there is none."""
+    committed, full = FILES[name]
+    if data:
+        return find_input(data, full, name)
+    if committed is None:
+        skip(name, "no committed sample; --data DIR with %s reads it" % full)
+    return committed
+
+
+def load(name, smoke, data=None):
+    """(centres, radii) of scene `name`, or (None, None) after one line on stderr saying
+    why it is skipped."""
+    path = input_file(name, data) if name in FILES else None
+    if name in FILES and path is None:
+        return None, None
     if name.startswith("scattered-"):
         n = {"10K": 10000, "100K": 100000, "1M": 1000000}[name.split("-")[1]]
         return scattered(n if not smoke else 2000)
     if name == "halo":
-        xyz = np.loadtxt(os.path.join(TEST_DATA, "halo_2k.xyz") if smoke
-                         else os.path.join(SHARED, "particles", "halo_32k.xyz"))
+        xyz = np.loadtxt(path)
         if smoke:
             xyz = xyz[:2000]
         spacing = np.ptp(xyz, axis=0).max() / len(xyz) ** (1.0 / 3.0)
         return xyz, np.full(len(xyz), 1.5 * spacing)
     if name == "hyg-stars":
         reader = vtkXMLPolyDataReader()
-        reader.SetFileName(os.path.join(SHARED, "particles", "hyg_stars.vtp"))
+        reader.SetFileName(path)
         reader.Update()
         xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)
         xyz = xyz[np.isfinite(xyz).all(axis=1)]
@@ -111,8 +153,7 @@ def load(name, smoke):
         return xyz, np.full(len(xyz), 6.0)
     if name == "adk-solvated":
         reader = vtkPDBReader()
-        reader.SetFileName(os.path.join(TEST_DATA, "adk_solvated_2k.pdb") if smoke
-                           else os.path.join(SHARED, "molecules", "adk_solvated.pdb"))
+        reader.SetFileName(path)
         # vtkPDBReader leaves the water and ions of a simulation without a
         # radius; vtkAtomRadii gives them their element's.
         from pointsurfaces import vtkAtomRadii
@@ -130,8 +171,9 @@ def load(name, smoke):
         # SPH gas: the smoothing length from the 32 nearest neighbours
         # (Gadget's and SWIFT's neighbour counts are 32 to 64), as the radius.
         from scipy.spatial import cKDTree
-        xyz = np.loadtxt(os.path.join(TEST_DATA, "halo_2k.xyz") if smoke
-                         else os.path.join(SHARED, "particles", "halo_32k.xyz"))
+        xyz = np.loadtxt(path)
+        if smoke:
+            xyz = xyz[:2000]
         distances, _ = cKDTree(xyz).query(xyz, k=33)
         return xyz, distances[:, 32]
     if name == "vesicle":
@@ -162,6 +204,7 @@ def load(name, smoke):
         # at about half of it.
         path = "/usr/share/lammps/examples/PACKAGES/cgsdk/sds-monolayer/data.sds.gz"
         if not os.path.exists(path):
+            skip(name, "no %s (Debian's lammps-examples)" % path)
             return None, None
         import gzip
         sigma = {1: 4.321, 2: 4.506, 3: 4.585, 4: 4.371}
@@ -187,12 +230,16 @@ def load(name, smoke):
         # smoothing length (Gadget's: the kernel's support).
         from pointsurfaces import vtkGadgetHDF5Reader
         reader = vtkGadgetHDF5Reader()
-        reader.SetFileName(os.path.join(IO_DATA, "gadget", "lcdm_gas_z5_subset.hdf5") if smoke
-                           else os.path.join(SHARED, "particles", "gadget4_lcdm_gas_z5.hdf5"))
+        reader.SetFileName(path)
         reader.Update()
         out = reader.GetOutput()
+        if out.GetNumberOfPoints() == 0:
+            skip(name, "no gas particles in " + path)
+            return None, None
         xyz = vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64)
         h = vtk_to_numpy(out.GetPointData().GetArray("SmoothingLength")).astype(np.float64)
+        if smoke:
+            xyz, h = xyz[:2000], h[:2000]
         return xyz, h
     if name == "water-gro":
         # A sparse liquid: SPC water from a short GROMACS run (its first frame),
@@ -336,23 +383,30 @@ def material(actor):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("inputs", nargs="*", default=[
-        "scattered-10K", "scattered-100K", "scattered-1M", "halo", "hyg-stars", "adk-solvated",
-        "halo-sph", "gadget-gas", "water-gro", "lammps-melt", "vesicle", "sds-monolayer"])
-    parser.add_argument("--out", default="bench-results")
-    parser.add_argument("--frames", type=int, default=3)
-    parser.add_argument("--smoke", action="store_true")
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("inputs", nargs="*", default=SCENES, metavar="INPUT",
+                        help="scenes to run (default: all): %s" % " ".join(SCENES))
+    parser.add_argument("--data", metavar="DIR",
+                        help="folder of the full-size files (%s); default: the committed "
+                             "small ones" % ", ".join(sorted({f for _, f in FILES.values()})))
+    parser.add_argument("--out", default="bench-results",
+                        help="folder for metaballs.csv and metaballs_<input>.png")
+    parser.add_argument("--frames", type=int, default=3, help="frames per time median")
+    parser.add_argument("--smoke", action="store_true",
+                        help="2 000 balls a scene, 96 x 96, one frame (what ctest runs)")
     parser.add_argument("--grids", type=int, nargs="+",
                         help="sample-and-contour grid sizes (default: 64 128 256, 64 128 over 50K)")
     args = parser.parse_args()
+    for name in args.inputs:
+        if name not in SCENES:
+            parser.error("no scene %s (scenes: %s)" % (name, " ".join(SCENES)))
     os.makedirs(args.out, exist_ok=True)
     frames = 1 if args.smoke else args.frames
     rows = []
     for name in args.inputs:
-        centres, radii = load(name, args.smoke)
+        centres, radii = load(name, args.smoke, args.data)
         if centres is None:
-            print("# %s: its data is not installed here, skipped" % name, file=sys.stderr)
             continue
         centres = np.asarray(centres, dtype=np.float64).reshape(-1, 3)
         radii = np.asarray(radii, dtype=np.float64).ravel()

@@ -3,8 +3,8 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The SPH density surface of a Gadget or SWIFT snapshot's gas: frame time and ray work per threshold.
 
-    bench_sph_density.py [SNAPSHOT] [--over 1.5 2.5 4 20] [--size 512] [--frames 3]
-                         [--out DIR] [--smoke]
+    bench_sph_density.py [SNAPSHOT] [--data DIR] [--over 1.5 2.5 4 20] [--size 512]
+                         [--frames 3] [--out DIR] [--smoke]
 
 The gas (PartType0) drawn by vtkMetaballMapper's CPU ray caster as an
 iso-surface of its SPH density: the cubic-spline kernel, SmoothingLength as
@@ -18,9 +18,13 @@ smoothing length, give the frame-time yardstick of the same run.
 Per threshold: dynamic frame time (the particles marked modified before
 each frame), grid build and ray-cast times, hits, and per ray the support
 tests, samples and kernel terms (the mapper's statistics). CSV to stdout and
-<out>/sph_density.csv. Default snapshot: ../shared/data/particles/
-gadget4_lcdm_gas_z5.hdf5; --smoke reads the committed 2000-particle subset
-at 96x96.
+<out>/sph_density.csv.
+
+The snapshot: SNAPSHOT (any Gadget or SWIFT HDF5 file); else, with --data DIR,
+the full-size gadget4_lcdm_gas_z5.hdf5 in DIR (or a folder one level below it;
+without it the run is skipped with one line on stderr); else the committed
+2 000-particle subset of it, IO/Testing/Data/gadget/lcdm_gas_z5_subset.hdf5.
+--smoke (what ctest runs): 96 x 96, one frame.
 """
 import argparse
 import os
@@ -35,26 +39,34 @@ from vtkmodules.vtkRenderingCore import vtkActor
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from bench_csv import write_rows  # noqa: E402
+from bench_csv import IO_DATA, find_input, write_rows  # noqa: E402
 from bench_metaballs import LONE_ISO, Scene, imposters, material  # noqa: E402
 
-SNAPSHOT = os.path.join(HERE, "..", "..", "..", "shared", "data", "particles",
-                        "gadget4_lcdm_gas_z5.hdf5")
-SUBSET = os.path.join(HERE, "..", "..", "IO", "Testing", "Data", "gadget",
-                      "lcdm_gas_z5_subset.hdf5")
+SNAPSHOT = "gadget4_lcdm_gas_z5.hdf5"  # the full-size snapshot's name in --data
+SUBSET = os.path.join(IO_DATA, "gadget", "lcdm_gas_z5_subset.hdf5")
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("snapshot", nargs="?", help="a Gadget/SWIFT HDF5 snapshot")
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("snapshot", nargs="?", metavar="SNAPSHOT",
+                        help="a Gadget/SWIFT HDF5 snapshot (default: see --data)")
+    parser.add_argument("--data", metavar="DIR",
+                        help="folder of the full-size %s (default: the committed subset "
+                             "IO/Testing/Data/gadget/lcdm_gas_z5_subset.hdf5)" % SNAPSHOT)
     parser.add_argument("--over", type=float, nargs="+", default=[1.5, 2.5, 4.0, 20.0],
                         help="thresholds, as multiples of the mean density")
     parser.add_argument("--size", type=int, default=512)
     parser.add_argument("--frames", type=int, default=3)
-    parser.add_argument("--out", default="bench-results")
-    parser.add_argument("--smoke", action="store_true")
+    parser.add_argument("--out", default="bench-results", help="folder for sph_density.csv")
+    parser.add_argument("--smoke", action="store_true", help="96 x 96, one frame (ctest)")
     args = parser.parse_args()
-    path = args.snapshot or (SUBSET if args.smoke else SNAPSHOT)
+    path = args.snapshot or (find_input(args.data, SNAPSHOT, "the Gadget snapshot")
+                             if args.data else SUBSET)
+    if path is None:
+        return 0
+    if not os.path.isfile(path):
+        sys.exit("bench_sph_density.py: no such file: " + path)
     size = 96 if args.smoke else args.size
     frames = 1 if args.smoke else args.frames
     os.makedirs(args.out, exist_ok=True)

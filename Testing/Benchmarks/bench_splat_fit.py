@@ -19,11 +19,19 @@
                                                           single levels at s = 1, 2, 4 and the
                                                           multi-resolution builder, against the
                                                           unbounded fit at s = 1
-    add --smoke for a few-second run on a subset (what ctest runs)
+    add --smoke for a few-second run on a subset (what ctest runs): the committed Bunny
+    add --data DIR to counts, fittime, equalquality and levels to read full-size scans
 
-Scans default to ../shared/data/scans/{bunny.ply,igea.xyz,horse.ply}
-(fittime: bunny.ply, horse.ply, lucy_50k.ply). Times
-are wall-clock seconds of vtkAlgebraicSplatFitter.Update() on this machine,
+Scans (any file pointsurfaces.scanio reads: .ply .vtp .pcd .xyz .obj .off .om
+.stl): those given; else, with --data DIR, the full-size scans in DIR (or a
+folder one level below it): bunny.ply, igea.xyz and horse.ply for counts,
+bunny.ply, horse.ply and lucy_50k.ply for fittime, equalquality and levels (a
+scan not there is skipped, with one line on stderr); else the scans a clone
+has: Testing/Data/bunny.vtp (the Stanford Bunny, 35 947 points) and
+Testing/Data/bun000.vtp (one raw range scan of it, 40 256 points). million and
+tradeoff always use the committed Bunny (million samples points on its
+triangles). equalquality times only the scans whose models the quality
+summaries hold (bunny, horse, lucy_50k). Times are wall-clock seconds of vtkAlgebraicSplatFitter.Update() on this machine,
 with every core vtkSMPTools uses; compare them only within one run.
 
 Reference: N. K. R. Bolla, "High Quality Rendering of Large Point-based Surfaces",
@@ -41,28 +49,45 @@ import pointsurfaces
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkPolyData
-from vtkmodules.vtkIOPLY import vtkPLYReader
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 
+from pointsurfaces.scanio import ScanReadError, read_scan
+
 import bench_csv
+from bench_csv import TEST_DATA, find_input, skip, skip_unreadable
 from surface_sampling import sample_surface
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
-SCANS = os.path.normpath(os.path.join(ROOT, "..", "shared", "data", "scans"))
+BUNNY = os.path.join(TEST_DATA, "bunny.vtp")
+COMMITTED = [BUNNY, os.path.join(TEST_DATA, "bun000.vtp")]  # the default scans
+COUNT_SCANS = ("bunny.ply", "igea.xyz", "horse.ply")  # names in --data
+TIMED_SCANS = ("bunny.ply", "horse.ply", "lucy_50k.ply")
 THESIS = {"bunny": 1315, "igea": 4819, "horse": 2983}  # [Bolla 2010] Table 4.7, s = 1
 
 
 def load(path, every=1):
-    if path.endswith(".xyz"):
-        xyz = np.loadtxt(path, usecols=(0, 1, 2))
-    else:
-        reader = (vtkXMLPolyDataReader() if path.endswith(".vtp")
-                  else pointsurfaces.vtkPCDReader() if path.endswith(".pcd") else vtkPLYReader())
-        reader.SetFileName(path)
-        reader.Update()
-        xyz = vtk_to_numpy(reader.GetOutput().GetPoints().GetData()).astype(np.float64)
+    """The scan's points alone (float64), every `every`th; raises ScanReadError."""
+    xyz = vtk_to_numpy(read_scan(path).GetPoints().GetData()).astype(np.float64)
     return points(xyz[::every])
+
+
+def scan_paths(args, names):
+    """The scans a benchmark reads: those given, else `names` in --data (each one
+    missing skipped, with one line), else the committed ones."""
+    if args.scans:
+        return args.scans
+    if args.data:
+        return [p for p in (find_input(args.data, n, n) for n in names) if p]
+    return list(COMMITTED)
+
+
+def loaded(paths):
+    """(path, points) of each scan that can be read; the others skipped, one line each."""
+    for path in paths:
+        try:
+            yield path, load(path)
+        except ScanReadError as e:
+            skip_unreadable(path, e)
 
 
 def points(xyz):
@@ -119,13 +144,10 @@ def plt():
 
 
 def counts(args):
-    scans = args.scans or [os.path.join(SCANS, s) for s in ("bunny.ply", "igea.xyz", "horse.ply")]
-    if args.smoke:
-        scans = [os.path.join(ROOT, "Testing", "Data", "bunny.vtp")]
+    scans = [BUNNY] if args.smoke else scan_paths(args, COUNT_SCANS)
     rows = []
-    for path in scans:
+    for path, pd in loaded(scans):
         model = os.path.basename(path).split(".")[0].split("_")[0]
-        pd = load(path)
         # Table 4.7 is the unbounded fit (THESIS_FIT); the default,
         # error-bounded fit is listed beside it.
         for order, name, bound in ((0, "random", 0.0), (2, "front", 0.0),
@@ -138,6 +160,8 @@ def counts(args):
                          "thesis": THESIS.get(model, ""), "seconds": round(r["seconds"], 4),
                          "rms_rel": "%.3e" % r["rms_rel"], "max_rel": "%.3e" % r["max_rel"],
                          "uncovered": r["uncovered"]})
+    if not rows:
+        return skip("counts", "no scan to fit; nothing written")
     write(rows, args.out, "splat_counts")
     pyplot = plt()
     fig, ax = pyplot.subplots(figsize=(6, 4))
@@ -158,7 +182,7 @@ def counts(args):
 def million(args):
     n = 20000 if args.smoke else args.points
     reader = vtkXMLPolyDataReader()
-    reader.SetFileName(os.path.join(ROOT, "Testing", "Data", "bunny.vtp"))
+    reader.SetFileName(BUNNY)
     reader.Update()
     mesh = reader.GetOutput()
     sample = sample_surface(mesh, n)
@@ -176,12 +200,11 @@ def million(args):
 
 
 def timed_scans(args, qualities, smoke_qualities):
-    """The scans (default: Bunny, Horse, Lucy), s values and runs of a timing benchmark;
-    with --smoke, the committed Bunny, `smoke_qualities` and one run."""
+    """The scans (see scan_paths: Bunny, Horse, Lucy in --data), s values and runs of a
+    timing benchmark; with --smoke, the committed Bunny, `smoke_qualities` and one run."""
     if args.smoke:
-        return [os.path.join(ROOT, "Testing", "Data", "bunny.vtp")], smoke_qualities, 1
-    scans = args.scans or [os.path.join(SCANS, s) for s in ("bunny.ply", "horse.ply", "lucy_50k.ply")]
-    return scans, qualities, max(1, args.runs)
+        return [BUNNY], smoke_qualities, 1
+    return scan_paths(args, TIMED_SCANS), qualities, max(1, args.runs)
 
 
 def time_fits(pd, settings, runs, warmup=False):
@@ -212,9 +235,8 @@ def fittime(args):
     scans, qualities, runs = timed_scans(args, (2.0, 1.0, 0.5), (1.0,))
     options = args.fitter_options
     rows = []
-    for path in scans:
+    for path, pd in loaded(scans):
         model = os.path.basename(path).split(".")[0]
-        pd = load(path)
         for s in qualities:
             # The thesis's unbounded fit and the default fitter (with --fitter-option).
             # (An option may set QualityFactor too: it comes last and wins.)
@@ -232,6 +254,8 @@ def fittime(args):
                              "ratio_to_unbounded": round(median / unbounded, 3),
                              "fitter": " ".join([name] + ["%s=%s" % o for o in options
                                                           if name == "default"])})
+    if not rows:
+        return skip("fittime", "no scan to fit; nothing written")
     path = write(rows, args.out, "fit_time" + ("_" + args.label if args.label else ""))
     pyplot = plt()
     fig, ax = pyplot.subplots(figsize=(6, 4))
@@ -252,7 +276,7 @@ def fittime(args):
 
 RESULTS = os.path.join(HERE, "results")
 QUALITY = (os.path.join(RESULTS, "splat_quality_previous_summary.csv"),
-           [os.path.join(RESULTS, "splat_quality_default_summary.csv"),
+           [os.path.join(RESULTS, "splat_quality_summary.csv"),
             os.path.join(RESULTS, "splat_quality_tolerance_summary.csv")])
 
 
@@ -290,10 +314,13 @@ def equalquality(args):
         peer = sweep_scores(peer_csv, model)
         ours = [r for csv_path in score_csvs for r in sweep_scores(csv_path, model)]
         if not peer or not ours:
-            print("equalquality: no scores of %s in %s" % (model, " ".join([peer_csv] + score_csvs)),
-                  file=sys.stderr)
+            skip(path, "no scores of %s in %s" % (model, " ".join([peer_csv] + score_csvs)))
             continue
-        pd = load(path)
+        try:
+            pd = load(path)
+        except ScanReadError as e:
+            skip_unreadable(path, e)
+            continue
         targets = [("thesis default", next((r for r in peer if r[0] == 2 and r[1] == 1.0), None)),
                    ("thesis best", max(peer, key=lambda r: r[3]))]
         for target, score in targets:
@@ -335,7 +362,7 @@ def equalquality(args):
                             "ratio": round(seconds / peer_seconds, 3)})
             rows.append(row)
     if not rows:
-        sys.exit("equalquality: nothing to compare")
+        return skip("equalquality", "no scan with scores to compare; nothing written")
     path = write(rows, args.out, "fit_equal_quality" + ("_" + args.label if args.label else ""))
     pyplot = plt()
     fig, ax = pyplot.subplots(figsize=(6, 4))
@@ -362,9 +389,8 @@ def levels(args):
     each, with the unbounded fit (THESIS_FIT) at s = 1 as the peer in this process."""
     scans, qualities, runs = timed_scans(args, (1.0, 2.0, 4.0), (2.0,))
     rows = []
-    for path in scans:
+    for path, pd in loaded(scans):
         model = os.path.basename(path).split(".")[0]
-        pd = load(path)
         settings = [("thesis, s = 1", "vtkAlgebraicSplatFitter", dict(THESIS_FIT, QualityFactor=1.0))]
         settings += [("s = %g" % s, "vtkAlgebraicSplatFitter", {"QualityFactor": s}) for s in qualities]
         settings += [("multi-resolution", "vtkMultiResolutionSplatBuilder", {})]
@@ -376,6 +402,8 @@ def levels(args):
                          "splats": fitter.GetOutput().GetNumberOfPoints(),
                          "runs": runs, "seconds": round(median, 4),
                          "ratio_to_thesis_s1": round(median / peer, 3)})
+    if not rows:
+        return skip("levels", "no scan to fit; nothing written")
     path = write(rows, args.out, "fit_levels" + ("_" + args.label if args.label else ""))
     pyplot = plt()
     fig, ax = pyplot.subplots(figsize=(7, 4))
@@ -396,7 +424,7 @@ def levels(args):
 
 
 def tradeoff(args):
-    pd = load(os.path.join(ROOT, "Testing", "Data", "bunny.vtp"), every=4 if args.smoke else 1)
+    pd = load(BUNNY, every=4 if args.smoke else 1)
     degrees = (1, 2) if args.smoke else (1, 2, 3, 4)
     qualities = (1.0,) if args.smoke else (0.5, 1.0, 2.0)
     neighbours = (40,) if args.smoke else (20, 40, 80)
@@ -433,11 +461,18 @@ def tradeoff(args):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("bench", choices=("counts", "million", "tradeoff", "fittime", "equalquality",
                                               "levels"))
-    parser.add_argument("scans", nargs="*")
-    parser.add_argument("--out", default="bench-results")
+    parser.add_argument("scans", nargs="*",
+                        help="counts, fittime, equalquality, levels: scans to fit "
+                             "(default: see --data)")
+    parser.add_argument("--data", metavar="DIR",
+                        help="folder of the full-size scans (counts: %s; fittime, equalquality, "
+                             "levels: %s); default: Testing/Data/bunny.vtp and bun000.vtp"
+                             % (", ".join(COUNT_SCANS), ", ".join(TIMED_SCANS)))
+    parser.add_argument("--out", default="bench-results", help="folder for the CSV and plot")
     parser.add_argument("--points", type=int, default=1000000)
     parser.add_argument("--runs", type=int, default=3, help="fittime, equalquality, levels: runs per setting")
     parser.add_argument("--label", default="", help="fittime, equalquality, levels: names the run in the CSV")
@@ -450,7 +485,8 @@ def main():
                         help="equalquality: bench_splat_quality.py summaries, the unbounded fit's "
                              "sweep first, then the default fitter's (default: the committed "
                              "ones in results/)")
-    parser.add_argument("--smoke", action="store_true")
+    parser.add_argument("--smoke", action="store_true",
+                        help="a few seconds on the committed Bunny (what ctest runs)")
     args = parser.parse_args()
     if args.quality and len(args.quality) < 2:
         parser.error("--quality: the unbounded fit's summary and at least one of the default's")

@@ -3,9 +3,18 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Image quality of algebraic splats against the mesh of the same scan, as a user sees it.
 
-For each scan that has faces (default: ../shared/data/scans/{bunny,horse,lucy_50k}.ply;
---models takes any .ply or .vtp with triangles) and each of several views
-(cameras around the model, at azimuths and elevations about its up axis):
+    bench_splat_quality.py [--models PATH ...] [--data DIR] [--out DIR] [--quick] ...
+
+The scans, each with faces: --models (any mesh with triangles that
+pointsurfaces.scanio reads: .ply .vtp .obj .off .om .stl); else, with --data
+DIR, the full-size bunny.ply, horse.ply and lucy_50k.ply in DIR (or a folder
+one level below it; one not there, or unreadable, is skipped with one line on
+stderr); else the Stanford Bunny a clone has, Testing/Data/bunny.vtp (35 947
+points, 69 451 triangles). A model of --models that cannot be read, or has no
+triangles, ends the run with exit status 1.
+
+For each scan and each of several views (cameras around the model, at
+azimuths and elevations about its up axis):
 
 - the ground truth is the triangle mesh itself, drawn by vtkPolyDataMapper
   with smooth normals (vtkPolyDataNormals, no splitting) on a white
@@ -85,7 +94,7 @@ follows shaded fragments); compare them only within one machine, and with the
 load averages printed at the start and end of the run (other work on the
 cores inflates both times; the image metrics do not depend on it).
 
---quick is the smoke test ctest runs: the first model only (default
+--quick is the smoke test ctest runs: the first model only (by default
 Testing/Data/bunny.vtp, which a clean clone has), one view, 128 x 128,
 degree 3, s = 2 and 1 (and MaximumDeviation 0.2 at s = 1 when the fitter has
 it), one frame. It fails when the mesh does not score 1 against itself.
@@ -108,11 +117,12 @@ from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
 from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkIOPLY import vtkPLYReader
-from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderWindow, vtkRenderer
 
+from pointsurfaces.scanio import ScanReadError, read_scan
+
 import bench_csv
+from bench_csv import TEST_DATA, find_input, skip, skip_unreadable
 
 try:
     from skimage.metrics import structural_similarity
@@ -121,10 +131,8 @@ except ImportError:
              "scripts/install-deps.sh installs it)")
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
-SCANS = os.path.join(ROOT, "..", "shared", "data", "scans")
-MODELS = ["bunny.ply", "horse.ply", "lucy_50k.ply"]
-SMOKE_MODEL = os.path.join(ROOT, "Testing", "Data", "bunny.vtp")
+MODELS = ["bunny.ply", "horse.ply", "lucy_50k.ply"]  # the full-size models' names in --data
+BUNNY = os.path.join(TEST_DATA, "bunny.vtp")  # the default model
 # Up axis per model (file stem prefix); the Bunny's is y. Lucy and the horse stand on z.
 UP_AXIS = {"horse": "z", "lucy": "z"}
 # (azimuth, elevation) in degrees about the up axis, from the front view.
@@ -145,11 +153,9 @@ def parse_size(text):
 
 
 def load_mesh(path):
-    """Points and triangles only: arrays (the horse's RGB, PLY confidence) are dropped."""
-    reader = vtkXMLPolyDataReader() if path.endswith(".vtp") else vtkPLYReader()
-    reader.SetFileName(path)
-    reader.Update()
-    raw = reader.GetOutput()
+    """Points and triangles only: arrays (the horse's RGB, PLY confidence) are dropped.
+    Raises ScanReadError."""
+    raw = read_scan(path)
     mesh = vtkPolyData()
     mesh.SetPoints(raw.GetPoints())
     mesh.SetPolys(raw.GetPolys())
@@ -621,12 +627,14 @@ def picture_setting(args, default_degree, tol0):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--models", nargs="+", metavar="PATH",
-                        help="meshes with triangles, .ply or .vtp (default: %s in --data)"
-                        % ", ".join(MODELS))
-    parser.add_argument("--data", default=SCANS, help="folder of the default models")
-    parser.add_argument("--out", default="bench-results")
+                        help="meshes with triangles (default: see --data)")
+    parser.add_argument("--data", metavar="DIR",
+                        help="folder of the full-size models %s (default: the committed "
+                             "Testing/Data/bunny.vtp)" % ", ".join(MODELS))
+    parser.add_argument("--out", default="bench-results", help="folder for the CSVs and plots")
     parser.add_argument("--label", default="current",
                         help="names the fitter in the CSV and plots (e.g. previous, new)")
     parser.add_argument("--compare", metavar="CSV",
@@ -686,18 +694,42 @@ def main():
     if not os.environ.get("POINTSURFACES_RENDER_WINDOW"):
         pointsurfaces.use_egl()
 
-    paths = args.models or ([SMOKE_MODEL] if args.quick else
-                            [os.path.join(args.data, m) for m in MODELS])
+    if args.models:
+        paths = args.models
+    elif args.data:
+        paths = [p for p in (find_input(args.data, m, m) for m in MODELS) if p]
+    else:
+        paths = [BUNNY]
     views = VIEWS[:max(1, args.views)]
     size = parse_size(args.size)
     frames = args.frames
     if args.quick:
         paths, views, size, frames = paths[:1], VIEWS[:1], (128, 128), 1
         args.degrees, args.s, args.tolerances, args.tolerance_s = [3], [2.0, 1.0], [0.2], ["1"]
+    # A model named by --models (or the committed Bunny) that cannot be used is an
+    # error; one from --data is skipped.
+    from_data = args.data and not args.models
+    meshes = []
     for p in paths:
-        if not os.path.isfile(p):
-            print("bench_splat_quality.py: no model %s (see --data, --models)" % p, file=sys.stderr)
-            return 1
+        try:
+            mesh = load_mesh(p)
+        except ScanReadError as e:
+            if not from_data:
+                print("bench_splat_quality.py: %s" % e, file=sys.stderr)
+                return 1
+            skip_unreadable(p, e)
+            continue
+        if mesh.GetNumberOfPolys() == 0:
+            if not from_data:
+                print("bench_splat_quality.py: %s has no triangles for the reference" % p,
+                      file=sys.stderr)
+                return 1
+            skip(p, "no triangles for the reference")
+            continue
+        meshes.append((p, mesh))
+    if not meshes:
+        skip("the run", "no model to score; nothing written")
+        return 0
     os.makedirs(args.out, exist_ok=True)
     images_out = args.out if args.images else None
 
@@ -713,13 +745,8 @@ def main():
     scene = Scene(size)
     rows = []
     start = time.perf_counter()
-    for path in paths:
+    for path, mesh in meshes:
         name = os.path.splitext(os.path.basename(path))[0]
-        mesh = load_mesh(path)
-        if mesh.GetNumberOfPolys() == 0:
-            print("bench_splat_quality.py: %s has no triangles for the reference" % path,
-                  file=sys.stderr)
-            return 1
         up = args.up if args.up != "auto" else next(
             (a for k, a in UP_AXIS.items() if name.startswith(k)), "y")
         model = dict(name=name, views=views, cameras=scene.cameras(mesh, up, views),

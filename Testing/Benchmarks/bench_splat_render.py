@@ -208,9 +208,11 @@ def equal_error(rows):
 
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("mesh", nargs="?", default=os.path.join(here, "..", "Data", "bunny.vtp"))
-    parser.add_argument("--out", default="bench-results")
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("mesh", nargs="?", default=os.path.join(here, "..", "Data", "bunny.vtp"),
+                        help="a .vtp mesh with triangles (default: Testing/Data/bunny.vtp)")
+    parser.add_argument("--out", default="bench-results", help="folder for the CSVs and plots")
     parser.add_argument("--size", action="append", help="e.g. 512 or 1920x1080 (repeatable)")
     parser.add_argument("--frames", type=int, default=7)
     parser.add_argument("--smoke", action="store_true", help="tiny sizes and few runs (CI)")

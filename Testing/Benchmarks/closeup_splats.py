@@ -5,7 +5,7 @@
 with that view's masked SSIM, masked RMSE and coverage IoU (as bench_splat_quality.py
 scores its whole-model views) and the diagnostic picture mesh | splats | difference.
 
-    closeup_splats.py MODEL.ply OUT.png [--focus FX FY FZ] [--distance D]
+    closeup_splats.py [MODEL] [OUT.png] [--focus FX FY FZ] [--distance D]
                       [--azimuth A] [--elevation E] [--size N]
                       [--fitter-option NAME VALUE] [--no-blend]
 
@@ -51,9 +51,13 @@ def view_depth(scene, state):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("model", help="a mesh with triangles, .ply or .vtp")
-    parser.add_argument("output", help="the diagnostic picture (PNG)")
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("model", nargs="?", default=quality.BUNNY,
+                        help="a mesh with triangles, any file pointsurfaces.scanio reads "
+                             "(default: Testing/Data/bunny.vtp)")
+    parser.add_argument("output", nargs="?", default="closeup.png",
+                        help="the diagnostic picture (default: closeup.png)")
     parser.add_argument("--focus", nargs=3, type=float, default=[0.5, 0.5, 0.5],
                         metavar=("FX", "FY", "FZ"))
     parser.add_argument("--distance", type=float, default=0.3, help="in mesh diagonals")
@@ -68,7 +72,10 @@ def main():
     options = bench_csv.fitter_options(parser, args.fitter_option,
                                        pointsurfaces.vtkAlgebraicSplatFitter)
 
-    mesh = quality.load_mesh(args.model)
+    try:
+        mesh = quality.load_mesh(args.model)
+    except quality.ScanReadError as e:
+        sys.exit("closeup_splats.py: %s" % e)
     if mesh.GetNumberOfPolys() == 0:
         sys.exit("closeup_splats.py: %s has no triangles" % args.model)
     fitter = pointsurfaces.vtkAlgebraicSplatFitter()
