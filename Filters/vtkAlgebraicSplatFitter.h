@@ -88,29 +88,34 @@ public:
   vtkTypeMacro(vtkAlgebraicSplatFitter, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /** How each splat is fitted (SetFitMode). */
   enum FitModes
   {
     Linear = 0,
     Robust = 1,
     Projected = 2
   };
+  /** The loss of the Robust fit (SetRobustLoss). */
   enum RobustLosses
   {
     Huber = 0,
     Cauchy = 1
   };
+  /** Which points get a splat (SetSelectionMode). */
   enum SelectionModes
   {
     All = 0,
     Quality = 1,
     FixedCount = 2
   };
+  /** The order in which candidate centres are visited (SetSelectionOrder). */
   enum SelectionOrders
   {
     Random = 0,
     Lattice = 1,
     Front = 2
   };
+  /** Locally optimal projection: plain or weighted (SetLOPVariant). */
   enum LOPVariants
   {
     LOP = 0,

@@ -62,6 +62,7 @@ public:
   vtkTypeMacro(vtkMetaballField, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /** The kernels (SetKernel): metaball falloffs and SPH kernels. */
   enum Kernels
   {
     Wyvill = 0,

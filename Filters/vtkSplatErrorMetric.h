@@ -32,9 +32,11 @@ public:
   vtkTypeMacro(vtkSplatErrorMetric, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  ///@{
   /** The splats (input 1). */
   void SetSplatConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
   void SetSplatData(vtkDataObject* splats) { this->SetInputData(1, splats); }
+  ///@}
 
   ///@{
   /** Results of the last run. */

@@ -45,6 +45,7 @@ public:
   vtkTypeMacro(vtkOpenVDBParticleMesher, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /** How particles become a level set (SetMethod). */
   enum Methods
   {
     Spheres = 0,

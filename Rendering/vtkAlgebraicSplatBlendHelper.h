@@ -50,10 +50,10 @@ public:
   /** The blend's settings (the mapper's properties of the same names). */
   struct Settings
   {
-    bool Blending = true;
-    double BlendDepthOffset = 0.5;
-    double BlendSharpness = 3.0;
-    int AntiAliasing = 1;
+    bool Blending = true;          ///< two-pass blending of overlapping splats
+    double BlendDepthOffset = 0.5; ///< hits this far behind the nearest blend, in units of h
+    double BlendSharpness = 3.0;   ///< k of the weight exp(-k r^2 / R^2)
+    int AntiAliasing = 1;          ///< n x n rays at silhouette pixels (1: off)
   };
 
   /**

@@ -85,6 +85,7 @@ public:
   void SetUniformMatrix4x4(const char* name, const float rowMajor[16]);
   ///@}
 
+  ///@{
   /**
    * glDispatchCompute(x, y, z) on the bound program, then glMemoryBarrier with
    * `barrierBits` (default: shader storage, buffer update and command bits).
@@ -92,6 +93,7 @@ public:
    */
   bool Dispatch(unsigned int x, unsigned int y = 1, unsigned int z = 1);
   bool Dispatch(unsigned int x, unsigned int y, unsigned int z, unsigned int barrierBits);
+  ///@}
 
   /** Number of groups needed to cover `items` with groups of `groupSize`. */
   static unsigned int GroupCount(size_t items, unsigned int groupSize);

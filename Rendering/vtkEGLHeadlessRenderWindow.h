@@ -55,6 +55,8 @@ public:
   void Finalize() override;
   ///@}
 
+  ///@{
+  /** vtkRenderWindow's interface, on the window's own EGL context. */
   void Start() override;
   void Render() override;
   void Frame() override;
@@ -65,6 +67,7 @@ public:
   void* GetGenericContext() override;
   void* GetGenericDisplayId() override;
   vtkTypeBool GetEventPending() override { return 0; }
+  ///@}
 
   ///@{
   /**

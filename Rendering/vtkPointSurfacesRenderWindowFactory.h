@@ -42,6 +42,7 @@ public:
   vtkTypeMacro(vtkPointSurfacesRenderWindowFactory, vtkObjectFactory);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /** Which render window the factory hands out (POINTSURFACES_RENDER_WINDOW). */
   enum Modes
   {
     Auto = 0,

@@ -59,6 +59,7 @@ public:
    */
   static size_t GetMaximumSize();
 
+  ///@{
   /**
    * Caps every storage buffer at `bytes` (0, the default: no cap beyond the
    * driver's), process-wide. Tests use it to reach the size limits without
@@ -67,8 +68,11 @@ public:
    */
   static void SetMaximumSizeLimit(size_t bytes);
   static size_t GetMaximumSizeLimit();
+  ///@}
 
+  /** The GL buffer name (0 before the first upload). */
   unsigned int GetHandle() const { return this->Handle; }
+  /** The buffer's size in bytes. */
   size_t GetSize() const { return this->Size; }
 
   void ReleaseGraphicsResources(vtkWindow* win);
