@@ -17,6 +17,8 @@ output=$(realpath -m "${2:-bunny.png}")
 if [ ! -f "$root/build/vtk/build.ninja" ]; then
   (cd "$root" && cmake --preset vtk) >&2
 fi
-cmake --build "$root/build/vtk" >&2
+# The libraries and the Python package only: scripts/test.sh builds the tests,
+# benchmarks and examples in the same tree.
+cmake --build "$root/build/vtk" --target pointsurfaces-libraries >&2
 export PYTHONPATH="$root/build/vtk/$(cd "$root/build/vtk" && sed -n 's/^POINTSURFACES_PYTHON_SITE_PACKAGES:STRING=//p' CMakeCache.txt)${PYTHONPATH:+:$PYTHONPATH}"
 exec /usr/bin/python3 "$root/Examples/Python/render_scan.py" "$input" "$output"

@@ -58,6 +58,8 @@ packages=(
   openmpi-bin
   # the GPU bundle (scripts/gpu-bundle.sh): xz, objdump and strip, unshare
   xz-utils binutils util-linux
+  # the API reference (the `docs` target and its warning test)
+  doxygen
 )
 case "$release" in
   bookworm) packages+=(libclang-rt-14-dev) ;;
