@@ -637,7 +637,9 @@ std::string NegativeLength(const Element& e)
   return e.Label() + " has a list of negative length";
 }
 
-bool BinaryElement(const unsigned char* data,
+// Element `e` of fixed-size records (no lists), from byte `at`: its extent
+// is known before anything is allocated.
+bool BinaryFixedElement(const unsigned char* data,
   std::size_t size,
   std::size_t& at,
   const Element& e,
@@ -645,50 +647,79 @@ bool BinaryElement(const unsigned char* data,
   Wanted& want,
   std::string& error)
 {
-  if (e.Count == 0 || e.Properties.empty())
-  {
-    return true;
-  }
   const std::size_t n = e.Properties.size();
-  if (!e.HasList())
+  std::size_t record = 0;
+  std::vector<std::size_t> offsets(n);
+  for (std::size_t i = 0; i < n; ++i)
   {
-    // Fixed records: the element's extent is known before anything is allocated.
-    std::size_t record = 0;
-    std::vector<std::size_t> offsets(n);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      offsets[i] = record;
-      record += PLYTypeSize(e.Properties[i].Type);
-    }
-    const Wide end = static_cast<Wide>(at) + static_cast<Wide>(e.Count) * record;
-    if (end > size)
-    {
-      error = Truncated(e, end, size);
-      return false;
-    }
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      PLYColumn* column = want.Columns.empty() ? nullptr : want.Columns[i];
-      if (!column)
-      {
-        continue;
-      }
-      const std::size_t bytes = PLYTypeSize(column->Type);
-      column->Bytes.resize(static_cast<std::size_t>(e.Count) * bytes);
-      const unsigned char* from = data + at + offsets[i];
-      unsigned char* to = column->Bytes.data();
-      for (std::uint64_t r = 0; r < e.Count; ++r, from += record, to += bytes)
-      {
-        std::memcpy(to, from, bytes);
-        if (swap)
-        {
-          std::reverse(to, to + bytes);
-        }
-      }
-    }
-    at = static_cast<std::size_t>(end);
-    return true;
+    offsets[i] = record;
+    record += PLYTypeSize(e.Properties[i].Type);
   }
+  const Wide end = static_cast<Wide>(at) + static_cast<Wide>(e.Count) * record;
+  if (end > size)
+  {
+    error = Truncated(e, end, size);
+    return false;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    PLYColumn* column = want.Columns.empty() ? nullptr : want.Columns[i];
+    if (!column)
+    {
+      continue;
+    }
+    const std::size_t bytes = PLYTypeSize(column->Type);
+    column->Bytes.resize(static_cast<std::size_t>(e.Count) * bytes);
+    const unsigned char* from = data + at + offsets[i];
+    unsigned char* to = column->Bytes.data();
+    for (std::uint64_t r = 0; r < e.Count; ++r, from += record, to += bytes)
+    {
+      std::memcpy(to, from, bytes);
+      if (swap)
+      {
+        std::reverse(to, to + bytes);
+      }
+    }
+  }
+  at = static_cast<std::size_t>(end);
+  return true;
+}
+
+// The length of the list property `p` whose count is at byte `pos`.
+bool BinaryListLength(const unsigned char* data,
+  std::size_t size,
+  Wide pos,
+  const Property& p,
+  const Element& e,
+  bool swap,
+  WideInt& length,
+  std::string& error)
+{
+  const std::size_t countSize = PLYTypeSize(p.CountType);
+  if (pos + countSize > size)
+  {
+    error = Truncated(e, pos + countSize, size);
+    return false;
+  }
+  length = LoadInteger(data + static_cast<std::size_t>(pos), p.CountType, swap);
+  if (length < 0)
+  {
+    error = NegativeLength(e);
+    return false;
+  }
+  return true;
+}
+
+// Element `e` with lists, from byte `at`, one record at a time.
+bool BinaryListElement(const unsigned char* data,
+  std::size_t size,
+  std::size_t& at,
+  const Element& e,
+  bool swap,
+  Wanted& want,
+  std::string& error)
+{
+  const std::size_t n = e.Properties.size();
   // Records with lists, one at a time; each takes at least a byte, so the
   // walk ends at the file's end at the latest, and only what the file holds
   // is stored.
@@ -709,19 +740,12 @@ bool BinaryElement(const unsigned char* data,
       pos += PLYTypeSize(p.Type);
       continue;
     }
-    const std::size_t countSize = PLYTypeSize(p.CountType);
-    if (pos + countSize > size)
+    WideInt length = 0;
+    if (!BinaryListLength(data, size, pos, p, e, swap, length, error))
     {
-      error = Truncated(e, pos + countSize, size);
       return false;
     }
-    const WideInt length = LoadInteger(data + static_cast<std::size_t>(pos), p.CountType, swap);
-    if (length < 0)
-    {
-      error = NegativeLength(e);
-      return false;
-    }
-    pos += countSize + static_cast<Wide>(length) * PLYTypeSize(p.Type);
+    pos += PLYTypeSize(p.CountType) + static_cast<Wide>(length) * PLYTypeSize(p.Type);
   }
   pos = at;
   for (std::uint64_t r = 0; r < e.Count; ++r)
@@ -751,19 +775,12 @@ bool BinaryElement(const unsigned char* data,
         pos += item;
         continue;
       }
-      const std::size_t countSize = PLYTypeSize(p.CountType);
-      if (pos + countSize > size)
+      WideInt length = 0;
+      if (!BinaryListLength(data, size, pos, p, e, swap, length, error))
       {
-        error = Truncated(e, pos + countSize, size);
         return false;
       }
-      const WideInt length = LoadInteger(data + static_cast<std::size_t>(pos), p.CountType, swap);
-      if (length < 0)
-      {
-        error = NegativeLength(e);
-        return false;
-      }
-      pos += countSize;
+      pos += PLYTypeSize(p.CountType);
       const Wide end = pos + static_cast<Wide>(length) * item;
       if (end > size)
       {
@@ -786,6 +803,23 @@ bool BinaryElement(const unsigned char* data,
   }
   at = static_cast<std::size_t>(pos);
   return true;
+}
+
+// Element `e` from byte `at` of a binary body; `at` moves past it.
+bool BinaryElement(const unsigned char* data,
+  std::size_t size,
+  std::size_t& at,
+  const Element& e,
+  bool swap,
+  Wanted& want,
+  std::string& error)
+{
+  if (e.Count == 0 || e.Properties.empty())
+  {
+    return true;
+  }
+  return e.HasList() ? BinaryListElement(data, size, at, e, swap, want, error)
+                     : BinaryFixedElement(data, size, at, e, swap, want, error);
 }
 
 // ASCII words, one after another, and how many are left.
