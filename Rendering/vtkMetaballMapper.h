@@ -93,7 +93,8 @@ public:
    * to share it with vtkMetaballGhostBalls, vtkMetaballLevelSetWriter or
    * vtkOpenVDBParticleMesher, so that they read the same balls; null
    * restores a field of its own. Default: a field of its own (Wyvill's
-   * kernel, T = 0.5, radii from the "Radius" array or 1).
+   * kernel, T = 0.5, radii by vtkMetaballField's rules: its radius array,
+   * an array the readers write, or 1.5 times the mean point spacing).
    */
   void SetField(vtkMetaballField* field);
   vtkMetaballField* GetField() { return this->Field; }
