@@ -75,7 +75,9 @@ render() {
 }
 
 set -x
-if [ ${#peer_scans[@]} -gt 0 ]; then
+if [ ! -x "$build/bin/BenchFitPeers" ]; then
+  echo "bench.sh: skipped BenchFitPeers: not built (it needs PCL and CGAL)" >&2
+elif [ ${#peer_scans[@]} -gt 0 ]; then
   "$build/bin/BenchFitPeers" --threads 2 "${peer_scans[@]}" | tee "$out/fit_peers.csv"
 fi
 for b in counts million tradeoff fittime equalquality levels; do
