@@ -60,3 +60,33 @@ def fitter_options(parser, pairs, cls):
             parser.error("--fitter-option %s: %r is not a number" % (name, value))
         options.append((name, int(number) if number.is_integer() and "." not in value else number))
     return options
+
+
+def scatter_time_vs_rmse(rows, methods, png, title, ylabel, xlabel="frame time (ms, median)",
+                         note=None, size=(6.5, 4)):
+    """One plot of each row's rmse against its frame_ms (log scale), a marker per
+    (method, marker) of `methods`; note(row) labels a point (None or "": no label)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=size)
+    for method, marker in methods:
+        sel = [r for r in rows if r["method"] == method]
+        if not sel:
+            continue
+        ax.scatter([float(r["frame_ms"]) for r in sel], [float(r["rmse"]) for r in sel],
+                   marker=marker, label=method)
+        for r in sel:
+            text = note(r) if note else None
+            if text:
+                ax.annotate(text, (float(r["frame_ms"]), float(r["rmse"])), fontsize=6)
+    ax.set_xscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(png, dpi=100)
+    plt.close(fig)
+    print("# wrote " + png)

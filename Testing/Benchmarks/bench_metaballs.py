@@ -63,7 +63,6 @@ so the peer's whole pipeline is part of its frame. CSV goes to stdout and
 import argparse
 import csv
 import os
-import statistics
 import sys
 import time
 
@@ -72,18 +71,18 @@ import numpy as np
 import pointsurfaces  # noqa: F401  (the EGL window factory)
 from pointsurfaces import vtkMetaballMapper, vtkOpenVDBParticleMesher
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkFloatArray, vtkPoints, vtkUnsignedCharArray
+from vtkmodules.vtkCommonCore import vtkFloatArray, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkImageData, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkFlyingEdges3D
 from vtkmodules.vtkIOChemistry import vtkPDBReader
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderWindow,
-                                         vtkRenderer, vtkVolume)
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkVolume
 from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLFluidMapper, vtkOpenGLSphereMapper
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from bench_csv import IO_DATA, TEST_DATA, find_input, skip  # noqa: E402
+from bench_csv import IO_DATA, TEST_DATA, find_input, scatter_time_vs_rmse, skip  # noqa: E402
+from bench_scene import OffscreenScene, material as shared_material  # noqa: E402
 
 # The scenes read from files: (the committed file, the full-size file's name in --data).
 FILES = {"halo": (os.path.join(TEST_DATA, "halo_2k.xyz"), "halo_32k.xyz"),
@@ -312,39 +311,19 @@ def sample_field(centres, radii, n, threshold):
     return image
 
 
-class Scene:
-    def __init__(self, size):
-        self.size = size
-        self.window = vtkRenderWindow()
-        self.window.SetMultiSamples(0)
-        self.window.SetOffScreenRendering(1)
-        self.window.SetSize(*size)
-        self.renderer = vtkRenderer()
-        self.renderer.SetBackground(0.1, 0.1, 0.15)
-        self.window.AddRenderer(self.renderer)
+class Scene(OffscreenScene):
+    """The shared scene, its camera fitted to each run's bounds."""
 
     def show(self, actor, bounds):
-        self.renderer.RemoveAllViewProps()
-        self.renderer.AddActor(actor)
+        super().show(actor)
         self.renderer.ResetCamera(bounds)
         self.renderer.ResetCameraClippingRange(bounds)
 
     def image(self):
-        self.window.Render()
-        rgb = vtkUnsignedCharArray()
-        self.window.GetPixelData(0, 0, self.size[0] - 1, self.size[1] - 1, 0, rgb, 0)
-        return vtk_to_numpy(rgb).astype(np.float64) / 255.0
+        return self.pixels()
 
     def frame_ms(self, frames, before=None):
-        times = []
-        for _ in range(frames):
-            t0 = time.perf_counter()
-            if before:
-                before()
-            self.window.Render()
-            self.window.GetZbufferDataAtPoint(0, 0)
-            times.append(1000.0 * (time.perf_counter() - t0))
-        return statistics.median(times)
+        return self.timed_frames(frames, before)[0]
 
 
 def imposters(scene, poly, radii, bounds, frames):
@@ -376,10 +355,7 @@ LONE_ISO = 0.4737
 
 
 def material(actor):
-    p = actor.GetProperty()
-    p.SetColor(0.85, 0.75, 0.6)
-    p.SetSpecular(0.2)
-    return actor
+    return shared_material(actor, (0.85, 0.75, 0.6), ambient=0.0, diffuse=1.0, specular=0.2)
 
 
 def main():
@@ -553,31 +529,14 @@ def main():
     writer.writeheader()
     writer.writerows(rows)
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     for name in dict.fromkeys(r["input"] for r in rows):
-        fig, ax = plt.subplots(figsize=(6.5, 4))
-        for method, marker in (("metaballs-cpu", "o"), ("metaballs-gpu", "D"),
-                               ("sample+flying-edges", "s"),
-                               ("openvdb-spheres", "^"), ("openvdb-field", "v")):
-            sel = [r for r in rows if r["input"] == name and r["method"] == method]
-            if sel:
-                ax.scatter([float(r["frame_ms"]) for r in sel], [float(r["rmse"]) for r in sel],
-                           marker=marker, label=method)
-                for r in sel:
-                    ax.annotate("%s %s" % (r["size"], r["setting"]),
-                                (float(r["frame_ms"]), float(r["rmse"])), fontsize=6)
-        ax.set_xscale("log")
-        ax.set_xlabel("dynamic frame time (ms, median)")
-        ax.set_ylabel("RMSE vs fine ray cast")
-        ax.set_title(name)
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
-        fig.tight_layout()
-        png = os.path.join(args.out, "metaballs_%s.png" % name)
-        fig.savefig(png, dpi=100)
-        print("# wrote " + png)
+        scatter_time_vs_rmse(
+            [r for r in rows if r["input"] == name],
+            (("metaballs-cpu", "o"), ("metaballs-gpu", "D"), ("sample+flying-edges", "s"),
+             ("openvdb-spheres", "^"), ("openvdb-field", "v")),
+            os.path.join(args.out, "metaballs_%s.png" % name), name, "RMSE vs fine ray cast",
+            xlabel="dynamic frame time (ms, median)",
+            note=lambda r: "%s %s" % (r["size"], r["setting"]))
     return 0
 
 

@@ -113,16 +113,16 @@ import numpy as np
 
 import pointsurfaces
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkUnsignedCharArray
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
 from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderWindow, vtkRenderer
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
 
 from pointsurfaces.scanio import ScanReadError, read_scan
 
 import bench_csv
 from bench_csv import TEST_DATA, find_input, skip, skip_unreadable
+from bench_scene import OffscreenScene, material as shared_material
 
 try:
     from skimage.metrics import structural_similarity
@@ -170,12 +170,7 @@ def scan_of(mesh):
 
 
 def material(actor):
-    p = actor.GetProperty()
-    p.SetColor(*COLOUR)
-    p.SetAmbient(0.1)
-    p.SetDiffuse(0.9)
-    p.SetSpecular(0.0)
-    return actor
+    return shared_material(actor, COLOUR, ambient=0.1, diffuse=0.9)
 
 
 def mesh_actor(mesh):
@@ -199,22 +194,11 @@ def splat_actor(splats):
     return actor
 
 
-class Scene:
-    """One off-screen window and renderer; actors are swapped, the camera is set per view."""
+class Scene(OffscreenScene):
+    """The shared scene; the camera is set per view."""
 
     def __init__(self, size):
-        self.size = size
-        self.window = vtkRenderWindow()
-        self.window.SetMultiSamples(0)
-        self.window.SetOffScreenRendering(1)
-        self.window.SetSize(*size)
-        self.renderer = vtkRenderer()
-        self.renderer.SetBackground(*BACKGROUND)
-        self.window.AddRenderer(self.renderer)
-
-    def show(self, actor):
-        self.renderer.RemoveAllViewProps()
-        self.renderer.AddActor(actor)
+        super().__init__(size, BACKGROUND)
 
     def cameras(self, mesh, up_axis, views):
         """One camera state per view, set from the mesh alone and kept for everything after."""
@@ -252,25 +236,15 @@ class Scene:
     def image(self, state):
         """RGB image (rows bottom-up, 0..1) of the current actor from one camera state."""
         self.use(state)
-        self.window.Render()
+        image = self.pixels()
         assert self.renderer.GetActiveCamera().GetClippingRange() == state["clip"], \
             "the renderer moved the camera's clipping range"
-        w, h = self.size
-        rgb = vtkUnsignedCharArray()
-        self.window.GetPixelData(0, 0, w - 1, h - 1, 0, rgb, 0)
-        return vtk_to_numpy(rgb).reshape(h, w, 3).astype(np.float64) / 255.0
+        return image
 
     def frame_ms(self, state, frames):
         """Median wall-clock and process-CPU milliseconds of a frame."""
         self.use(state)
-        wall, cpu = [], []
-        for _ in range(frames):
-            t0, c0 = time.perf_counter(), time.process_time()
-            self.window.Render()
-            self.window.GetZbufferDataAtPoint(0, 0)  # waits for the frame
-            wall.append(1000.0 * (time.perf_counter() - t0))
-            cpu.append(1000.0 * (time.process_time() - c0))
-        return statistics.median(wall), statistics.median(cpu)
+        return self.timed_frames(frames)
 
 
 def covered(image):

@@ -44,22 +44,22 @@ M.S. thesis, IIIT Hyderabad, 2010 ([Bolla 2010]).
 import argparse
 import csv
 import os
-import statistics
 import sys
 import time
 
 import numpy as np
 
 import pointsurfaces  # noqa: F401  (registers the EGL window factory)
-from bench_csv import write_rows
+from bench_csv import scatter_time_vs_rmse, write_rows
+from bench_scene import OffscreenScene, material as shared_material
 from pointsurfaces import vtkAlgebraicSplatFitter, vtkAlgebraicSplatMapper
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkPoints, vtkUnsignedCharArray
+from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData, vtkStaticPointLocator
 from vtkmodules.vtkCommonCore import vtkIdList
 from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
 from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
-from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderWindow, vtkRenderer
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
 from vtkmodules.vtkRenderingCore import vtkPointGaussianMapper
 from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLSphereMapper
 
@@ -83,16 +83,11 @@ def parse_size(text):
     return int(text), int(text)
 
 
-class Scene:
-    """One EGL window and renderer; actors are swapped in and out."""
+class Scene(OffscreenScene):
+    """The shared scene with one camera, fitted to the mesh; the size is set per image."""
 
     def __init__(self, mesh):
-        self.window = vtkRenderWindow()
-        self.window.SetMultiSamples(0)
-        self.window.SetOffScreenRendering(1)
-        self.renderer = vtkRenderer()
-        self.renderer.SetBackground(0.1, 0.1, 0.15)
-        self.window.AddRenderer(self.renderer)
+        super().__init__()
         b = mesh.GetBounds()
         centre = [(b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2]
         diag = ((b[1] - b[0]) ** 2 + (b[3] - b[2]) ** 2 + (b[5] - b[4]) ** 2) ** 0.5
@@ -103,27 +98,14 @@ class Scene:
         cam.SetViewAngle(30)
         cam.SetClippingRange(0.5 * diag, 3.0 * diag)
 
-    def show(self, actor):
-        self.renderer.RemoveAllViewProps()
-        self.renderer.AddActor(actor)
-
     def image(self, size):
-        self.window.SetSize(*size)
-        self.window.Render()
-        rgb = vtkUnsignedCharArray()
-        self.window.GetPixelData(0, 0, size[0] - 1, size[1] - 1, 0, rgb, 0)
-        return vtk_to_numpy(rgb).reshape(size[1], size[0], 3).astype(np.float64) / 255.0
+        self.resize(size)
+        return self.pixels()
 
     def frame_ms(self, size, frames):
-        self.window.SetSize(*size)
+        self.resize(size)
         self.window.Render()  # warm-up: buffers, shaders
-        times = []
-        for _ in range(frames):
-            t0 = time.perf_counter()
-            self.window.Render()
-            self.window.GetZbufferDataAtPoint(0, 0)  # waits for the frame
-            times.append(1000.0 * (time.perf_counter() - t0))
-        return statistics.median(times)
+        return self.timed_frames(frames)[0]
 
 
 def supersampled(scene, size, factor):
@@ -151,12 +133,7 @@ def rmse(a, b):
 
 
 def material(actor):
-    p = actor.GetProperty()
-    p.SetColor(0.9, 0.85, 0.8)
-    p.SetAmbient(0.15)
-    p.SetDiffuse(0.85)
-    p.SetSpecular(0.0)
-    return actor
+    return shared_material(actor, (0.9, 0.85, 0.8), ambient=0.15, diffuse=0.85)
 
 
 def mean_spacing(points, samples=2000):
@@ -371,34 +348,21 @@ def main():
             degree, s, splats.GetNumberOfPoints(), 100.0 * splats.GetNumberOfPoints() / n_points,
             n_points, seconds))
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    def note(r):
+        if not r["method"].startswith("algebraic"):
+            return None
+        return "d%s s%s aa%s%s%s" % (r["degree"], r["s"], r["aa"],
+                                     "" if r["blend"] == 1 else " opaque",
+                                     " culled" if r["cull"] == 1 else "")
+
     for label in sorted({r["size"] for r in rows}):
-        fig, ax = plt.subplots(figsize=(7, 4.5))
-        for method, marker in (("algebraic", "o"), ("algebraic-fsaa2", "s"),
-                               ("point-gaussian", "^"), ("sphere", "v"), ("mesh", "*")):
-            sel = [r for r in rows if r["size"] == label and r["method"] == method]
-            if not sel:
-                continue
-            ax.scatter([float(r["frame_ms"]) for r in sel], [float(r["rmse"]) for r in sel],
-                       marker=marker, label=method)
-            for r in sel:
-                if method.startswith("algebraic"):
-                    ax.annotate("d%s s%s aa%s%s%s" % (r["degree"], r["s"], r["aa"],
-                                                     "" if r["blend"] == 1 else " opaque",
-                                                     " culled" if r["cull"] == 1 else ""),
-                                (float(r["frame_ms"]), float(r["rmse"])), fontsize=6)
-        ax.set_xlabel("frame time (ms, median)")
-        ax.set_ylabel("RMSE vs 4x4-supersampled mesh")
-        ax.set_xscale("log")
-        ax.set_title("%s, %s" % (os.path.basename(args.mesh), label))
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
-        fig.tight_layout()
-        png = os.path.join(args.out, "splat_render_%s.png" % label)
-        fig.savefig(png, dpi=100)
-        print("# wrote " + png)
+        scatter_time_vs_rmse(
+            [r for r in rows if r["size"] == label],
+            (("algebraic", "o"), ("algebraic-fsaa2", "s"), ("point-gaussian", "^"),
+             ("sphere", "v"), ("mesh", "*")),
+            os.path.join(args.out, "splat_render_%s.png" % label),
+            "%s, %s" % (os.path.basename(args.mesh), label), "RMSE vs 4x4-supersampled mesh",
+            note=note, size=(7, 4.5))
     return 0
 
 
