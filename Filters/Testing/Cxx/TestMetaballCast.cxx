@@ -24,6 +24,7 @@
 #include "psFiltersTestSupport.h"
 #include "psMetaball.h"
 #include "psMetaballCast.h"
+#include "psTestVortex.h"
 
 #include <algorithm>
 #include <cmath>
@@ -370,38 +371,17 @@ int TestMetaballCast(int, char*[])
   // caster's check for leaks and misuse over a series.
   {
     const int n = 3000;
-    std::vector<double> xyz(3 * n);
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    auto seed = [&](int i, bool top)
-    {
-      const double r = std::sqrt(0.04 + 0.96 * unit(gen)), a = 2.0 * Pi * unit(gen);
-      xyz[3 * i] = r * std::cos(a);
-      xyz[3 * i + 1] = r * std::sin(a);
-      xyz[3 * i + 2] = top ? 1.0 : 2.0 * unit(gen) - 1.0;
-    };
-    for (int i = 0; i < n; ++i)
-    {
-      seed(i, false);
-    }
+    TestVortex<std::mt19937> vortex(n, gen);
     MetaballCastImages images;
     MetaballCastStatistics stats;
     int framesWithSurface = 0;
     for (int frame = 0; frame < 120; ++frame)
     {
+      vortex.Step();
       std::vector<float> balls(4 * n);
       for (int i = 0; i < n; ++i)
       {
-        double* p = &xyz[3 * i];
-        const double r2 = p[0] * p[0] + p[1] * p[1] + 0.05;
-        const double v[3] = { -p[1] / r2 - 0.3 * p[0], p[0] / r2 - 0.3 * p[1], -1.2 };
-        for (int k = 0; k < 3; ++k)
-        {
-          p[k] += 0.04 * v[k];
-        }
-        if (p[2] < -1.0)
-        {
-          seed(i, true);
-        }
+        const double* p = vortex.Position(i);
         // Seen from 4 units away along +y, view space = (x, z, y - 4).
         balls[4 * i] = static_cast<float>(p[0]);
         balls[4 * i + 1] = static_cast<float>(p[2]);

@@ -25,6 +25,8 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 
+#include "psTestVortex.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -64,19 +66,7 @@ int TestMetaballMapperTimeSeries(int, char*[])
 {
   const int n = 4000;
   std::mt19937 gen(5);
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
-  std::vector<double> xyz(3 * n);
-  auto seed = [&](int i, bool top)
-  {
-    const double r = std::sqrt(0.04 + 0.96 * uni(gen)), a = 6.283185307 * uni(gen);
-    xyz[3 * i] = r * std::cos(a);
-    xyz[3 * i + 1] = r * std::sin(a);
-    xyz[3 * i + 2] = top ? 1.0 : 2.0 * uni(gen) - 1.0;
-  };
-  for (int i = 0; i < n; ++i)
-  {
-    seed(i, false);
-  }
+  pointsurfaces::TestVortex<std::mt19937> vortex(n, gen);
   vtkNew<vtkPolyData> poly;
   vtkNew<vtkMetaballMapper> mapper;
   mapper->SetInputDataObject(poly);
@@ -102,24 +92,13 @@ int TestMetaballMapperTimeSeries(int, char*[])
   double residentAfterWarmUp = 0.0, residentMiddle = 0.0, residentEnd = 0.0;
   for (int frame = 0; frame < cpuFrames + gpuFrames; ++frame)
   {
-    // A step of the vortex: swirl, pull in, fall; re-seed at the top.
+    vortex.Step();
     vtkNew<vtkPoints> points;
     points->SetDataTypeToDouble();
     points->SetNumberOfPoints(n);
     for (int i = 0; i < n; ++i)
     {
-      double* p = &xyz[3 * i];
-      const double r2 = p[0] * p[0] + p[1] * p[1] + 0.05;
-      const double v[3] = { -p[1] / r2 - 0.3 * p[0], p[0] / r2 - 0.3 * p[1], -1.2 };
-      for (int k = 0; k < 3; ++k)
-      {
-        p[k] += 0.04 * v[k];
-      }
-      if (p[2] < -1.0)
-      {
-        seed(i, true);
-      }
-      points->SetPoint(i, p);
+      points->SetPoint(i, vortex.Position(i));
     }
     poly->SetPoints(points);
     mapper->SetRayCaster(frame < cpuFrames ? vtkMetaballMapper::CPU : vtkMetaballMapper::GPU);
