@@ -66,7 +66,7 @@
 #include "vtkSplatDataModel.h"
 #include "vtkTextureObject.h"
 
-#include "psSplatTestSupport.h"
+#include "psRenderTestSupport.h"
 
 #include <algorithm>
 #include <cmath>

@@ -42,7 +42,7 @@
 #include "vtkTransform.h"
 #include "vtkTransformFilter.h"
 
-#include "psSplatTestSupport.h"
+#include "psRenderTestSupport.h"
 
 #include <cmath>
 #include <cstdlib>

@@ -36,7 +36,7 @@
 #include "vtkRenderer.h"
 #include "vtkUnsignedCharArray.h"
 
-#include "psSplatTestSupport.h"
+#include "psRenderTestSupport.h"
 
 #include <cmath>
 #include <cstdlib>

@@ -30,8 +30,9 @@
 #include "vtkShadowMapBakerPass.h"
 #include "vtkShadowMapPass.h"
 #include "vtkTestUtilities.h"
-#include "vtkUnsignedCharArray.h"
 #include "vtkXMLPolyDataReader.h"
+
+#include "psRenderTestSupport.h"
 
 #include <cstdlib>
 #include <iostream>
@@ -86,18 +87,7 @@ int TestAlgebraicSplatMapperShadows(int argc, char* argv[])
   camera->SetViewUp(0, 1, 0);
   renderer->ResetCameraClippingRange();
 
-  auto grab = [&](std::vector<double>& luminance)
-  {
-    renWin->Render();
-    vtkNew<vtkUnsignedCharArray> rgb;
-    renWin->GetPixelData(0, 0, size - 1, size - 1, 0, rgb);
-    luminance.resize(size * size);
-    for (int k = 0; k < size * size; ++k)
-    {
-      luminance[k] = (rgb->GetValue(3 * k) + rgb->GetValue(3 * k + 1) + rgb->GetValue(3 * k + 2)) /
-        (3.0 * 255.0);
-    }
-  };
+  auto grab = [&](std::vector<double>& luminance) { luminance = psRenderLuminance(renWin, size); };
   // Which pixels are the Bunny's: depth with the floor hidden.
   floor->VisibilityOff();
   renWin->Render();

@@ -20,7 +20,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 
-#include "psSplatTestSupport.h"
+#include "psRenderTestSupport.h"
 
 #include <cmath>
 #include <cstdlib>

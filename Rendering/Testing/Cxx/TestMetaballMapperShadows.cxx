@@ -19,7 +19,8 @@
 #include "vtkRegressionTestImage.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkUnsignedCharArray.h"
+
+#include "psRenderTestSupport.h"
 
 #include <cstdlib>
 #include <iostream>
@@ -82,18 +83,7 @@ int TestMetaballMapperShadows(int argc, char* argv[])
   camera->SetViewAngle(40);
   renderer->ResetCameraClippingRange();
 
-  auto grab = [&](std::vector<double>& luminance)
-  {
-    renWin->Render();
-    vtkNew<vtkUnsignedCharArray> rgb;
-    renWin->GetPixelData(0, 0, size - 1, size - 1, 0, rgb);
-    luminance.resize(size * size);
-    for (int k = 0; k < size * size; ++k)
-    {
-      luminance[k] = (rgb->GetValue(3 * k) + rgb->GetValue(3 * k + 1) + rgb->GetValue(3 * k + 2)) /
-        (3.0 * 255.0);
-    }
-  };
+  auto grab = [&](std::vector<double>& luminance) { luminance = psRenderLuminance(renWin, size); };
   std::vector<double> lit, shaded;
   grab(lit);
   mapper->ShadowsOn();

@@ -1,18 +1,21 @@
 // SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 // SPDX-License-Identifier: BSD-3-Clause
-// What several splat mapper tests share: points spread evenly over the unit
-// sphere, the exact surface most of them check against, and the world point
-// behind a pixel of the rendered image.
-#ifndef psSplatTestSupport_h
-#define psSplatTestSupport_h
+// What several render tests share: points spread evenly over the unit
+// sphere, the exact surface most splat tests check against, the world point
+// behind a pixel of the rendered image, and a rendered image's luminance.
+#ifndef psRenderTestSupport_h
+#define psRenderTestSupport_h
 
 #include "vtkNew.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
 
 #include <cmath>
+#include <vector>
 
 // n points of the unit sphere on a Fibonacci spiral, in double precision.
 inline vtkSmartPointer<vtkPolyData> psFibonacciSphere(int n)
@@ -42,6 +45,22 @@ inline void psDisplayToWorld(vtkRenderer* ren, double x, double y, double z, dou
   {
     world[c] = p[c] / p[3];
   }
+}
+
+// Renders `window` and returns the luminance (mean of R, G and B, 0 to 1) of
+// its lower-left size x size pixels, row by row from the bottom.
+inline std::vector<double> psRenderLuminance(vtkRenderWindow* window, int size)
+{
+  window->Render();
+  vtkNew<vtkUnsignedCharArray> rgb;
+  window->GetPixelData(0, 0, size - 1, size - 1, 0, rgb);
+  std::vector<double> luminance(static_cast<std::size_t>(size) * size);
+  for (std::size_t k = 0; k < luminance.size(); ++k)
+  {
+    luminance[k] =
+      (rgb->GetValue(3 * k) + rgb->GetValue(3 * k + 1) + rgb->GetValue(3 * k + 2)) / (3.0 * 255.0);
+  }
+  return luminance;
 }
 
 #endif
