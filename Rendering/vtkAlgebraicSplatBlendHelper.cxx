@@ -197,7 +197,7 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
     depthFormat != -1 && (sampleBuffers == 0 || (viewport[0] == 0 && viewport[1] == 0));
   if (copied)
   {
-    glBlitFramebuffer(viewport[0],
+    ostate->vtkglBlitFramebuffer(viewport[0],
       viewport[1],
       viewport[0] + width,
       viewport[1] + height,
@@ -247,7 +247,7 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   // a copy of it, while the depth test drops fragments behind it unshaded.
   t.Framebuffer->Bind(GL_READ_FRAMEBUFFER);
   t.CopyFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-  glBlitFramebuffer(0,
+  ostate->vtkglBlitFramebuffer(0,
     0,
     width,
     height,

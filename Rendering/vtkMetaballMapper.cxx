@@ -130,7 +130,7 @@ void UploadImage(vtkTextureObject* texture,
   const void* data)
 {
   texture->Bind();
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  texture->GetContext()->GetState()->vtkglPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, format, type, data);
   texture->Deactivate();
 }
