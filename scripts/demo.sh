@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# The main job: set everything up on a fresh Debian 12, 13 or forky machine, then render a
-# real scan headless to a PNG and print what it cost.
+# The main job: on a fresh Debian 12, 13 or forky machine, install what the
+# libraries need (install-deps.sh --demo), build the libraries and the Python
+# package (not the tests: scripts/test.sh builds those), then render a real
+# scan headless to a PNG and print what it cost.
 #
 # Usage: scripts/demo.sh [input.{ply,vtp,pcd,xyz,obj,off,om,stl}] [output.png]
 #   default input: Testing/Data/bunny.vtp (the Stanford Bunny), output: bunny.png
@@ -13,7 +15,7 @@ input="${1:-$root/Testing/Data/bunny.vtp}"
 input=$(realpath "$input")
 output=$(realpath -m "${2:-bunny.png}")
 
-"$root/scripts/install-deps.sh" >&2
+"$root/scripts/install-deps.sh" --demo >&2
 if [ ! -f "$root/build/vtk/build.ninja" ]; then
   (cd "$root" && cmake --preset vtk) >&2
 fi

@@ -5,8 +5,10 @@
 # ParaView 6.1). Idempotent: one `apt-get update`, and a no-op when all is
 # present. Runs as root, or through sudo otherwise.
 #
-# Usage: scripts/install-deps.sh [--dry-run] [--paraview] [--release=NAME]
+# Usage: scripts/install-deps.sh [--dry-run] [--demo] [--paraview] [--release=NAME]
 #   --dry-run   only list the packages that are missing
+#   --demo      only what the libraries, the Python package and a headless
+#               render need (scripts/demo.sh; scripts/test.sh adds the rest)
 #   --paraview  also what the `paraview` preset needs: paraview, paraview-dev
 #               and an XSLT tool for the plugin's help pages (Qt's
 #               xmlpatterns on bookworm, xsltproc on trixie and forky, and
@@ -36,9 +38,14 @@ case "$release" in
     release=forky ;;
 esac
 
+demo=0
+for arg in "$@"; do
+  [ "$arg" = --demo ] && demo=1
+done
+# What the libraries, the Python package and a headless render need
+# (scripts/demo.sh installs only these).
 packages=(
-  # toolchain (debootstrap: scripts/test-release.sh)
-  build-essential cmake ninja-build pkg-config git clang-format debootstrap
+  build-essential cmake ninja-build pkg-config
   # VTK and its Python bindings (bookworm: 9.1, trixie: 9.3, forky: 9.6)
   libvtk9-dev python3-vtk9 vtk9 python3-numpy
   # numerics and readers (PCL: kd-trees, PCD files; Ceres: robust fits;
@@ -46,33 +53,41 @@ packages=(
   libeigen3-dev libpcl-dev libceres-dev libopenmesh-dev libopenvdb-dev
   # HDF5's C API (Gadget and SWIFT snapshots, through VTK's VTK::hdf5)
   libhdf5-dev
-  # benchmark peers (CGAL's WLOP; PCL's MLS comes with libpcl-dev)
-  libcgal-dev
-  # headless GL: Mesa llvmpipe through EGL (surfaceless) or GLX under Xvfb
-  libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev xvfb xauth
-  # benchmark plots, image metrics (SSIM) and k-nearest neighbours (SPH lengths)
-  python3-matplotlib python3-skimage python3-scipy
-  # the fuzz preset: clang with libFuzzer and the sanitizer runtimes
-  clang
-  # mpiexec: the ghost-ball test runs over three MPI ranks
-  openmpi-bin
-  # the GPU bundle (scripts/gpu-bundle.sh): xz, objdump and strip, unshare
-  xz-utils binutils util-linux
-  # the API reference (the `docs` target and its warning test)
-  doxygen
+  # headless GL: Mesa llvmpipe through EGL (surfaceless)
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev
 )
-case "$release" in
-  bookworm) packages+=(libclang-rt-14-dev) ;;
-  *) packages+=(libclang-rt-dev) ;;
-esac
+if [ "$demo" = 0 ]; then
+  packages+=(
+    # the format check, and the Debian roots of scripts/test-release.sh
+    git clang-format debootstrap
+    # benchmark peers (CGAL's WLOP; PCL's MLS comes with libpcl-dev)
+    libcgal-dev
+    # the X leg of the render tests
+    xvfb xauth
+    # benchmark plots, image metrics (SSIM) and k-nearest neighbours (SPH lengths)
+    python3-matplotlib python3-skimage python3-scipy
+    # the fuzz preset: clang with libFuzzer and the sanitizer runtimes
+    clang
+    # mpiexec: the ghost-ball test runs over three MPI ranks
+    openmpi-bin
+    # the GPU bundle (scripts/gpu-bundle.sh): xz, objdump and strip, unshare
+    xz-utils binutils util-linux
+    # the API reference (the `docs` target and its warning test)
+    doxygen
+  )
+  case "$release" in
+    bookworm) packages+=(libclang-rt-14-dev) ;;
+    *) packages+=(libclang-rt-dev) ;;
+  esac
+fi
 dryrun=0
 paraview=0
 for arg in "$@"; do
   case "$arg" in
     --dry-run) dryrun=1 ;;
     --paraview) paraview=1 ;;
-    --release=*) ;;
-    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
+    --demo|--release=*) ;;
+    -h|--help) sed -n '2,22p' "$0"; exit 0 ;;
     *) echo "install-deps.sh: unknown argument '$arg'" >&2; exit 2 ;;
   esac
 done
