@@ -242,16 +242,12 @@ std::uint64_t SaturatingCount(const std::string& digits)
 
 // --- the header -------------------------------------------------------------------
 
-bool ParseHeader(const char* data, std::size_t size, Header& header, std::string& error)
+// Finds the line "end_header" (blanks or tabs may follow) that ends the
+// header: `start`, where the header's text ends, and `body`, the first byte
+// after that line; false when there is none.
+bool FindEndHeader(std::string_view all, std::size_t& start, std::size_t& body)
 {
-  if (!HasPLYMagic(data, size))
-  {
-    error = "not a PLY file (it does not start with 'ply')";
-    return false;
-  }
-  // A line "end_header" (blanks or tabs may follow) ends the header.
-  const std::string_view all(data, size);
-  std::size_t start = std::string_view::npos;
+  const std::size_t size = all.size();
   for (std::size_t at = all.find("end_header"); at != std::string_view::npos;
        at = all.find("end_header", at + 1))
   {
@@ -267,11 +263,40 @@ bool ParseHeader(const char* data, std::size_t size, Header& header, std::string
     if (q < size && (all[q] == '\n' || all[q] == '\r'))
     {
       start = at - 1;
-      header.Offset = q + 1 + (all[q] == '\r' && q + 1 < size && all[q + 1] == '\n' ? 1 : 0);
-      break;
+      body = q + 1 + (all[q] == '\r' && q + 1 < size && all[q + 1] == '\n' ? 1 : 0);
+      return true;
     }
   }
-  if (start == std::string_view::npos)
+  return false;
+}
+
+// Whether the first vertex element has the scalar properties x, y and z.
+bool HasVertexXYZ(const Header& header)
+{
+  const auto vertex = std::find_if(header.Elements.begin(),
+    header.Elements.end(),
+    [](const Element& e) { return e.Name == "vertex"; });
+  int found = 0;
+  if (vertex != header.Elements.end())
+  {
+    for (const Property& p : vertex->Properties)
+    {
+      found += !p.List && (p.Name == "x" || p.Name == "y" || p.Name == "z");
+    }
+  }
+  return found == 3;
+}
+
+bool ParseHeader(const char* data, std::size_t size, Header& header, std::string& error)
+{
+  if (!HasPLYMagic(data, size))
+  {
+    error = "not a PLY file (it does not start with 'ply')";
+    return false;
+  }
+  const std::string_view all(data, size);
+  std::size_t start = 0;
+  if (!FindEndHeader(all, start, header.Offset))
   {
     error = "the PLY header has no end_header line";
     return false;
@@ -365,18 +390,7 @@ bool ParseHeader(const char* data, std::size_t size, Header& header, std::string
     error = "the PLY header has no format line";
     return false;
   }
-  const auto vertex = std::find_if(header.Elements.begin(),
-    header.Elements.end(),
-    [](const Element& e) { return e.Name == "vertex"; });
-  int found = 0;
-  if (vertex != header.Elements.end())
-  {
-    for (const Property& p : vertex->Properties)
-    {
-      found += !p.List && (p.Name == "x" || p.Name == "y" || p.Name == "z");
-    }
-  }
-  if (found != 3)
+  if (!HasVertexXYZ(header))
   {
     error = "the PLY header has no vertex element with x, y and z";
     return false;
@@ -978,6 +992,66 @@ bool UniformLists(const Tokens& tokens,
   return true;
 }
 
+// One ASCII word of PLY type `type`: stored at `to` (null: added to `faces`
+// when not null and an integer); a word that is no number, or out of the
+// type's range, is noted in `problem` instead.
+void StoreAsciiValue(std::string_view token,
+  PLYType type,
+  unsigned char* to,
+  FaceSink* faces,
+  ValueProblem& problem)
+{
+  WideInt integer = 0;
+  double real = 0.0;
+  const Parsed how = ParseValue(token, type, integer, real);
+  if (how == Parsed::NotANumber && problem.NotANumber.empty())
+  {
+    problem.NotANumber = Repr(token);
+  }
+  problem.OutOfRange |= how == Parsed::OutOfRange;
+  if (how != Parsed::Ok)
+  {
+    return;
+  }
+  if (to && type == PLYType::Float32)
+  {
+    const float f = PLYFloat(real);
+    std::memcpy(to, &f, sizeof(f));
+  }
+  else if (to && type == PLYType::Float64)
+  {
+    std::memcpy(to, &real, sizeof(real));
+  }
+  else if (to)
+  {
+    StoreInteger(to, type, integer);
+  }
+  else if (faces && PLYTypeIsInteger(type))
+  {
+    faces->Add(integer);
+  }
+}
+
+// False, with `error` naming the first property of `e` that held a word
+// that is no number (or else one out of its type's range).
+bool NoValueProblem(const Element& e, const std::vector<ValueProblem>& problems, std::string& error)
+{
+  for (std::size_t i = 0; i < problems.size(); ++i)
+  {
+    if (!problems[i].NotANumber.empty())
+    {
+      error = e.Label() + " holds something that is not a number (" + problems[i].NotANumber + ")";
+      return false;
+    }
+    if (problems[i].OutOfRange)
+    {
+      error = e.Label() + " holds a number that is not a " + PLYTypeName(e.Properties[i].Type);
+      return false;
+    }
+  }
+  return true;
+}
+
 bool AsciiElement(Tokens& tokens, const Element& e, Wanted& want, std::string& error)
 {
   if (e.Count == 0 || e.Properties.empty())
@@ -999,37 +1073,7 @@ bool AsciiElement(Tokens& tokens, const Element& e, Wanted& want, std::string& e
   }
   std::vector<ValueProblem> problems(n);
   auto parse = [&](std::size_t i, std::string_view token, PLYType type, unsigned char* to)
-  {
-    WideInt integer = 0;
-    double real = 0.0;
-    const Parsed how = ParseValue(token, type, integer, real);
-    if (how == Parsed::NotANumber && problems[i].NotANumber.empty())
-    {
-      problems[i].NotANumber = Repr(token);
-    }
-    problems[i].OutOfRange |= how == Parsed::OutOfRange;
-    if (how != Parsed::Ok)
-    {
-      return;
-    }
-    if (to && type == PLYType::Float32)
-    {
-      const float f = PLYFloat(real);
-      std::memcpy(to, &f, sizeof(f));
-    }
-    else if (to && type == PLYType::Float64)
-    {
-      std::memcpy(to, &real, sizeof(real));
-    }
-    else if (to)
-    {
-      StoreInteger(to, type, integer);
-    }
-    else if (want.Faces && PLYTypeIsInteger(type))
-    {
-      want.Faces->Add(integer);
-    }
-  };
+  { StoreAsciiValue(token, type, to, to ? nullptr : want.Faces, problems[i]); };
   // Fixed records: the columns are allocated once (the element's words are
   // known to be there); records with lists grow them as they are read.
   for (std::size_t i = 0; i < n && !want.Columns.empty(); ++i)
@@ -1091,20 +1135,7 @@ bool AsciiElement(Tokens& tokens, const Element& e, Wanted& want, std::string& e
       }
     }
   }
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    if (!problems[i].NotANumber.empty())
-    {
-      error = e.Label() + " holds something that is not a number (" + problems[i].NotANumber + ")";
-      return false;
-    }
-    if (problems[i].OutOfRange)
-    {
-      error = e.Label() + " holds a number that is not a " + PLYTypeName(e.Properties[i].Type);
-      return false;
-    }
-  }
-  return true;
+  return NoValueProblem(e, problems, error);
 }
 } // namespace
 
@@ -1184,6 +1215,100 @@ bool HasPLYMagic(const char* data, std::size_t size)
   return size >= 4 && std::memcmp(data, "ply", 3) == 0 && (data[3] == '\n' || data[3] == '\r');
 }
 
+namespace
+{
+// Every element of the body in turn, by its declared types, into `wanted`.
+bool WalkBody(const char* data,
+  std::size_t size,
+  const Header& header,
+  std::vector<Wanted>& wanted,
+  std::string& error)
+{
+  const std::vector<Element>& elements = header.Elements;
+  if (header.Body == Format::Ascii)
+  {
+    Tokens tokens{ data + header.Offset, data + size };
+    for (std::size_t k = 0; k < elements.size(); ++k)
+    {
+      if (!AsciiElement(tokens, elements[k], wanted[k], error))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+  const bool swap = (header.Body == Format::LittleEndian) != HostIsLittleEndian();
+  std::size_t at = header.Offset;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(data);
+  for (std::size_t k = 0; k < elements.size(); ++k)
+  {
+    if (!BinaryElement(bytes, size, at, elements[k], swap, wanted[k], error))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The faces read into `faces` (list type `indexType`) as the mesh's polygons:
+// integer indices naming one of `vertices` vertices; faces of fewer than
+// three corners left out, with a warning.
+bool KeepFaces(FaceSink& faces,
+  PLYType indexType,
+  std::uint64_t vertices,
+  PLYMesh& mesh,
+  std::string& error)
+{
+  if (!PLYTypeIsInteger(indexType))
+  {
+    error = "the face indices are not integers";
+    return false;
+  }
+  if (!faces.BadIndex.empty())
+  {
+    error = "a face refers to vertex " + faces.BadIndex + ", but there are " +
+      std::to_string(vertices) + " vertices";
+    return false;
+  }
+  std::size_t shortFaces = 0, from = 0;
+  mesh.FaceOffsets.reserve(faces.Counts.size() + 1);
+  mesh.FaceOffsets.push_back(0);
+  for (std::int64_t count : faces.Counts)
+  {
+    const auto corners = static_cast<std::size_t>(count);
+    if (corners < 3)
+    {
+      ++shortFaces;
+    }
+    else
+    {
+      // Shift the kept faces' indices down over those left out (in place).
+      const std::size_t to = static_cast<std::size_t>(mesh.FaceOffsets.back());
+      if (to != from)
+      {
+        std::copy(faces.Indices.begin() + from,
+          faces.Indices.begin() + from + corners,
+          faces.Indices.begin() + to);
+      }
+      mesh.FaceOffsets.push_back(static_cast<std::int64_t>(to + corners));
+    }
+    from += corners;
+  }
+  faces.Indices.resize(static_cast<std::size_t>(mesh.FaceOffsets.back()));
+  mesh.FaceConnectivity.swap(faces.Indices);
+  if (mesh.FaceOffsets.size() == 1)
+  {
+    mesh.FaceOffsets.clear();
+  }
+  if (shortFaces > 0)
+  {
+    mesh.Warnings.push_back(
+      "faces with fewer than three corners left out: " + std::to_string(shortFaces));
+  }
+  return true;
+}
+} // namespace
+
 bool ReadPLY(const char* data, std::size_t size, PLYMesh& mesh, std::string& error)
 {
   mesh = PLYMesh();
@@ -1237,83 +1362,13 @@ bool ReadPLY(const char* data, std::size_t size, PLYMesh& mesh, std::string& err
   }
 
   // Every element in turn, by its declared types.
-  if (header.Body == Format::Ascii)
+  if (!WalkBody(data, size, header, wanted, error))
   {
-    Tokens tokens{ data + header.Offset, data + size };
-    for (std::size_t k = 0; k < elements.size(); ++k)
-    {
-      if (!AsciiElement(tokens, elements[k], wanted[k], error))
-      {
-        return false;
-      }
-    }
-  }
-  else
-  {
-    const bool swap = (header.Body == Format::LittleEndian) != HostIsLittleEndian();
-    std::size_t at = header.Offset;
-    const auto* bytes = reinterpret_cast<const unsigned char*>(data);
-    for (std::size_t k = 0; k < elements.size(); ++k)
-    {
-      if (!BinaryElement(bytes, size, at, elements[k], swap, wanted[k], error))
-      {
-        return false;
-      }
-    }
+    return false;
   }
 
   // The faces: integer indices naming vertices; fewer than three corners left out.
-  if (!faceList)
-  {
-    return true;
-  }
-  if (!PLYTypeIsInteger(faceList->Type))
-  {
-    error = "the face indices are not integers";
-    return false;
-  }
-  if (!faces.BadIndex.empty())
-  {
-    error = "a face refers to vertex " + faces.BadIndex + ", but there are " +
-      std::to_string(v.Count) + " vertices";
-    return false;
-  }
-  std::size_t shortFaces = 0, from = 0;
-  mesh.FaceOffsets.reserve(faces.Counts.size() + 1);
-  mesh.FaceOffsets.push_back(0);
-  for (std::int64_t count : faces.Counts)
-  {
-    const auto corners = static_cast<std::size_t>(count);
-    if (corners < 3)
-    {
-      ++shortFaces;
-    }
-    else
-    {
-      // Shift the kept faces' indices down over those left out (in place).
-      const std::size_t to = static_cast<std::size_t>(mesh.FaceOffsets.back());
-      if (to != from)
-      {
-        std::copy(faces.Indices.begin() + from,
-          faces.Indices.begin() + from + corners,
-          faces.Indices.begin() + to);
-      }
-      mesh.FaceOffsets.push_back(static_cast<std::int64_t>(to + corners));
-    }
-    from += corners;
-  }
-  faces.Indices.resize(static_cast<std::size_t>(mesh.FaceOffsets.back()));
-  mesh.FaceConnectivity.swap(faces.Indices);
-  if (mesh.FaceOffsets.size() == 1)
-  {
-    mesh.FaceOffsets.clear();
-  }
-  if (shortFaces > 0)
-  {
-    mesh.Warnings.push_back(
-      "faces with fewer than three corners left out: " + std::to_string(shortFaces));
-  }
-  return true;
+  return !faceList || KeepFaces(faces, faceList->Type, v.Count, mesh, error);
 }
 
 bool ReadPLYFile(const std::string& path, PLYMesh& mesh, std::string& error)
