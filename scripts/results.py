@@ -216,10 +216,8 @@ def render(results, draw):
             raise TemplateError("%s: %s" % (where_line, e)) from None
         if kind == "table":
             out += table(results, name, options, where_line)
-        elif kind == "bars":
-            out += bars(results, name, options, where_line, draw)
         else:
-            out += plot(results, name, rest, where_line)
+            out += bars(results, name, options, where_line, draw)
     return "\n".join(out).rstrip("\n") + "\n"
 
 

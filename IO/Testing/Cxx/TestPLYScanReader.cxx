@@ -97,6 +97,20 @@ const std::vector<std::vector<int>> Faces = { { 0, 1, 2, 3 },
   { 0, 1, 2, 3, 4 } };
 const std::int64_t BigId = 1000000000000000001LL; // not a double: exact only as an integer
 
+// The test faces as records of a uchar `flags` property and the index list.
+void WriteFaces(Body& body, std::uint8_t flags)
+{
+  for (const auto& face : Faces)
+  {
+    body << flags << std::uint8_t(face.size());
+    for (int i : face)
+    {
+      body << std::int32_t(i);
+    }
+    body.EndRecord();
+  }
+}
+
 std::string MeshFile(const std::string& format)
 {
   std::string header = "ply\nformat " + format +
@@ -114,15 +128,7 @@ std::string MeshFile(const std::string& format)
          << std::int16_t(-300 * k) << BigId + k << std::int8_t(-k);
     body.EndRecord();
   }
-  for (const auto& face : Faces)
-  {
-    body << std::uint8_t(7) << std::uint8_t(face.size());
-    for (int i : face)
-    {
-      body << std::int32_t(i);
-    }
-    body.EndRecord();
-  }
+  WriteFaces(body, 7);
   return header + body.Text;
 }
 
@@ -183,15 +189,7 @@ std::string RangeMapFile(const std::string& format)
          << std::uint8_t(k) << std::uint8_t(2 * k) << std::uint8_t(3 * k) << std::uint8_t(255);
     body.EndRecord();
   }
-  for (const auto& face : Faces)
-  {
-    body << std::uint8_t(0) << std::uint8_t(face.size());
-    for (int i : face)
-    {
-      body << std::int32_t(i);
-    }
-    body.EndRecord();
-  }
+  WriteFaces(body, 0);
   for (int cell = 0; cell < 10; ++cell)
   {
     if (cell % 2 == 0)
