@@ -6,6 +6,8 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 
+#include "psMetaball.h"
+
 #include <cmath>
 
 vtkStandardNewMacro(vtkMetaballField);
@@ -44,10 +46,24 @@ void vtkMetaballField::Assign(vtkSmartPointer<vtkMetaballField>& slot,
 }
 
 //------------------------------------------------------------------------------
+double vtkMetaballField::EvaluateKernel(int kernel, double x)
+{
+  return pointsurfaces::KernelValue(static_cast<pointsurfaces::MetaballKernel>(kernel), x);
+}
+
+//------------------------------------------------------------------------------
+double vtkMetaballField::EvaluateKernelDerivative(int kernel, double x)
+{
+  double derivative = 0.0;
+  pointsurfaces::KernelValue(static_cast<pointsurfaces::MetaballKernel>(kernel), x, &derivative);
+  return derivative;
+}
+
+//------------------------------------------------------------------------------
 pointsurfaces::BallRule vtkMetaballField::GetRule() const
 {
   pointsurfaces::BallRule rule;
-  rule.Kernel = static_cast<pointsurfaces::MetaballKernel>(this->Kernel);
+  rule.Kernel = this->GetKernelId();
   rule.Threshold = this->Threshold;
   rule.RadiusArrayName = this->RadiusArrayName;
   rule.Radius = this->Radius;

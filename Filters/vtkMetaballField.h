@@ -49,6 +49,8 @@
 
 #include <string> // For array names
 
+#include "psMetaballKernels.h" // For MetaballKernel, the Kernels values
+
 #ifndef __VTK_WRAP__
 #include "psBallExtraction.h" // For the rule
 #endif
@@ -62,16 +64,38 @@ public:
   vtkTypeMacro(vtkMetaballField, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /** The kernels (SetKernel): metaball falloffs and SPH kernels. */
+  /**
+   * The kernels (SetKernel): metaball falloffs and SPH kernels. The values
+   * are pointsurfaces::MetaballKernel's (psMetaballKernels.h, where each
+   * kernel's formulas live); this enum gives them to the wrappers.
+   */
   enum Kernels
   {
-    Wyvill = 0,
-    Quartic = 1,
-    Gaussian = 2,
-    CubicSpline = 3, ///< SPH M4 spline, Gadget's convention (support radius = h)
-    WendlandC2 = 4,  ///< SPH Wendland C2
-    WendlandC4 = 5   ///< SPH Wendland C4
+    Wyvill = pointsurfaces::MetaballKernel::Wyvill,
+    Quartic = pointsurfaces::MetaballKernel::Quartic,
+    Gaussian = pointsurfaces::MetaballKernel::Gaussian,
+    /** SPH M4 spline, Gadget's convention (support radius = h) */
+    CubicSpline = pointsurfaces::MetaballKernel::CubicSpline,
+    WendlandC2 = pointsurfaces::MetaballKernel::WendlandC2, ///< SPH Wendland C2
+    WendlandC4 = pointsurfaces::MetaballKernel::WendlandC4  ///< SPH Wendland C4
   };
+
+  ///@{
+  /**
+   * A kernel (a Kernels value) and its d/dx at x = r^2 / R^2, with peak 1
+   * (pointsurfaces::KernelValue; 0 from x = 1): for scripts that plot the
+   * kernels or check a copy of them against this definition.
+   */
+  static double EvaluateKernel(int kernel, double x);
+  static double EvaluateKernelDerivative(int kernel, double x);
+  ///@}
+
+  /** The kernel as the GL-free code's enum. */
+  pointsurfaces::MetaballKernel GetKernelId() const
+  {
+    return static_cast<pointsurfaces::MetaballKernel>(this->Kernel);
+  }
+
 
   ///@{
   /**

@@ -110,12 +110,8 @@ void vtkMetaballLevelSetWriter::WriteData()
     levelSet->setTransform(xform);
     levelSet->setName(this->GridName);
     levelSet->setGridClass(openvdb::GRID_LEVEL_SET);
-    const char* kernelNames[] = {
-      "wyvill", "quartic", "gaussian", "cubic_spline", "wendland_c2", "wendland_c4"
-    };
-    const int kernel = field->GetKernel();
     levelSet->insertMeta("metaball_kernel",
-      openvdb::StringMetadata(kernel >= 0 && kernel <= 5 ? kernelNames[kernel] : "wyvill"));
+      openvdb::StringMetadata(pointsurfaces::MetaballKernelName(field->GetKernelId())));
     levelSet->insertMeta("metaball_threshold", openvdb::DoubleMetadata(threshold));
     levelSet->insertMeta(
       "metaball_count", openvdb::Int64Metadata(static_cast<int64_t>(balls.Valid.size())));

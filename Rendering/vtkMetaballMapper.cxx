@@ -5,6 +5,7 @@
 #include "vtkMetaballMapper.h"
 
 #include "psMetaballCast.h"
+#include "psMetaballShaderKernel.h"
 #include "psShaderHooks.h"
 
 #include "vtkActor.h"
@@ -904,8 +905,8 @@ bool vtkMetaballMapper::CastOnGPU(vtkOpenGLRenderWindow* renWin,
 
   // [Bolla 2010] Algorithm 3: coherent ray casting, into colour, normal and depth images.
   const std::string defines = "#define TILE_SIZE " + std::to_string(this->TileSize) +
-    "\n#define MAX_SHARED " + std::to_string(MaxShared) + "\n#define KERNEL " +
-    std::to_string(this->Field->GetKernel()) + "\n";
+    "\n#define MAX_SHARED " + std::to_string(MaxShared) + "\n" +
+    pointsurfaces::MetaballKernelDefines(this->Field->GetKernelId());
   if (defines != in.RayCastDefines)
   {
     std::string source = vtkMetaballRayCastCS;
@@ -982,7 +983,7 @@ bool vtkMetaballMapper::CastOnCPU(vtkMatrix4x4* worldToView,
   input.Strengths = in.HasStrengths ? in.HostStrengths.data() : nullptr;
   input.Colors = in.HostColors.data();
   input.Count = in.Count;
-  input.Kernel = static_cast<pointsurfaces::MetaballKernel>(this->Field->GetKernel());
+  input.Kernel = this->Field->GetKernelId();
   input.Threshold = this->Field->GetThreshold();
   pointsurfaces::MetaballCastSettings settings;
   std::copy_n(worldToView->GetData(), 16, settings.WorldToView);
@@ -1058,7 +1059,7 @@ int vtkMetaballMapper::CastShadows(vtkRenderer* ren,
   }
   const float clear[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
   glClearTexImage(in.ShadowImage->GetHandle(), 0, GL_RGBA, GL_FLOAT, clear);
-  const std::string defines = "#define KERNEL " + std::to_string(this->Field->GetKernel()) + "\n";
+  const std::string defines = pointsurfaces::MetaballKernelDefines(this->Field->GetKernelId());
   if (defines != in.ShadowDefines)
   {
     std::string source = vtkMetaballShadowCS;

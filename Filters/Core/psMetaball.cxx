@@ -10,8 +10,6 @@ namespace pointsurfaces
 {
 namespace
 {
-const double GaussianSharpness = 4.0;
-
 // y = M x for a row-major 4x4 matrix and the point (x, w).
 void Transform(const double m[16], const double x[3], double w, double y[4])
 {
@@ -99,137 +97,41 @@ void FrustumPlanes(const double p[16], double planes[24])
 //------------------------------------------------------------------------------
 double KernelValue(MetaballKernel kernel, double x, double* derivative)
 {
+  double slope = 0.0, value = 0.0;
+  if (x < 1.0)
+  {
+    value = VisitMetaballKernel<double>(
+      kernel, [&](auto k) { return k.Value(std::max(x, 0.0), slope); });
+  }
   if (derivative)
   {
-    *derivative = 0.0;
+    *derivative = slope;
   }
-  if (!(x < 1.0))
-  {
-    return 0.0;
-  }
-  x = std::max(x, 0.0);
-  switch (kernel)
-  {
-    case MetaballKernel::Quartic:
-      if (derivative)
-      {
-        *derivative = -2.0 * (1.0 - x);
-      }
-      return (1.0 - x) * (1.0 - x);
-    case MetaballKernel::Gaussian:
-    {
-      const double floor = std::exp(-GaussianSharpness);
-      const double e = std::exp(-GaussianSharpness * x);
-      if (derivative)
-      {
-        *derivative = -GaussianSharpness * e / (1.0 - floor);
-      }
-      return (e - floor) / (1.0 - floor);
-    }
-    case MetaballKernel::CubicSpline:
-    {
-      const double q = std::sqrt(x);
-      if (q < 0.5)
-      {
-        if (derivative)
-        {
-          *derivative = -6.0 + 9.0 * q; // d/dx of 1 - 6 x + 6 x^(3/2)
-        }
-        return 1.0 - 6.0 * x + 6.0 * x * q;
-      }
-      if (derivative)
-      {
-        *derivative = -3.0 * (1.0 - q) * (1.0 - q) / q; // d/dx of 2 (1 - q)^3
-      }
-      return 2.0 * (1.0 - q) * (1.0 - q) * (1.0 - q);
-    }
-    case MetaballKernel::WendlandC2:
-    {
-      const double q = std::sqrt(x), u = 1.0 - q;
-      if (derivative)
-      {
-        *derivative = -10.0 * u * u * u; // dK/dq = -20 q u^3, dq/dx = 1 / (2 q)
-      }
-      return u * u * u * u * (1.0 + 4.0 * q);
-    }
-    case MetaballKernel::WendlandC4:
-    {
-      const double q = std::sqrt(x), u = 1.0 - q, u2 = u * u, u5 = u2 * u2 * u;
-      if (derivative)
-      {
-        *derivative = -28.0 / 3.0 * (1.0 + 5.0 * q) * u5; // dK/dq = -56/3 q (1 + 5 q) u^5
-      }
-      return u5 * u * (1.0 + 6.0 * q + 35.0 / 3.0 * x);
-    }
-    case MetaballKernel::Wyvill:
-    default:
-      if (derivative)
-      {
-        *derivative = (-4.0 / 3.0 * x + 34.0 / 9.0) * x - 22.0 / 9.0;
-      }
-      return ((-4.0 / 9.0 * x + 17.0 / 9.0) * x - 22.0 / 9.0) * x + 1.0;
-  }
+  return value;
 }
 
 //------------------------------------------------------------------------------
 bool IsSPHKernel(MetaballKernel kernel)
 {
-  return kernel == MetaballKernel::CubicSpline || kernel == MetaballKernel::WendlandC2 ||
-    kernel == MetaballKernel::WendlandC4;
+  return KernelNormalization(kernel) > 0.0;
 }
 
 //------------------------------------------------------------------------------
 double KernelNormalization(MetaballKernel kernel)
 {
-  const double pi = 3.14159265358979323846;
-  switch (kernel)
-  {
-    case MetaballKernel::CubicSpline:
-      return 8.0 / pi;
-    case MetaballKernel::WendlandC2:
-      return 21.0 / (2.0 * pi);
-    case MetaballKernel::WendlandC4:
-      return 495.0 / (32.0 * pi);
-    default:
-      return 0.0;
-  }
+  return VisitMetaballKernel<double>(kernel, [](auto k) { return k.Normalization; });
 }
 
 //------------------------------------------------------------------------------
 double SWIFTSupportFactor(MetaballKernel kernel)
 {
-  switch (kernel)
-  {
-    case MetaballKernel::CubicSpline:
-      return 1.825742;
-    case MetaballKernel::WendlandC2:
-      return 1.936492;
-    case MetaballKernel::WendlandC4:
-      return 2.207940;
-    default:
-      return 1.0;
-  }
+  return VisitMetaballKernel<double>(kernel, [](auto k) { return k.SWIFTSupport; });
 }
 
 //------------------------------------------------------------------------------
 double KernelSlopeBound(MetaballKernel kernel)
 {
-  switch (kernel)
-  {
-    case MetaballKernel::Quartic:
-      return 1.5397; // max of 4 q (1 - q^2)
-    case MetaballKernel::Gaussian:
-      return 1.7476; // max of 8 q exp(-4 q^2) / (1 - exp(-4))
-    case MetaballKernel::CubicSpline:
-      return 2.0; // at q = 1/3
-    case MetaballKernel::WendlandC2:
-      return 2.109375; // at q = 1/4
-    case MetaballKernel::WendlandC4:
-      return 2.5; // 2.49979 near q = 0.2356
-    case MetaballKernel::Wyvill:
-    default:
-      return 1.5835; // max of |2 q K'(q^2)|
-  }
+  return VisitMetaballKernel<double>(kernel, [](auto k) { return k.SlopeBound; });
 }
 
 //------------------------------------------------------------------------------

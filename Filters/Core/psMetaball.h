@@ -25,37 +25,14 @@
 
 #include "PointSurfacesFiltersModule.h" // For export macro
 
+#include "psMetaballKernels.h" // For MetaballKernel
+
 #include <vector> // For grid lists
 
 namespace pointsurfaces
 {
-/**
- * Kernels, as functions of x = r^2 / R^2 in [0, 1] with R the support radius;
- * zero for x >= 1, 1 at x = 0. With q = r / R = sqrt(x), the SPH kernels
- * (simulation codes' smoothing kernels, in 3-D) are:
- *
- * - CubicSpline, the M4 B-spline of Monaghan and Lattanzio (1985) as Gadget-2
- *   and Gadget-4 write it (V. Springel 2005, eq. 4), whose smoothing length h
- *   is the support radius R: 1 - 6 q^2 + 6 q^3 for q < 1/2, 2 (1 - q)^3 for
- *   1/2 <= q < 1, times 8 / (pi R^3);
- * - WendlandC2: (1 - q)^4 (1 + 4 q), times 21 / (2 pi R^3);
- * - WendlandC4: (1 - q)^6 (1 + 6 q + 35/3 q^2), times 495 / (32 pi R^3)
- *   (Dehnen and Aly 2012).
- *
- * KernelValue gives the shapes with a peak of 1; KernelNormalization the
- * factor that makes an SPH kernel integrate to 1 over space, so that
- * sum_i m_i N / R_i^3 K(x_i) is the SPH density. SWIFT's smoothing length h
- * is not the support radius: R = gamma h, with gamma = SWIFTSupportFactor().
- */
-enum class MetaballKernel
-{
-  Wyvill = 0,      ///< -4/9 x^3 + 17/9 x^2 - 22/9 x + 1 (eq. 1.4)
-  Quartic = 1,     ///< (1 - x)^2 (eq. 1.3)
-  Gaussian = 2,    ///< (exp(-4 x) - exp(-4)) / (1 - exp(-4)): a Gaussian cut to zero at R
-  CubicSpline = 3, ///< SPH M4 cubic spline (Gadget's convention: support R = h)
-  WendlandC2 = 4,  ///< SPH Wendland C2
-  WendlandC4 = 5,  ///< SPH Wendland C4
-};
+// The kernels (MetaballKernel) and their formulas: psMetaballKernels.h.
+// The functions below dispatch to its double instances at run time.
 
 /** The kernel at x = r^2 / R^2, and its derivative d/dx in `derivative` when given. */
 POINTSURFACESFILTERS_EXPORT double KernelValue(MetaballKernel kernel,

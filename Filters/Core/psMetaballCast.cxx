@@ -21,100 +21,6 @@ namespace
 {
 using Clock = std::chrono::steady_clock;
 
-// The kernels of psMetaball in float, as functions of x = r^2 / R^2: the
-// value alone (branch-free, for the SIMD sums), and the value and d/dx; SlopeBound is the largest |df/dr| of a kernel of unit support.
-struct WyvillKernel
-{
-  static constexpr float SlopeBound = 1.5835f;
-  static float Value(float x)
-  {
-    return ((-4.0f / 9.0f * x + 17.0f / 9.0f) * x - 22.0f / 9.0f) * x + 1.0f;
-  }
-  static float Value(float x, float& slope)
-  {
-    slope = (-4.0f / 3.0f * x + 34.0f / 9.0f) * x - 22.0f / 9.0f;
-    return ((-4.0f / 9.0f * x + 17.0f / 9.0f) * x - 22.0f / 9.0f) * x + 1.0f;
-  }
-};
-struct QuarticKernel
-{
-  static constexpr float SlopeBound = 1.5397f;
-  static float Value(float x) { return (1.0f - x) * (1.0f - x); }
-  static float Value(float x, float& slope)
-  {
-    slope = -2.0f * (1.0f - x);
-    return (1.0f - x) * (1.0f - x);
-  }
-};
-struct GaussianKernel
-{
-  static constexpr float SlopeBound = 1.7476f;
-  static float Value(float x)
-  {
-    const float floorValue = 0.018315639f; // exp(-4)
-    return (std::exp(-4.0f * x) - floorValue) / (1.0f - floorValue);
-  }
-  static float Value(float x, float& slope)
-  {
-    const float floorValue = 0.018315639f; // exp(-4)
-    const float e = std::exp(-4.0f * x);
-    slope = -4.0f * e / (1.0f - floorValue);
-    return (e - floorValue) / (1.0f - floorValue);
-  }
-};
-
-struct CubicSplineKernel
-{
-  static constexpr float SlopeBound = 2.0f;
-  static float Value(float x)
-  {
-    const float q = std::sqrt(x), u = 1.0f - q;
-    return q < 0.5f ? 1.0f - 6.0f * x + 6.0f * x * q : 2.0f * u * u * u;
-  }
-  static float Value(float x, float& slope)
-  {
-    const float q = std::sqrt(x);
-    if (q < 0.5f)
-    {
-      slope = -6.0f + 9.0f * q;
-      return 1.0f - 6.0f * x + 6.0f * x * q;
-    }
-    const float u = 1.0f - q;
-    slope = -3.0f * u * u / q;
-    return 2.0f * u * u * u;
-  }
-};
-struct WendlandC2Kernel
-{
-  static constexpr float SlopeBound = 2.109375f;
-  static float Value(float x)
-  {
-    const float q = std::sqrt(x), u = 1.0f - q;
-    return u * u * u * u * (1.0f + 4.0f * q);
-  }
-  static float Value(float x, float& slope)
-  {
-    const float q = std::sqrt(x), u = 1.0f - q;
-    slope = -10.0f * u * u * u;
-    return u * u * u * u * (1.0f + 4.0f * q);
-  }
-};
-struct WendlandC4Kernel
-{
-  static constexpr float SlopeBound = 2.5f;
-  static float Value(float x)
-  {
-    const float q = std::sqrt(x), u = 1.0f - q, u5 = u * u * u * u * u;
-    return u5 * u * (1.0f + 6.0f * q + 35.0f / 3.0f * x); // as below, to the last bit
-  }
-  static float Value(float x, float& slope)
-  {
-    const float q = std::sqrt(x), u = 1.0f - q, u5 = u * u * u * u * u;
-    slope = -28.0f / 3.0f * (1.0f + 5.0f * q) * u5;
-    return u5 * u * (1.0f + 6.0f * q + 35.0f / 3.0f * x);
-  }
-};
-
 // y = M (x, w) for a row-major 4x4 matrix.
 void Apply(const double m[16], const double x[3], double w, double y[4])
 {
@@ -1275,28 +1181,7 @@ void CastMetaballs(const MetaballCastInput& input,
       CastTiles<decltype(kernel)>(
         input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
     };
-    switch (input.Kernel)
-    {
-      case MetaballKernel::Quartic:
-        cast(QuarticKernel{});
-        break;
-      case MetaballKernel::Gaussian:
-        cast(GaussianKernel{});
-        break;
-      case MetaballKernel::CubicSpline:
-        cast(CubicSplineKernel{});
-        break;
-      case MetaballKernel::WendlandC2:
-        cast(WendlandC2Kernel{});
-        break;
-      case MetaballKernel::WendlandC4:
-        cast(WendlandC4Kernel{});
-        break;
-      case MetaballKernel::Wyvill:
-      default:
-        cast(WyvillKernel{});
-        break;
-    }
+    VisitMetaballKernel<float>(input.Kernel, cast);
   }
   catch (const std::bad_alloc&)
   {

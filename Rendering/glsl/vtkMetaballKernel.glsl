@@ -3,7 +3,8 @@
 //
 // The metaball kernels of vtkMetaballMapper's ray casting and shadow shaders,
 // inserted into each after its defines (KERNEL is pointsurfaces::MetaballKernel;
-// psMetaball.cxx holds the double-precision reference of each):
+// psMetaballKernels.h is the table these formulas copy, in the same order of
+// operations, and TestMetaballKernelGLSL checks them against it):
 //
 // 0 Wyvill's sixth-order polynomial, 1 the quartic (1 - x)^2, 2 a truncated
 // Gaussian, 3 the SPH cubic spline (M4), 4 Wendland C2, 5 Wendland C4; the
@@ -54,20 +55,9 @@ float psKernel(float x, out float slope)
 }
 
 // The largest |dK/dq| of a kernel of unit support, q = r / R: bounds
-// |grad f| by sum |q_i| times this over R_i (pointsurfaces::KernelSlopeBound).
+// |grad f| by sum |q_i| times this over R_i. KERNEL_SLOPE_BOUND is the kernel
+// table's (psMetaballKernels.h), defined with KERNEL by psMetaballShaderKernel.h.
 float psKernelSlopeBound()
 {
-#if KERNEL == 1
-  return 1.5397;
-#elif KERNEL == 2
-  return 1.7476;
-#elif KERNEL == 3
-  return 2.0;
-#elif KERNEL == 4
-  return 2.109375;
-#elif KERNEL == 5
-  return 2.5;
-#else
-  return 1.5835;
-#endif
+  return KERNEL_SLOPE_BOUND;
 }

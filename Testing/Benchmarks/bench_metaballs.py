@@ -83,6 +83,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 from bench_csv import IO_DATA, TEST_DATA, find_input, scatter_time_vs_rmse, skip  # noqa: E402
 from bench_scene import OffscreenScene, material as shared_material  # noqa: E402
+from metaball_kernels import wyvill  # noqa: E402
 
 # The scenes read from files: (the committed file, the full-size file's name in --data).
 FILES = {"halo": (os.path.join(TEST_DATA, "halo_2k.xyz"), "halo_32k.xyz"),
@@ -98,10 +99,6 @@ SCENES = ["scattered-10K", "scattered-100K", "scattered-1M", "halo", "hyg-stars"
 FIELDS = ["input", "balls", "size", "method", "setting", "frame_ms", "build_ms", "render_ms",
           "pairs", "incomplete", "rmse", "reference", "samples_per_ray", "empty_visits",
           "vs_imposters"]
-
-
-def wyvill(x):
-    return np.where(x < 1.0, ((-4.0 / 9.0 * x + 17.0 / 9.0) * x - 22.0 / 9.0) * x + 1.0, 0.0)
 
 
 def scattered(n, seed=1):

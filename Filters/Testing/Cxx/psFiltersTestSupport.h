@@ -23,26 +23,12 @@ inline void Check(bool ok, const char* what)
     ++Failures;
   }
 }
-/** Every metaball kernel, and a name for each to print. */
-inline constexpr pointsurfaces::MetaballKernel MetaballKernels[6] = {
-  pointsurfaces::MetaballKernel::Wyvill,
-  pointsurfaces::MetaballKernel::Quartic,
-  pointsurfaces::MetaballKernel::Gaussian,
-  pointsurfaces::MetaballKernel::CubicSpline,
-  pointsurfaces::MetaballKernel::WendlandC2,
-  pointsurfaces::MetaballKernel::WendlandC4
-};
-inline constexpr const char* MetaballKernelNames[6] = { "Wyvill",
-  "quartic",
-  "Gaussian",
-  "cubic spline",
-  "Wendland C2",
-  "Wendland C4" };
+/** Every metaball kernel (the kernel table's list; MetaballKernelName names each). */
+inline constexpr const auto& MetaballKernels = pointsurfaces::AllMetaballKernels;
 } // namespace pstest
 
 using pstest::Check;
 using pstest::Failures;
-using pstest::MetaballKernelNames;
 using pstest::MetaballKernels;
 
 #endif
