@@ -222,11 +222,11 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
     w2v[k] = static_cast<float>(worldToView[k]);
     v2c[k] = static_cast<float>(viewToClip[k]);
   }
-  double planes[24];
-  pointsurfaces::FrustumPlanes(viewToClip, planes);
-  double projectionNear = 0.0, projectionFar = 0.0;
-  pointsurfaces::ProjectionRange(viewToClip, parallel, projectionNear, projectionFar);
-  projectionFar = std::min(projectionFar, 1e30);
+  pointsurfaces::PerspectiveGridGeometry geometry(
+    viewToClip, parallel, width, height, this->TileSize, this->Slabs);
+  const double* planes = geometry.GetFrustumPlanes();
+  const double projectionNear = geometry.GetProjectionNear();
+  const double projectionFar = geometry.GetProjectionFar();
   auto common = [&](vtkComputeShaderProgram* p)
   {
     p->SetUniformMatrix4x4("worldToView", w2v);
@@ -276,17 +276,12 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
     std::memcpy(&hi, &bits[1], sizeof(float));
     slabNear = lo;
     slabFar = hi;
-    if (!(slabFar > slabNear) || !(slabNear < big))
-    {
-      slabNear = projectionNear;
-      slabFar = std::min(projectionFar, projectionNear + 1.0);
-    }
   }
-  this->SlabPlanes.resize(this->Slabs + 1);
-  for (int k = 0; k <= this->Slabs; ++k)
-  {
-    this->SlabPlanes[k] = slabNear + (slabFar - slabNear) * k / this->Slabs;
-  }
+  // The fallback when nothing is in view, and the planes, as the CPU builders.
+  geometry.SetSlabRange(slabNear, slabFar);
+  slabNear = geometry.GetSlabNear();
+  slabFar = geometry.GetSlabFar();
+  this->SlabPlanes = geometry.GetSlabPlanes();
 
   // Count voxels per ball, then scan into each ball's first pair.
   ok = ok && Reserve(in.Ranges, 3 * (n + 1) * 2 * sizeof(int)) &&

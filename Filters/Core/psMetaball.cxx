@@ -19,80 +19,13 @@ void Transform(const double m[16], const double x[3], double w, double y[4])
   }
 }
 
-// Is the sphere (view space) entirely outside one of the frustum's planes?
-bool OutsideFrustum(const double p[16], const double c[3], double radius)
+// The grid geometry of `view`, its slab range not yet set.
+PerspectiveGridGeometry Geometry(const GridView& view)
 {
-  double planes[24];
-  FrustumPlanes(p, planes);
-  for (int k = 0; k < 6; ++k)
-  {
-    const double* e = planes + 4 * k;
-    if (e[0] * c[0] + e[1] * c[1] + e[2] * c[2] + e[3] < -radius)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
-// The slab holding view distance d: planes[k] <= d < planes[k + 1], clamped.
-int SlabOf(const std::vector<double>& planes, double d)
-{
-  const int slabs = static_cast<int>(planes.size()) - 1;
-  const auto it = std::upper_bound(planes.begin(), planes.end(), d);
-  const int k = static_cast<int>(it - planes.begin()) - 1;
-  return std::min(std::max(k, 0), slabs - 1);
+  return PerspectiveGridGeometry(
+    view.ViewToClip, view.Parallel, view.Width, view.Height, view.TileSize, view.Slabs);
 }
 } // namespace
-
-//------------------------------------------------------------------------------
-void ProjectionRange(const double p[16], bool parallel, double& nearD, double& farD)
-{
-  const double a = p[10], b = p[11];
-  if (parallel)
-  {
-    // z_clip = a z + b with a = -2 / (f - n), b = -(f + n) / (f - n)
-    nearD = (b + 1.0) / a;
-    farD = (b - 1.0) / a;
-  }
-  else
-  {
-    nearD = b / (a - 1.0);
-    farD = b / (a + 1.0);
-  }
-  if (!std::isfinite(nearD) || !std::isfinite(farD))
-  {
-    nearD = 0.0;
-    farD = std::numeric_limits<double>::max();
-  }
-  if (nearD > farD)
-  {
-    std::swap(nearD, farD);
-  }
-}
-
-//------------------------------------------------------------------------------
-void FrustumPlanes(const double p[16], double planes[24])
-{
-  int k = 0;
-  for (int axis = 0; axis < 3; ++axis)
-  {
-    for (int sign = -1; sign <= 1; sign += 2, ++k)
-    {
-      // Inside: row3 + sign * row_axis >= 0.
-      double* e = planes + 4 * k;
-      for (int c = 0; c < 4; ++c)
-      {
-        e[c] = p[12 + c] + sign * p[4 * axis + c];
-      }
-      const double norm = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-      for (int c = 0; c < 4; ++c)
-      {
-        e[c] = norm > 0.0 ? e[c] / norm : (c == 3 ? 1.0 : 0.0);
-      }
-    }
-  }
-}
 
 //------------------------------------------------------------------------------
 double KernelValue(MetaballKernel kernel, double x, double* derivative)
@@ -311,106 +244,50 @@ bool BallVoxels(const GridView& view,
   double radius,
   int range[6])
 {
+  if (slabPlanes.size() < 2)
+  {
+    return false;
+  }
+  GridView slabs = view;
+  slabs.Slabs = static_cast<int>(slabPlanes.size()) - 1;
+  PerspectiveGridGeometry geometry = Geometry(slabs);
+  geometry.SetSlabRange(slabPlanes.front(), slabPlanes.back());
   double cv[4];
   Transform(view.WorldToView, centre, 1.0, cv);
-  if (slabPlanes.size() < 2 || OutsideFrustum(view.ViewToClip, cv, radius))
-  {
-    return false;
-  }
-  const double d = -cv[2];
-  if (d + radius < slabPlanes.front() || d - radius > slabPlanes.back())
-  {
-    return false;
-  }
-  range[4] = SlabOf(slabPlanes, d - radius);
-  range[5] = SlabOf(slabPlanes, d + radius);
-
-  const int tilesX = (view.Width + view.TileSize - 1) / view.TileSize;
-  const int tilesY = (view.Height + view.TileSize - 1) / view.TileSize;
-  double lo[2] = { std::numeric_limits<double>::max(), std::numeric_limits<double>::max() };
-  double hi[2] = { -lo[0], -lo[1] };
-  // A perspective ball reaching the eye plane projects over the whole screen.
-  bool everywhere = !view.Parallel && d - radius <= 0.0;
-  for (int k = 0; k < 8 && !everywhere; ++k)
-  {
-    const double corner[3] = { cv[0] + ((k & 1) ? radius : -radius),
-      cv[1] + ((k & 2) ? radius : -radius),
-      cv[2] + ((k & 4) ? radius : -radius) };
-    double clip[4];
-    Transform(view.ViewToClip, corner, 1.0, clip);
-    if (!(clip[3] > 0.0))
-    {
-      everywhere = true;
-      break;
-    }
-    const double px = (0.5 * clip[0] / clip[3] + 0.5) * view.Width;
-    const double py = (0.5 * clip[1] / clip[3] + 0.5) * view.Height;
-    lo[0] = std::min(lo[0], px);
-    lo[1] = std::min(lo[1], py);
-    hi[0] = std::max(hi[0], px);
-    hi[1] = std::max(hi[1], py);
-  }
-  if (everywhere)
-  {
-    range[0] = 0;
-    range[1] = tilesX - 1;
-    range[2] = 0;
-    range[3] = tilesY - 1;
-    return true;
-  }
-  if (hi[0] < 0.0 || hi[1] < 0.0 || lo[0] >= view.Width || lo[1] >= view.Height)
-  {
-    return false;
-  }
-  range[0] = std::max(0, static_cast<int>(std::floor(lo[0] / view.TileSize)));
-  range[1] = std::min(tilesX - 1, static_cast<int>(std::floor(hi[0] / view.TileSize)));
-  range[2] = std::max(0, static_cast<int>(std::floor(lo[1] / view.TileSize)));
-  range[3] = std::min(tilesY - 1, static_cast<int>(std::floor(hi[1] / view.TileSize)));
-  return true;
+  return !geometry.Outside(cv, radius) && geometry.Range(cv, radius, range);
 }
+
+namespace
+{
+// The slab range of `view` set on `geometry`: fixed, or that of the valid
+// balls in the frustum.
+void SetSlabs(const MetaballSet& set, const GridView& view, PerspectiveGridGeometry& geometry)
+{
+  double nearD = view.SlabNear, farD = view.SlabFar;
+  if (!(farD > nearD))
+  {
+    nearD = std::numeric_limits<double>::max();
+    farD = 0.0;
+    for (long long i = 0; i < set.Count; ++i)
+    {
+      double cv[4];
+      Transform(view.WorldToView, set.Centers + 3 * i, 1.0, cv);
+      if (ValidBall(set, i) && !geometry.Outside(cv, set.Radii[i]))
+      {
+        geometry.Extend(cv, set.Radii[i], nearD, farD);
+      }
+    }
+  }
+  geometry.SetSlabRange(nearD, farD);
+}
+} // namespace
 
 //------------------------------------------------------------------------------
 std::vector<double> SlabPlanes(const MetaballSet& set, const GridView& view)
 {
-  const int slabs = std::max(1, view.Slabs);
-  double nearD = view.SlabNear, farD = view.SlabFar;
-  if (!(farD > nearD))
-  {
-    double pNear, pFar;
-    ProjectionRange(view.ViewToClip, view.Parallel, pNear, pFar);
-    nearD = std::numeric_limits<double>::max();
-    farD = -nearD;
-    for (long long i = 0; i < set.Count; ++i)
-    {
-      if (!ValidBall(set, i))
-      {
-        continue;
-      }
-      double cv[4];
-      Transform(view.WorldToView, set.Centers + 3 * i, 1.0, cv);
-      const double r = set.Radii[i];
-      if (OutsideFrustum(view.ViewToClip, cv, r))
-      {
-        continue;
-      }
-      nearD = std::min(nearD, -cv[2] - r);
-      farD = std::max(farD, -cv[2] + r);
-    }
-    nearD = std::max(nearD, pNear);
-    farD = std::min(farD, pFar);
-    if (!(farD > nearD))
-    {
-      nearD = pNear;
-      farD = std::min(pFar, pNear + 1.0);
-    }
-  }
-  std::vector<double> planes(slabs + 1);
-  for (int k = 0; k <= slabs; ++k)
-  {
-    planes[k] = nearD + (farD - nearD) * k / slabs;
-  }
-  planes.back() = farD;
-  return planes;
+  PerspectiveGridGeometry geometry = Geometry(view);
+  SetSlabs(set, view, geometry);
+  return geometry.GetSlabPlanes();
 }
 
 //------------------------------------------------------------------------------
@@ -421,78 +298,37 @@ PerspectiveGrid BuildPerspectiveGrid(const MetaballSet& set, const GridView& vie
   {
     return grid;
   }
-  grid.TilesX = (view.Width + view.TileSize - 1) / view.TileSize;
-  grid.TilesY = (view.Height + view.TileSize - 1) / view.TileSize;
-  grid.Slabs = std::max(1, view.Slabs);
-  grid.SlabPlanes = SlabPlanes(set, view);
-  const long long voxels = static_cast<long long>(grid.TilesX) * grid.TilesY * grid.Slabs;
+  PerspectiveGridGeometry geometry = Geometry(view);
+  SetSlabs(set, view, geometry);
+  grid.TilesX = geometry.GetTilesX();
+  grid.TilesY = geometry.GetTilesY();
+  grid.Slabs = geometry.GetSlabs();
+  grid.SlabPlanes = geometry.GetSlabPlanes();
 
-  // Count: voxels per ball.
-  std::vector<long long> counts(set.Count, 0);
+  // Each ball's voxel range, then the lists by voxel.
   std::vector<int> ranges(6 * set.Count, 0);
+  std::vector<unsigned char> placed(set.Count, 0);
   for (long long i = 0; i < set.Count; ++i)
   {
+    double cv[4];
+    Transform(view.WorldToView, set.Centers + 3 * i, 1.0, cv);
     if (!ValidBall(set, i))
     {
       ++grid.Invalid;
-      continue;
     }
-    int* r = &ranges[6 * i];
-    if (!BallVoxels(view, grid.SlabPlanes, set.Centers + 3 * i, set.Radii[i], r))
+    else if (geometry.Outside(cv, set.Radii[i]) || !geometry.Range(cv, set.Radii[i], &ranges[6 * i]))
     {
       ++grid.Culled;
-      continue;
     }
-    counts[i] = static_cast<long long>(r[1] - r[0] + 1) * (r[3] - r[2] + 1) * (r[5] - r[4] + 1);
-  }
-  // Exclusive scan: each ball's first pair.
-  std::vector<long long> first(set.Count + 1, 0);
-  for (long long i = 0; i < set.Count; ++i)
-  {
-    first[i + 1] = first[i] + counts[i];
-  }
-  grid.Pairs = first[set.Count];
-  // Scatter (voxel, ball), in ball order.
-  std::vector<unsigned> pairVoxel(grid.Pairs), pairBall(grid.Pairs);
-  for (long long i = 0; i < set.Count; ++i)
-  {
-    if (!counts[i])
+    else
     {
-      continue;
-    }
-    const int* r = &ranges[6 * i];
-    long long k = first[i];
-    for (int z = r[4]; z <= r[5]; ++z)
-    {
-      for (int y = r[2]; y <= r[3]; ++y)
-      {
-        for (int x = r[0]; x <= r[1]; ++x)
-        {
-          pairVoxel[k] =
-            static_cast<unsigned>((static_cast<long long>(z) * grid.TilesY + y) * grid.TilesX + x);
-          pairBall[k] = static_cast<unsigned>(i);
-          ++k;
-        }
-      }
+      placed[i] = 1;
     }
   }
-  // Counting sort by voxel, stable: ball ids ascend within a voxel.
-  grid.Offsets.assign(voxels + 1, 0);
-  for (long long k = 0; k < grid.Pairs; ++k)
-  {
-    ++grid.Offsets[pairVoxel[k] + 1];
-  }
-  for (long long v = 0; v < voxels; ++v)
-  {
-    grid.MaxPerVoxel = std::max(grid.MaxPerVoxel, grid.Offsets[v + 1]);
-    grid.Offsets[v + 1] += grid.Offsets[v];
-  }
-  grid.Balls.resize(grid.Pairs);
-  std::vector<unsigned> next(grid.Offsets.begin(), grid.Offsets.end() - 1);
-  for (long long k = 0; k < grid.Pairs; ++k)
-  {
-    grid.Balls[next[pairVoxel[k]]++] = pairBall[k];
-  }
+  grid.MaxPerVoxel = static_cast<unsigned>(SortIntoVoxels(set.Count, grid.TilesX, grid.TilesY,
+    grid.Slabs, VoxelOrder::SlabMajor,
+    [&](long long i) { return placed[i] ? &ranges[6 * i] : nullptr; }, grid.Offsets, grid.Balls));
+  grid.Pairs = static_cast<long long>(grid.Balls.size());
   return grid;
 }
 

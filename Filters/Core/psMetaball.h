@@ -25,7 +25,8 @@
 
 #include "PointSurfacesFiltersModule.h" // For export macro
 
-#include "psMetaballKernels.h" // For MetaballKernel
+#include "psMetaballKernels.h"  // For MetaballKernel
+#include "psPerspectiveGrid.h" // For the grid geometry
 
 #include <vector> // For grid lists
 
@@ -159,23 +160,13 @@ struct PerspectiveGrid
   long long Invalid = 0; ///< NaN or non-positive radii, skipped
 };
 
-/** The near and far view distances of an OpenGL projection matrix (row-major). */
-POINTSURFACESFILTERS_EXPORT void ProjectionRange(const double viewToClip[16],
-  bool parallel,
-  double& nearDistance,
-  double& farDistance);
-
-/**
- * The six view-space planes of the frustum of `viewToClip`, 4 values each
- * (unit normal, offset), with the inside where n . x + d >= 0.
- */
-POINTSURFACESFILTERS_EXPORT void FrustumPlanes(const double viewToClip[16], double planes[24]);
-
 /**
  * The voxel range a ball's support reaches: tiles [r[0], r[1]] x [r[2], r[3]]
  * and slabs [r[4], r[5]], from its bounding sphere's projection (the sphere's
  * view-space box for the depth; a ball reaching the eye plane covers every
- * tile). Returns false when the ball lies outside the frustum or the slabs.
+ * tile), by PerspectiveGridGeometry with uniform slabs between the ends of
+ * `slabPlanes`. Returns false when the ball lies outside the frustum or the
+ * slabs.
  */
 POINTSURFACESFILTERS_EXPORT bool BallVoxels(const GridView& view,
   const std::vector<double>& slabPlanes,
@@ -185,8 +176,9 @@ POINTSURFACESFILTERS_EXPORT bool BallVoxels(const GridView& view,
 
 /**
  * The slab planes for `view`: its SlabNear/SlabFar, or, when automatic, the
- * nearest and farthest view distance that the frustum-culled balls reach
- * (at least the near plane of the projection), split uniformly.
+ * nearest and farthest view distance that the balls in the frustum reach,
+ * each clamped to the projection's range and to d >= 0, split uniformly
+ * (PerspectiveGridGeometry::Extend and SetSlabRange).
  */
 POINTSURFACESFILTERS_EXPORT std::vector<double> SlabPlanes(const MetaballSet& set,
   const GridView& view);

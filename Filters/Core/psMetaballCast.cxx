@@ -881,10 +881,7 @@ void BuildGrid(const MetaballCastInput& in,
   balls.Q.assign(n, 1.0f);
   balls.Color.assign(n, 0xffffffffu);
   balls.Range.assign(6 * n, 0);
-  double frustum[24];
-  FrustumPlanes(S.ViewToClip, frustum);
-  double projectionNear, projectionFar;
-  ProjectionRange(S.ViewToClip, S.Parallel, projectionNear, projectionFar);
+  PerspectiveGridGeometry geometry(S.ViewToClip, S.Parallel, S.Width, S.Height, S.TileSize, S.Slabs);
   struct Extent
   {
     double Near = std::numeric_limits<double>::max();
@@ -912,14 +909,7 @@ void BuildGrid(const MetaballCastInput& in,
         const double x[3] = { b[0], b[1], b[2] };
         double c[4];
         Apply(S.WorldToView, x, 1.0, c);
-        const double r = b[3];
-        bool outside = false;
-        for (int k = 0; k < 6 && !outside; ++k)
-        {
-          const double* p = frustum + 4 * k;
-          outside = p[0] * c[0] + p[1] * c[1] + p[2] * c[2] + p[3] < -r;
-        }
-        if (outside)
+        if (geometry.Outside(c, b[3]))
         {
           ++e.Culled;
           continue;
@@ -931,10 +921,7 @@ void BuildGrid(const MetaballCastInput& in,
         balls.Q[i] = q;
         balls.Color[i] = in.Colors ? in.Colors[i] : 0xffffffffu;
         visible[i] = 1;
-        const double lo = std::min(std::max(-c[2] - r, projectionNear), projectionFar);
-        const double hi = std::min(std::max(-c[2] + r, projectionNear), projectionFar);
-        e.Near = std::min(e.Near, std::max(lo, 0.0));
-        e.Far = std::max(e.Far, std::max(hi, 0.0));
+        geometry.Extend(c, b[3], e.Near, e.Far);
       }
     });
   double slabNear = std::numeric_limits<double>::max(), slabFar = 0.0;
@@ -945,36 +932,11 @@ void BuildGrid(const MetaballCastInput& in,
     stats.Invalid += e.Invalid;
     stats.Culled += e.Culled;
   }
-  if (!(slabFar > slabNear))
-  {
-    slabNear = projectionNear;
-    slabFar = std::min(projectionFar, projectionNear + 1.0);
-  }
-  const int slabs = S.Slabs;
-  planes.resize(slabs + 1);
-  for (int k = 0; k <= slabs; ++k)
-  {
-    planes[k] = slabNear + (slabFar - slabNear) * k / slabs;
-  }
-  stats.SlabNear = slabNear;
-  stats.SlabFar = slabFar;
-  auto slabOf = [&](double d)
-  {
-    // Clamped in double first: a cast of a value beyond int is undefined.
-    const double k = std::floor((d - slabNear) / (slabFar - slabNear) * slabs);
-    return static_cast<int>(std::min(std::max(k, 0.0), slabs - 1.0));
-  };
-  // Each visible ball's voxel range, from its view-space box's projection.
-  double corners[8][4]; // sum over the axes of +-1 times column j of ViewToClip
-  for (int k = 0; k < 8; ++k)
-  {
-    for (int row = 0; row < 4; ++row)
-    {
-      const double* m = S.ViewToClip + 4 * row;
-      corners[k][row] =
-        ((k & 1) ? m[0] : -m[0]) + ((k & 2) ? m[1] : -m[1]) + ((k & 4) ? m[2] : -m[2]);
-    }
-  }
+  geometry.SetSlabRange(slabNear, slabFar);
+  planes = geometry.GetSlabPlanes();
+  stats.SlabNear = geometry.GetSlabNear();
+  stats.SlabFar = geometry.GetSlabFar();
+  // Each visible ball's voxel range, from its (float) view-space centre.
   std::atomic<long long> culled(0);
   vtkSMPTools::For(0,
     n,
@@ -986,113 +948,22 @@ void BuildGrid(const MetaballCastInput& in,
         int* range = &balls.Range[6 * i];
         range[0] = 1; // empty until placed
         range[1] = 0;
-        if (!visible[i])
-        {
-          continue;
-        }
         const double c[3] = { balls.X[i], balls.Y[i], balls.Z[i] };
-        const double r = balls.R[i], d = -c[2];
-        if (d + r < slabNear || d - r > slabFar)
+        if (visible[i] && !geometry.Range(c, balls.R[i], range))
         {
+          range[0] = 1;
+          range[1] = 0;
           ++out;
-          continue;
         }
-        double lo[2] = { 1e300, 1e300 }, hi[2] = { -1e300, -1e300 };
-        bool everywhere = !S.Parallel && d - r <= 0.0;
-        double centre[4];
-        Apply(S.ViewToClip, c, 1.0, centre);
-        for (int k = 0; k < 8 && !everywhere; ++k)
-        {
-          // The projection is linear: a corner's clip coordinates are the
-          // centre's plus r times a signed sum of the matrix's columns.
-          const double clip[4] = { centre[0] + r * corners[k][0],
-            centre[1] + r * corners[k][1],
-            centre[2] + r * corners[k][2],
-            centre[3] + r * corners[k][3] };
-          if (!(clip[3] > 0.0))
-          {
-            everywhere = true;
-            break;
-          }
-          const double px = (0.5 * clip[0] / clip[3] + 0.5) * S.Width;
-          const double py = (0.5 * clip[1] / clip[3] + 0.5) * S.Height;
-          lo[0] = std::min(lo[0], px);
-          lo[1] = std::min(lo[1], py);
-          hi[0] = std::max(hi[0], px);
-          hi[1] = std::max(hi[1], py);
-        }
-        if (everywhere)
-        {
-          range[0] = 0;
-          range[1] = tilesX - 1;
-          range[2] = 0;
-          range[3] = tilesY - 1;
-        }
-        else
-        {
-          if (hi[0] < 0.0 || hi[1] < 0.0 || lo[0] >= S.Width || lo[1] >= S.Height)
-          {
-            ++out;
-            continue;
-          }
-          // Clamped in double first (a corner just in front of the eye
-          // projects far out; casting beyond int is undefined).
-          auto tileOf = [&S](double p, int tiles) {
-            return static_cast<int>(
-              std::min(std::max(std::floor(p / S.TileSize), 0.0), tiles - 1.0));
-          };
-          range[0] = tileOf(lo[0], tilesX);
-          range[1] = tileOf(hi[0], tilesX);
-          range[2] = tileOf(lo[1], tilesY);
-          range[3] = tileOf(hi[1], tilesY);
-        }
-        range[4] = slabOf(d - r);
-        range[5] = slabOf(d + r);
       }
       culled += out;
     });
   stats.Culled += culled;
-  // Counting sort by voxel, in ball order: each voxel's list ascends.
-  const size_t voxels = static_cast<size_t>(tilesX) * tilesY * slabs;
-  offsets.assign(voxels + 1, 0);
-  for (long long i = 0; i < n; ++i)
-  {
-    const int* r = &balls.Range[6 * i];
-    for (int y = r[2]; y <= r[3] && r[0] <= r[1]; ++y)
-    {
-      for (int x = r[0]; x <= r[1]; ++x)
-      {
-        const size_t base = (static_cast<size_t>(y) * tilesX + x) * slabs + 1;
-        for (int z = r[4]; z <= r[5]; ++z)
-        {
-          ++offsets[base + z];
-        }
-      }
-    }
-  }
-  for (size_t v = 0; v < voxels; ++v)
-  {
-    stats.MaxPerVoxel = std::max(stats.MaxPerVoxel, static_cast<long long>(offsets[v + 1]));
-    offsets[v + 1] += offsets[v];
-  }
-  stats.Pairs = offsets[voxels];
-  lists.resize(offsets[voxels]);
-  std::vector<size_t> cursor(offsets.begin(), offsets.end() - 1);
-  for (long long i = 0; i < n; ++i)
-  {
-    const int* r = &balls.Range[6 * i];
-    for (int y = r[2]; y <= r[3] && r[0] <= r[1]; ++y)
-    {
-      for (int x = r[0]; x <= r[1]; ++x)
-      {
-        const size_t base = (static_cast<size_t>(y) * tilesX + x) * slabs;
-        for (int z = r[4]; z <= r[5]; ++z)
-        {
-          lists[cursor[base + z]++] = static_cast<unsigned int>(i);
-        }
-      }
-    }
-  }
+  // The lists, tile-major: a tile's slabs lie together.
+  stats.MaxPerVoxel = SortIntoVoxels(n, tilesX, tilesY, S.Slabs, VoxelOrder::TileMajor,
+    [&](long long i) { return balls.Range[6 * i] <= balls.Range[6 * i + 1] ? &balls.Range[6 * i] : nullptr; },
+    offsets, lists);
+  stats.Pairs = static_cast<long long>(lists.size());
 }
 
 template<class K>
