@@ -79,6 +79,12 @@ class vtkMatrix4x4;
 class vtkOpenGLRenderWindow;
 class vtkPointSet;
 
+namespace pointsurfaces
+{
+struct MetaballCastRequest;
+struct MetaballCastStatistics;
+}
+
 class POINTSURFACESRENDERING_EXPORT vtkMetaballMapper : public vtkMapper
 {
 public:
@@ -314,43 +320,16 @@ protected:
    */
   bool ReadHitBuffer(vtkFloatArray* hits);
 
+  /** The balls to the GPU (and the host), when the input, the field or the colours changed. */
   bool Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* input);
   /** Is the context's OpenGL a software one (Mesa llvmpipe, softpipe, SWR)? */
   static bool IsSoftwareRenderer();
-  /** The grid and the primary rays on the GPU, into the images. */
-  bool CastOnGPU(vtkOpenGLRenderWindow* renWin,
-    vtkMatrix4x4* worldToView,
-    vtkMatrix4x4* viewToClip,
-    vtkMatrix4x4* clipToView,
-    bool parallel,
-    int width,
-    int height);
-  /** The grid and the primary rays on the CPU, uploaded into the images; `inside` counts rays. */
-  bool CastOnCPU(vtkMatrix4x4* worldToView,
-    vtkMatrix4x4* viewToClip,
-    vtkMatrix4x4* clipToView,
-    bool parallel,
-    int width,
-    int height,
-    unsigned int& inside);
   /**
    * One pass of a hardware selection over the last cast's hits: each hit
    * pixel of the selector's area in the pass's colour, unlit, with its
    * depth. (x0, y0): the viewport's origin in the window.
    */
   void DrawSelection(vtkRenderer* ren, vtkHardwareSelector* selector, int x0, int y0);
-  /**
-   * The ball that dominates each hit pixel of the last cast in `area`
-   * (viewport pixels xmin, ymin, xmax, ymax), into the selection cache.
-   */
-  void PickBalls(const int area[4]);
-  int CastShadows(vtkRenderer* ren,
-    vtkActor* act,
-    vtkMatrix4x4* model,
-    vtkMatrix4x4* viewToModel,
-    vtkMatrix4x4* clipToView,
-    int width,
-    int height);
 
   vtkSmartPointer<vtkMetaballField> Field;
   int TileSize = 16;
@@ -386,6 +365,26 @@ protected:
 private:
   struct Internals;
   std::unique_ptr<Internals> Impl;
+
+  /** The view (into `model`: the float balls to world) and the settings of a cast. */
+  void MakeRequest(vtkRenderer* ren,
+    vtkActor* act,
+    int width,
+    int height,
+    vtkMatrix4x4* model,
+    pointsurfaces::MetaballCastRequest& request);
+  /**
+   * The primary rays on the chosen caster, then the shadows when `shadows`,
+   * with the frame's counters around them. Returns the lights shadowed, -1
+   * when nothing was cast.
+   */
+  int CastFrame(vtkRenderer* ren,
+    vtkActor* act,
+    vtkMatrix4x4* model,
+    const pointsurfaces::MetaballCastRequest& request,
+    bool shadows);
+  /** A cast's host-side counts into the statistics; `march`: its march's too. */
+  void TakeStatistics(const pointsurfaces::MetaballCastStatistics& stats, bool march);
 
   vtkMetaballMapper(const vtkMetaballMapper&) = delete;
   void operator=(const vtkMetaballMapper&) = delete;

@@ -48,6 +48,7 @@ bool RunShader(vtkOpenGLRenderWindow* win,
   program->SetSource(source.c_str());
   if (!program->Compile(win))
   {
+    program->ReleaseGraphicsResources(win);
     return false;
   }
   const auto count = static_cast<unsigned int>(arguments.size());
@@ -61,7 +62,11 @@ bool RunShader(vtkOpenGLRenderWindow* win,
   bool ok = program->Dispatch(vtkComputeShaderProgram::GroupCount(count, 64));
   program->Unbind();
   results.assign(4 * arguments.size(), 0.0f);
-  return ok && out->Download(results.data(), results.size() * sizeof(float));
+  ok = ok && out->Download(results.data(), results.size() * sizeof(float));
+  program->ReleaseGraphicsResources(win);
+  in->ReleaseGraphicsResources(win);
+  out->ReleaseGraphicsResources(win);
+  return ok;
 }
 
 // The table's value and slope in float, with the double reference's clamping.

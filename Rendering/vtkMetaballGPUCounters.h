@@ -1,0 +1,74 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkMetaballGPUCounters
+ * @brief   The metaball shaders' per-frame counters, read without stalling a frame.
+ *
+ * The ray casting and shadow shaders add to nine counters a frame (pixels
+ * starting inside the surface, rays and shadow rays cut by the loop limit,
+ * and the GPU ray caster's samples, bisection samples, voxel visits, empty
+ * voxel visits, kernel terms and hits, as vtkMetaballRayCastCS.glsl lists
+ * them). Reading a buffer right after the dispatch would wait for the GPU,
+ * so the counters go round a ring of buffers: each frame adds into a fresh
+ * one and fences it, and a later frame reads those whose fence the GPU has
+ * passed. Read(wait = true) gives the current frame's at once, for
+ * vtkMetaballMapper's CollectStatistics. Private to vtkMetaballMapper.
+ */
+#ifndef vtkMetaballGPUCounters_h
+#define vtkMetaballGPUCounters_h
+
+#include "PointSurfacesRenderingModule.h" // For export macro
+#include "vtkNew.h"                       // For the buffers
+#include "vtkObject.h"
+
+#include <functional> // For the report
+
+class vtkShaderStorageBuffer;
+class vtkWindow;
+
+class POINTSURFACESRENDERING_EXPORT vtkMetaballGPUCounters : public vtkObject
+{
+public:
+  static vtkMetaballGPUCounters* New();
+  vtkTypeMacro(vtkMetaballGPUCounters, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /** How many counters a frame has. */
+  static constexpr int Count = 9;
+  using Report = std::function<void(const unsigned int counters[Count])>;
+
+  /**
+   * Starts a frame: reports the counters of the earlier frames that the GPU
+   * has finished (waiting only for the oldest when the GPU is a whole ring
+   * behind), then clears this frame's buffer to `initial` (zeros when null).
+   */
+  void BeginFrame(const Report& report, const unsigned int* initial = nullptr);
+
+  /** This frame's buffer, for the shaders to add into (binding 5). */
+  vtkShaderStorageBuffer* GetFrameBuffer();
+
+  /**
+   * Ends the frame: a barrier and a fence after the shaders that wrote it;
+   * with `wait`, reports this frame's counters at once.
+   */
+  void EndFrame(const Report& report, bool wait);
+
+  void ReleaseGraphicsResources(vtkWindow* win);
+
+protected:
+  vtkMetaballGPUCounters();
+  ~vtkMetaballGPUCounters() override;
+
+private:
+  static constexpr int Ring = 3;
+  bool ReadSlot(int slot, bool wait, unsigned int out[Count]);
+
+  vtkNew<vtkShaderStorageBuffer> Buffers[Ring];
+  void* Fences[Ring] = { nullptr, nullptr, nullptr }; // GLsync
+  int Next = 0;
+
+  vtkMetaballGPUCounters(const vtkMetaballGPUCounters&) = delete;
+  void operator=(const vtkMetaballGPUCounters&) = delete;
+};
+
+#endif

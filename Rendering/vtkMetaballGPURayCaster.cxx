@@ -1,0 +1,142 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "psOpenGL.h"
+
+#include "vtkMetaballGPURayCaster.h"
+
+#include "vtkComputeShaderProgram.h"
+#include "vtkMetaballGridBuilder.h"
+#include "vtkMetaballKernel.h"
+#include "vtkMetaballRayCastCS.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkShaderStorageBuffer.h"
+
+#include "psMetaballShaderKernel.h"
+#include "psShaderHooks.h"
+
+vtkStandardNewMacro(vtkMetaballGPURayCaster);
+
+namespace
+{
+const int MaxShared = 256; // balls per voxel batch in shared memory
+}
+
+//------------------------------------------------------------------------------
+vtkMetaballGPURayCaster::vtkMetaballGPURayCaster() = default;
+
+//------------------------------------------------------------------------------
+vtkMetaballGPURayCaster::~vtkMetaballGPURayCaster() = default;
+
+//------------------------------------------------------------------------------
+vtkComputeShaderProgram* vtkMetaballGPURayCaster::Program(vtkOpenGLRenderWindow* renWin,
+  const pointsurfaces::MetaballCastRequest& request)
+{
+  const std::string defines = "#define TILE_SIZE " + std::to_string(request.TileSize) +
+    "\n#define MAX_SHARED " + std::to_string(MaxShared) + "\n" +
+    pointsurfaces::MetaballKernelDefines(request.Kernel);
+  if (defines != this->Defines)
+  {
+    std::string source = vtkMetaballRayCastCS;
+    if (!pointsurfaces::ReplaceHook(source, "//VTK::Defines::Dec", defines) ||
+      !pointsurfaces::ReplaceHook(source, "//VTK::Kernel::Dec", vtkMetaballKernel))
+    {
+      vtkErrorMacro(<< "vtkMetaballRayCastCS lacks its //VTK::Defines::Dec or //VTK::Kernel::Dec "
+                       "hook: nothing is drawn.");
+      return nullptr;
+    }
+    this->RayCast->ReleaseGraphicsResources(renWin);
+    this->RayCast->SetName("vtkMetaballRayCastCS");
+    this->RayCast->SetSource(source);
+    this->Defines = defines;
+  }
+  if (!this->RayCast->IsCompiled() && !this->RayCast->Compile(renWin))
+  {
+    return nullptr;
+  }
+  return this->RayCast;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMetaballGPURayCaster::Cast(vtkOpenGLRenderWindow* renWin,
+  const pointsurfaces::MetaballCastRequest& request,
+  pointsurfaces::MetaballBalls& balls,
+  pointsurfaces::MetaballImages& images,
+  vtkShaderStorageBuffer* counters,
+  pointsurfaces::MetaballCastStatistics& stats)
+{
+  const pointsurfaces::MetaballView& view = request.View;
+  stats.Rays = static_cast<long long>(view.Width) * view.Height;
+  // [Bolla 2010] Algorithm 2: the perspective grid.
+  this->Grid->SetTileSize(request.TileSize);
+  this->Grid->SetCollectStatistics(request.CollectStatistics);
+  this->Grid->SetSlabs(request.Slabs);
+  if (!this->Grid->Build(renWin, balls.Balls, balls.Count, view.WorldToView, view.ViewToClip,
+        view.Parallel, view.Width, view.Height))
+  {
+    return false;
+  }
+  stats.Pairs = this->Grid->GetNumberOfPairs();
+  stats.MaxPerVoxel = this->Grid->GetMaximumBallsPerVoxel();
+  stats.Culled = this->Grid->GetNumberOfCulledBalls();
+  stats.GridSeconds = 1e-3 * this->Grid->GetBuildTime();
+
+  // [Bolla 2010] Algorithm 3: coherent ray casting, into colour, normal and depth images.
+  vtkComputeShaderProgram* program = this->Program(renWin, request);
+  if (!program)
+  {
+    return false;
+  }
+  program->Bind(renWin);
+  float m[16];
+  pointsurfaces::ToFloat(view.WorldToView, m);
+  program->SetUniformMatrix4x4("worldToView", m);
+  pointsurfaces::ToFloat(view.ViewToClip, m);
+  program->SetUniformMatrix4x4("viewToClip", m);
+  pointsurfaces::ToFloat(view.ClipToView, m);
+  program->SetUniformMatrix4x4("clipToView", m);
+  program->SetUniformi("parallelProjection", view.Parallel ? 1 : 0);
+  program->SetUniform2i("viewport", view.Width, view.Height);
+  program->SetUniform2i("tiles", this->Grid->GetTilesX(), this->Grid->GetTilesY());
+  program->SetUniformi("slabs", request.Slabs);
+  program->SetUniformf("slabNear", static_cast<float>(this->Grid->GetSlabPlane(0)));
+  program->SetUniformf("slabFar", static_cast<float>(this->Grid->GetSlabPlane(request.Slabs)));
+  program->SetUniformf("threshold", static_cast<float>(request.Threshold));
+  program->SetUniformf("stepScale", static_cast<float>(request.StepScale));
+  program->SetUniformi("bisections", request.Bisections);
+  program->SetUniformi("useStrengths", balls.HasStrengths ? 1 : 0);
+  balls.Balls->BindBase(0);
+  balls.Colors->BindBase(1);
+  balls.Strengths->BindBase(2);
+  this->Grid->GetVoxelOffsets()->BindBase(3);
+  this->Grid->GetVoxelBalls()->BindBase(4);
+  counters->BindBase(5);
+  glBindImageTexture(0, images.Color->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+  glBindImageTexture(1, images.Normal->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+  glBindImageTexture(2, images.Depth->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  this->Timer.ReusableStart();
+  const bool cast = program->Dispatch(this->Grid->GetTilesX(), this->Grid->GetTilesY(), 1,
+    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
+      GL_SHADER_STORAGE_BARRIER_BIT);
+  program->Unbind();
+  this->Timer.ReusableStop();
+  // The GPU time of the last frame whose query completed.
+  stats.CastSeconds = this->Timer.GetReusableElapsedSeconds();
+  return cast;
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballGPURayCaster::ReleaseGraphicsResources(vtkWindow* win)
+{
+  this->Grid->ReleaseGraphicsResources(win);
+  this->RayCast->ReleaseGraphicsResources(win);
+  this->Defines.clear();
+  this->Timer.ReleaseGraphicsResources();
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballGPURayCaster::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Program compiled: " << this->RayCast->IsCompiled() << "\n";
+}
