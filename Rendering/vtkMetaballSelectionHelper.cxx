@@ -72,6 +72,142 @@ void HitPoint(const double clipToView[16],
     point[r] = ends[0][r] + t * (ends[1][r] - ends[0][r]);
   }
 }
+// The area's own projection: the viewport's, scaled and moved so that its
+// clip-space square is the area (viewport pixels xmin, ymin, xmax, ymax).
+void AreaToClip(const pointsurfaces::MetaballView& cast, const int area[4], double areaToClip[16])
+{
+  const int width = cast.Width, height = cast.Height;
+  const int areaWidth = area[2] - area[0] + 1, areaHeight = area[3] - area[1] + 1;
+  std::copy_n(cast.ViewToClip, 16, areaToClip);
+  const double sx = static_cast<double>(width) / areaWidth;
+  const double tx = static_cast<double>(width - 2 * area[0]) / areaWidth - 1.0;
+  const double sy = static_cast<double>(height) / areaHeight;
+  const double ty = static_cast<double>(height - 2 * area[1]) / areaHeight - 1.0;
+  for (int c = 0; c < 4; ++c)
+  {
+    areaToClip[c] = sx * cast.ViewToClip[c] + tx * cast.ViewToClip[12 + c];
+    areaToClip[4 + c] = sy * cast.ViewToClip[4 + c] + ty * cast.ViewToClip[12 + c];
+  }
+}
+
+// The input's points to view: the cast's view without the balls' shift.
+void InputToView(const pointsurfaces::MetaballView& cast, const double shift[3], double toView[16])
+{
+  std::copy_n(cast.WorldToView, 16, toView);
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      toView[4 * r + 3] -= cast.WorldToView[4 * r + k] * shift[k];
+    }
+  }
+}
+
+// The balls that reach into a selection area: their input ids (ascending),
+// the balls themselves in the area's view space, and a perspective grid of
+// them over the area.
+struct AreaBalls
+{
+  std::vector<unsigned> Ids;
+  std::vector<double> Centres, Radii, Strengths;
+  pointsurfaces::MetaballSet Set;
+  pointsurfaces::PerspectiveGrid Grid;
+};
+
+// The AreaBalls of `area`; false when there is no grid to search.
+bool GatherAreaBalls(const pointsurfaces::MetaballView& cast,
+  const int area[4],
+  const pointsurfaces::MetaballBalls& balls,
+  AreaBalls& out)
+{
+  const pointsurfaces::MetaballSet& set = balls.Extracted.Set;
+  double areaToClip[16], toView[16], planes[24];
+  AreaToClip(cast, area, areaToClip);
+  pointsurfaces::FrustumPlanes(areaToClip, planes);
+  InputToView(cast, balls.Shift, toView);
+  const auto centreInView = [&](vtkIdType i, double out[3])
+  {
+    const double* c = set.Centers + 3 * i;
+    for (int r = 0; r < 3; ++r)
+    {
+      out[r] = toView[4 * r] * c[0] + toView[4 * r + 1] * c[1] + toView[4 * r + 2] * c[2] +
+        toView[4 * r + 3];
+    }
+  };
+
+  // The balls that the ray casters draw (a positive float radius) whose
+  // support reaches into the area's frustum, ascending.
+  vtkSMPThreadLocal<std::vector<unsigned>> reaching;
+  vtkSMPTools::For(0,
+    set.Count,
+    [&](vtkIdType begin, vtkIdType end)
+    {
+      std::vector<unsigned>& ids = reaching.Local();
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        if (!(balls.HostBalls[4 * i + 3] > 0.0f))
+        {
+          continue;
+        }
+        double c[3];
+        centreInView(i, c);
+        bool inside = true;
+        for (int k = 0; k < 6 && inside; ++k)
+        {
+          const double* e = planes + 4 * k;
+          inside = e[0] * c[0] + e[1] * c[1] + e[2] * c[2] + e[3] >= -set.Radii[i];
+        }
+        if (inside)
+        {
+          ids.push_back(static_cast<unsigned>(i));
+        }
+      }
+    });
+  std::vector<unsigned>& ids = out.Ids;
+  for (const std::vector<unsigned>& part : reaching)
+  {
+    ids.insert(ids.end(), part.begin(), part.end());
+  }
+  std::sort(ids.begin(), ids.end());
+
+  // Those balls in view space, binned into a perspective grid over the area.
+  const size_t count = ids.size();
+  std::vector<double>& centres = out.Centres;
+  std::vector<double>& radii = out.Radii;
+  std::vector<double>& strengths = out.Strengths;
+  centres.resize(3 * count);
+  radii.resize(count);
+  strengths.resize(set.Strengths ? count : 0);
+  for (size_t k = 0; k < count; ++k)
+  {
+    centreInView(ids[k], &centres[3 * k]);
+    radii[k] = set.Radii[ids[k]];
+    if (set.Strengths)
+    {
+      strengths[k] = set.Strengths[ids[k]];
+    }
+  }
+  pointsurfaces::MetaballSet& nearby = out.Set;
+  nearby = set;
+  nearby.Centers = centres.data();
+  nearby.Radii = radii.data();
+  nearby.Strengths = set.Strengths ? strengths.data() : nullptr;
+  nearby.Count = static_cast<long long>(count);
+  pointsurfaces::GridView grid;
+  for (int k = 0; k < 16; ++k)
+  {
+    grid.WorldToView[k] = k % 5 == 0 ? 1.0 : 0.0;
+    grid.ViewToClip[k] = areaToClip[k];
+  }
+  grid.Parallel = cast.Parallel;
+  grid.Width = area[2] - area[0] + 1;
+  grid.Height = area[3] - area[1] + 1;
+  grid.TileSize = PickTile;
+  grid.Slabs = 16;
+  out.Grid = pointsurfaces::BuildPerspectiveGrid(nearby, grid);
+  return out.Grid.SlabPlanes.size() >= 2;
+}
+
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -244,109 +380,14 @@ void vtkMetaballSelectionHelper::PickBalls(const int area[4],
     return;
   }
 
-  // The area's own projection: the viewport's, scaled and moved so that its
-  // clip-space square is the area.
-  double areaToClip[16];
-  std::copy_n(cast.ViewToClip, 16, areaToClip);
-  const double sx = static_cast<double>(width) / areaWidth;
-  const double tx = static_cast<double>(width - 2 * area[0]) / areaWidth - 1.0;
-  const double sy = static_cast<double>(height) / areaHeight;
-  const double ty = static_cast<double>(height - 2 * area[1]) / areaHeight - 1.0;
-  for (int c = 0; c < 4; ++c)
-  {
-    areaToClip[c] = sx * cast.ViewToClip[c] + tx * cast.ViewToClip[12 + c];
-    areaToClip[4 + c] = sy * cast.ViewToClip[4 + c] + ty * cast.ViewToClip[12 + c];
-  }
-  double planes[24];
-  pointsurfaces::FrustumPlanes(areaToClip, planes);
-  // The input's points to view: the cast's view without the balls' shift.
-  double toView[16];
-  std::copy_n(cast.WorldToView, 16, toView);
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      toView[4 * r + 3] -= cast.WorldToView[4 * r + k] * balls.Shift[k];
-    }
-  }
-  const auto centreInView = [&](vtkIdType i, double out[3])
-  {
-    const double* c = set.Centers + 3 * i;
-    for (int r = 0; r < 3; ++r)
-    {
-      out[r] = toView[4 * r] * c[0] + toView[4 * r + 1] * c[1] + toView[4 * r + 2] * c[2] +
-        toView[4 * r + 3];
-    }
-  };
-
-  // The balls that the ray casters draw (a positive float radius) whose
-  // support reaches into the area's frustum, ascending.
-  vtkSMPThreadLocal<std::vector<unsigned>> reaching;
-  vtkSMPTools::For(0,
-    set.Count,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      std::vector<unsigned>& ids = reaching.Local();
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        if (!(balls.HostBalls[4 * i + 3] > 0.0f))
-        {
-          continue;
-        }
-        double c[3];
-        centreInView(i, c);
-        bool inside = true;
-        for (int k = 0; k < 6 && inside; ++k)
-        {
-          const double* e = planes + 4 * k;
-          inside = e[0] * c[0] + e[1] * c[1] + e[2] * c[2] + e[3] >= -set.Radii[i];
-        }
-        if (inside)
-        {
-          ids.push_back(static_cast<unsigned>(i));
-        }
-      }
-    });
-  std::vector<unsigned> ids;
-  for (const std::vector<unsigned>& part : reaching)
-  {
-    ids.insert(ids.end(), part.begin(), part.end());
-  }
-  std::sort(ids.begin(), ids.end());
-
-  // Those balls in view space, binned into a perspective grid over the area.
-  const size_t count = ids.size();
-  std::vector<double> centres(3 * count), radii(count), strengths(set.Strengths ? count : 0);
-  for (size_t k = 0; k < count; ++k)
-  {
-    centreInView(ids[k], &centres[3 * k]);
-    radii[k] = set.Radii[ids[k]];
-    if (set.Strengths)
-    {
-      strengths[k] = set.Strengths[ids[k]];
-    }
-  }
-  pointsurfaces::MetaballSet nearby = set;
-  nearby.Centers = centres.data();
-  nearby.Radii = radii.data();
-  nearby.Strengths = set.Strengths ? strengths.data() : nullptr;
-  nearby.Count = static_cast<long long>(count);
-  pointsurfaces::GridView grid;
-  for (int k = 0; k < 16; ++k)
-  {
-    grid.WorldToView[k] = k % 5 == 0 ? 1.0 : 0.0;
-    grid.ViewToClip[k] = areaToClip[k];
-  }
-  grid.Parallel = cast.Parallel;
-  grid.Width = areaWidth;
-  grid.Height = areaHeight;
-  grid.TileSize = PickTile;
-  grid.Slabs = 16;
-  const pointsurfaces::PerspectiveGrid voxels = pointsurfaces::BuildPerspectiveGrid(nearby, grid);
-  if (voxels.SlabPlanes.size() < 2)
+  AreaBalls near;
+  if (!GatherAreaBalls(cast, area, balls, near))
   {
     return;
   }
+  const pointsurfaces::MetaballSet& nearby = near.Set;
+  const pointsurfaces::PerspectiveGrid& voxels = near.Grid;
+  const std::vector<unsigned>& ids = near.Ids;
 
   // Each hit pixel's surface point against its voxel's balls, which hold
   // every ball whose support contains it (all of the area's balls where a
