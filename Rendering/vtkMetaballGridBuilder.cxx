@@ -61,6 +61,58 @@ bool Reserve(vtkShaderStorageBuffer* buffer, size_t bytes)
   bytes = std::max<size_t>(bytes, 16);
   return buffer->GetSize() >= bytes || buffer->Allocate(bytes + bytes / 4);
 }
+// The uniforms that the passes share: the view in float, the frustum and the grid.
+struct PassUniforms
+{
+  float WorldToView[16], ViewToClip[16], Frustum[6][4];
+  int Parallel, Viewport[2], TileSize, Tiles[2], Slabs;
+  float ProjectionRange[2];
+
+  PassUniforms(const double worldToView[16],
+    const double viewToClip[16],
+    const pointsurfaces::PerspectiveGridGeometry& geometry,
+    bool parallel,
+    int width,
+    int height,
+    int tileSize,
+    int tilesX,
+    int tilesY,
+    int slabs)
+    : Parallel(parallel ? 1 : 0)
+    , Viewport{ width, height }
+    , TileSize(tileSize)
+    , Tiles{ tilesX, tilesY }
+    , Slabs(slabs)
+    , ProjectionRange{ static_cast<float>(geometry.GetProjectionNear()),
+      static_cast<float>(geometry.GetProjectionFar()) }
+  {
+    for (int k = 0; k < 16; ++k)
+    {
+      this->WorldToView[k] = static_cast<float>(worldToView[k]);
+      this->ViewToClip[k] = static_cast<float>(viewToClip[k]);
+    }
+    for (int k = 0; k < 24; ++k)
+    {
+      this->Frustum[k / 4][k % 4] = static_cast<float>(geometry.GetFrustumPlanes()[k]);
+    }
+  }
+
+  void Set(vtkComputeShaderProgram* p) const
+  {
+    p->SetUniformMatrix4x4("worldToView", this->WorldToView);
+    p->SetUniformMatrix4x4("viewToClip", this->ViewToClip);
+    for (int k = 0; k < 6; ++k)
+    {
+      p->SetUniform4f(("frustum[" + std::to_string(k) + "]").c_str(), this->Frustum[k]);
+    }
+    p->SetUniformi("parallelProjection", this->Parallel);
+    p->SetUniform2i("viewport", this->Viewport[0], this->Viewport[1]);
+    p->SetUniformi("tileSize", this->TileSize);
+    p->SetUniform2i("tiles", this->Tiles[0], this->Tiles[1]);
+    p->SetUniformi("slabs", this->Slabs);
+    p->SetUniform2f("projectionRange", this->ProjectionRange[0], this->ProjectionRange[1]);
+  }
+};
 } // namespace
 
 struct vtkMetaballGridBuilder::Internals
@@ -149,6 +201,64 @@ struct vtkMetaballGridBuilder::Internals
     }
     return true;
   }
+
+  // Scatters the (voxel, ball) pairs and counts them per voxel, scans the
+  // counts into offsets, and places each pair after its voxel's earlier ones
+  // (a counting sort); the ranges and each ball's first pair are in place.
+  bool SortPairs(vtkOpenGLRenderWindow* renWin,
+    const PassUniforms& common,
+    size_t n,
+    size_t voxels,
+    unsigned int pairs)
+  {
+    // Scatter the pairs and count them per voxel; scan the counts into offsets.
+    bool ok = Reserve(this->PairVoxels, pairs * sizeof(unsigned int)) &&
+      Reserve(this->PairBalls, pairs * sizeof(unsigned int)) &&
+      Reserve(this->Histogram, (voxels + 1) * sizeof(unsigned int)) &&
+      Reserve(this->Cursor, voxels * sizeof(unsigned int)) &&
+      Reserve(this->VoxelBalls, pairs * sizeof(unsigned int));
+    if (ok)
+    {
+      this->Histogram->Fill(0, (voxels + 1) * sizeof(unsigned int));
+    }
+    vtkComputeShaderProgram* scatter = ok ? this->Use(renWin, Scatter) : nullptr;
+    ok = scatter != nullptr;
+    if (ok)
+    {
+      common.Set(scatter);
+      scatter->SetUniformui("count", static_cast<unsigned int>(n));
+      this->Ranges->BindBase(RangesBinding);
+      this->Counts->BindBase(CountsBinding);
+      this->PairVoxels->BindBase(PairVoxelsBinding);
+      this->PairBalls->BindBase(PairBallsBinding);
+      this->Histogram->BindBase(HistogramBinding);
+      ok = scatter->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), BallGroup));
+    }
+    ok = ok && this->ExclusiveScan(renWin, this->Histogram, voxels + 1, 0, true);
+
+    // Counting sort: each pair takes the next place of its voxel.
+    if (ok && pairs > 0)
+    {
+      glBindBuffer(GL_COPY_READ_BUFFER, this->Histogram->GetHandle());
+      glBindBuffer(GL_COPY_WRITE_BUFFER, this->Cursor->GetHandle());
+      glCopyBufferSubData(
+        GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, voxels * sizeof(unsigned int));
+      glBindBuffer(GL_COPY_READ_BUFFER, 0);
+      glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
+      vtkComputeShaderProgram* place = this->Use(renWin, Place);
+      ok = place != nullptr;
+      if (ok)
+      {
+        place->SetUniformui("count", pairs);
+        this->PairVoxels->BindBase(PairVoxelsBinding);
+        this->PairBalls->BindBase(PairBallsBinding);
+        this->Cursor->BindBase(CursorBinding);
+        this->VoxelBalls->BindBase(VoxelBallsBinding);
+        ok = place->Dispatch(vtkComputeShaderProgram::GroupCount(pairs, BallGroup));
+      }
+    }
+    return ok;
+  }
 };
 
 //------------------------------------------------------------------------------
@@ -215,38 +325,10 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
   }
   in.Timer.ReusableStart();
 
-  // Uniforms shared by the passes: the view, in float.
-  float w2v[16], v2c[16];
-  for (int k = 0; k < 16; ++k)
-  {
-    w2v[k] = static_cast<float>(worldToView[k]);
-    v2c[k] = static_cast<float>(viewToClip[k]);
-  }
   pointsurfaces::PerspectiveGridGeometry geometry(
     viewToClip, parallel, width, height, this->TileSize, this->Slabs);
-  const double* planes = geometry.GetFrustumPlanes();
-  const double projectionNear = geometry.GetProjectionNear();
-  const double projectionFar = geometry.GetProjectionFar();
-  auto common = [&](vtkComputeShaderProgram* p)
-  {
-    p->SetUniformMatrix4x4("worldToView", w2v);
-    p->SetUniformMatrix4x4("viewToClip", v2c);
-    for (int k = 0; k < 6; ++k)
-    {
-      const float plane[4] = { static_cast<float>(planes[4 * k]),
-        static_cast<float>(planes[4 * k + 1]),
-        static_cast<float>(planes[4 * k + 2]),
-        static_cast<float>(planes[4 * k + 3]) };
-      p->SetUniform4f(("frustum[" + std::to_string(k) + "]").c_str(), plane);
-    }
-    p->SetUniformi("parallelProjection", parallel ? 1 : 0);
-    p->SetUniform2i("viewport", width, height);
-    p->SetUniformi("tileSize", this->TileSize);
-    p->SetUniform2i("tiles", this->TilesX, this->TilesY);
-    p->SetUniformi("slabs", this->Slabs);
-    p->SetUniform2f(
-      "projectionRange", static_cast<float>(projectionNear), static_cast<float>(projectionFar));
-  };
+  const PassUniforms common(worldToView, viewToClip, geometry, parallel, width, height,
+    this->TileSize, this->TilesX, this->TilesY, this->Slabs);
 
   // Stats: nearest, farthest (float bits), culled, invalid, max per voxel.
   const float big = std::numeric_limits<float>::max();
@@ -265,7 +347,7 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
     ok = range != nullptr;
     if (ok)
     {
-      common(range);
+      common.Set(range);
       range->SetUniformui("count", static_cast<unsigned int>(n));
       ok = range->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), BallGroup));
     }
@@ -290,7 +372,7 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
   ok = countPass != nullptr;
   if (ok)
   {
-    common(countPass);
+    common.Set(countPass);
     countPass->SetUniformf("slabNear", static_cast<float>(slabNear));
     countPass->SetUniformf("slabFar", static_cast<float>(slabFar));
     countPass->SetUniformui("count", static_cast<unsigned int>(n));
@@ -310,52 +392,7 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
     ok = false;
   }
 
-  // Scatter the pairs and count them per voxel; scan the counts into offsets.
-  ok = ok && Reserve(in.PairVoxels, pairs * sizeof(unsigned int)) &&
-    Reserve(in.PairBalls, pairs * sizeof(unsigned int)) &&
-    Reserve(in.Histogram, (voxels + 1) * sizeof(unsigned int)) &&
-    Reserve(in.Cursor, voxels * sizeof(unsigned int)) &&
-    Reserve(in.VoxelBalls, pairs * sizeof(unsigned int));
-  if (ok)
-  {
-    in.Histogram->Fill(0, (voxels + 1) * sizeof(unsigned int));
-  }
-  vtkComputeShaderProgram* scatter = ok ? in.Use(renWin, Scatter) : nullptr;
-  ok = scatter != nullptr;
-  if (ok)
-  {
-    common(scatter);
-    scatter->SetUniformui("count", static_cast<unsigned int>(n));
-    in.Ranges->BindBase(RangesBinding);
-    in.Counts->BindBase(CountsBinding);
-    in.PairVoxels->BindBase(PairVoxelsBinding);
-    in.PairBalls->BindBase(PairBallsBinding);
-    in.Histogram->BindBase(HistogramBinding);
-    ok = scatter->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), BallGroup));
-  }
-  ok = ok && in.ExclusiveScan(renWin, in.Histogram, voxels + 1, 0, true);
-
-  // Counting sort: each pair takes the next place of its voxel.
-  if (ok && pairs > 0)
-  {
-    glBindBuffer(GL_COPY_READ_BUFFER, in.Histogram->GetHandle());
-    glBindBuffer(GL_COPY_WRITE_BUFFER, in.Cursor->GetHandle());
-    glCopyBufferSubData(
-      GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, 0, voxels * sizeof(unsigned int));
-    glBindBuffer(GL_COPY_READ_BUFFER, 0);
-    glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
-    vtkComputeShaderProgram* place = in.Use(renWin, Place);
-    ok = place != nullptr;
-    if (ok)
-    {
-      place->SetUniformui("count", pairs);
-      in.PairVoxels->BindBase(PairVoxelsBinding);
-      in.PairBalls->BindBase(PairBallsBinding);
-      in.Cursor->BindBase(CursorBinding);
-      in.VoxelBalls->BindBase(VoxelBallsBinding);
-      ok = place->Dispatch(vtkComputeShaderProgram::GroupCount(pairs, BallGroup));
-    }
-  }
+  ok = ok && in.SortPairs(renWin, common, n, voxels, pairs);
   in.Programs[0]->Unbind();
 
   in.Timer.ReusableStop();
