@@ -214,206 +214,25 @@ int LocallyOptimalProjection(const double* p,
   return step;
 }
 
-BuildResult BuildSplats(const double* xyz,
-  long long n,
-  const double* normals,
-  const BuildParameters& params,
-  const std::function<void(double)>& progress,
-  const std::atomic<bool>* abort)
+namespace
 {
-  BuildResult result;
-  if (n < 3)
-  {
-    return result;
-  }
-  auto report = [&](double f)
-  {
-    if (progress)
-    {
-      progress(f);
-    }
-  };
-  auto aborted = [&] { return abort && abort->load(); };
-  PointIndex index(xyz, n);
-  SplatFitParameters fit = params.Fit;
-  fit.NumberOfNeighbors = static_cast<int>(std::min<long long>(fit.NumberOfNeighbors, n));
-  fit.FeatureSizeNeighbors = static_cast<int>(std::min<long long>(fit.FeatureSizeNeighbors, n - 1));
-  const int kAll = std::max(fit.NumberOfNeighbors, fit.FeatureSizeNeighbors + 1);
+// One BuildSplats call: the index, the parameters as clamped to the input,
+// and what the selection hands to the fits. Its steps are the phases that
+// BuildSplats names: positions (all, by quality level, or LOP), fits,
+// radii (for a fixed count), bounds, and the result.
+class SplatBuild
+{
+public:
+  SplatBuild(const double* xyz,
+    long long n,
+    const double* normals,
+    const BuildParameters& params,
+    const std::function<void(double)>& progress,
+    const std::atomic<bool>* abort);
 
-  const bool bounded = fit.MaximumDeviation > 0.0;
-  // The bounds' normal test (see BoundParameters::NormalAngle): each point's
-  // normal, the input's or the PCA normal of its NormalNeighbors nearest.
-  const double* pointNormals = nullptr;
-  std::vector<double> estimated;
-  if (bounded && params.NormalAngle < 90.0)
-  {
-    pointNormals = normals;
-    if (!normals && params.EstimateNormals)
-    {
-      estimated.assign(static_cast<size_t>(3 * n), 0.0);
-      vtkSMPTools::For(0,
-        n,
-        [&](long long begin, long long end)
-        {
-          std::vector<int> ids;
-          std::vector<double> d2, coords;
-          for (long long i = begin; i < end; ++i)
-          {
-            Gather(index, index.Point(i), NormalNeighbors, ids, d2, coords);
-            LocalFrame plane;
-            if (FitReferencePlane(
-                  coords.data(), nullptr, static_cast<int>(ids.size()), plane, nullptr) ==
-              FitStatus::Ok)
-            {
-              std::copy(plane.Normal, plane.Normal + 3, &estimated[static_cast<size_t>(3 * i)]);
-            }
-          }
-        });
-      pointNormals = estimated.data();
-    }
-  }
-  // Tells this call's cached searches (see `bound`) from an earlier call's.
-  static std::atomic<unsigned long long> builds{ 0 };
-  const unsigned long long buildId = ++builds;
-  // The neighbours of point i and its plane with h (Normal and Scale).
-  auto planeOf = [&](long long i,
-                   LocalFrame& frame,
-                   std::vector<int>& ids,
-                   std::vector<double>& d2,
-                   std::vector<double>& coords)
-  {
-    Gather(index, index.Point(i), kAll, ids, d2, coords);
-    const int m = std::min(fit.NumberOfNeighbors, static_cast<int>(ids.size()));
-    if (FitReferencePlane(coords.data(), nullptr, m, frame, normals ? normals + 3 * i : nullptr) !=
-      FitStatus::Ok)
-    {
-      return false;
-    }
-    frame.Scale = FeatureSize(
-      index.Point(i), frame, coords.data(), static_cast<int>(ids.size()), fit.FeatureSizeNeighbors);
-    return frame.Scale > 0.0;
-  };
-  // Bound a fitted splat of nominal radius `radius` and measure its deviation
-  // against the points around it; returns the covered point ids with their
-  // in-plane distances.
-  // `nearest` (ids, sorted by distance, and their squared distances from the
-  // splat's point `from`), when they reach far enough, stand in for a
-  // search of the index. Otherwise the search is made around `from` and
-  // kept: a second bound of the same point (the narrow refit below) whose
-  // disc it reaches uses it again.
-  auto bound = [&](BuiltSplat& b,
-                 double tolerance,
-                 std::vector<int>* cover,
-                 std::vector<double>* rho,
-                 const std::vector<int>* nearest = nullptr,
-                 const std::vector<double>* nearestD2 = nullptr,
-                 const double* from = nullptr)
-  {
-    thread_local std::vector<int> found;
-    thread_local std::vector<double> d2, coords, nrm;
-    thread_local std::vector<int> local;
-    thread_local const double* foundFrom = nullptr;
-    thread_local double foundRadius = 0.0;
-    thread_local unsigned long long foundBuild = 0;
-    const Splat& sp = b.Fitted;
-    BoundParameters bp;
-    bp.Spacing = sp.Spacing;
-    bp.Tolerance = tolerance * sp.Spacing;
-    bp.MaximumReach =
-      std::max(bp.MaximumReach, 2.0 * tolerance); // a looser patch may stray farther
-    bp.MeasureOnly = !bounded;
-    bp.NormalAngle = params.NormalAngle;
-    // BoundSplat's own fallback when the spacing is unknown: h.
-    const double spacing = sp.Spacing > 0.0 ? sp.Spacing : sp.Frame.Scale;
-    const double offset =
-      from ? std::sqrt(vtkMath::Distance2BetweenPoints(from, sp.Frame.Origin)) : 0.0;
-    // A bound looks at every point within BoundSearchRadius of the disc, so
-    // its cost grows with the nominal radius, while the discs the bound
-    // cuts end up near their s = 1 size at any s. The disc therefore grows:
-    // first to FirstTrial spacings, doubling while the bound leaves it
-    // whole, up to the nominal radius; the first trial the bound cuts is the
-    // disc. At s = 1 (a nominal radius under FirstTrial spacings) there is
-    // one trial, the nominal radius.
-    const double nominal = b.Radius;
-    double trial = bounded ? std::min(nominal, FirstTrial * spacing) : nominal;
-    const std::vector<int>* candidates = nullptr; // whose points `coords` holds
-    SplatBound sb;
-    for (;;)
-    {
-      const double search = BoundSearchRadius(trial, spacing);
-      const std::vector<int>* next = &found;
-      bool searched = false;
-      if (nearest && !nearest->empty() && std::sqrt(nearestD2->back()) >= search + offset)
-      {
-        next = nearest; // a superset of the points within `search` of the origin
-      }
-      else if (from)
-      {
-        // A superset of the points within `search` of the origin.
-        if (from != foundFrom || foundBuild != buildId || foundRadius < search + offset)
-        {
-          foundFrom = nullptr;
-          foundRadius = search + 2.0 * offset + 0.25 * sp.Spacing;
-          index.Within(from, foundRadius, found, d2, false);
-          foundFrom = from;
-          foundBuild = buildId;
-          searched = true;
-        }
-      }
-      else
-      {
-        foundFrom = nullptr;
-        index.Within(sp.Frame.Origin, search, found, d2, false);
-        searched = true;
-      }
-      // The candidates' coordinates (and normals), gathered again only when
-      // the candidates changed: a larger trial often reuses the last ones.
-      if (next != candidates || searched)
-      {
-        candidates = next;
-        const std::vector<int>& ids = *candidates;
-        coords.resize(3 * ids.size());
-        nrm.resize(pointNormals ? 3 * ids.size() : 0);
-        for (size_t j = 0; j < ids.size(); ++j)
-        {
-          std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &coords[3 * j]);
-          if (pointNormals)
-          {
-            const double* m = pointNormals + 3 * static_cast<size_t>(ids[j]);
-            std::copy(m, m + 3, &nrm[3 * j]);
-          }
-        }
-      }
-      const std::vector<int>& ids = *candidates;
-      sb = BoundSplat(sp,
-        trial,
-        coords.data(),
-        static_cast<int>(ids.size()),
-        bp,
-        &local,
-        rho,
-        pointNormals ? nrm.data() : nullptr);
-      if (sb.Radius < trial || !(trial < nominal))
-      {
-        break;
-      }
-      trial = std::min(nominal, 2.0 * trial);
-    }
-    const std::vector<int>& ids = *candidates;
-    b.NominalRadius = nominal;
-    b.Radius = sb.Radius;
-    b.MaxDeviation = sb.MaxDeviation;
-    b.Bounded = true;
-    if (cover)
-    {
-      cover->resize(local.size());
-      for (size_t j = 0; j < local.size(); ++j)
-      {
-        (*cover)[j] = ids[local[j]];
-      }
-    }
-  };
+  BuildResult Run();
 
+private:
   // What the selection computed for each chosen point, reused by its fit:
   // its neighbours (and, error-bounded, its fitted splat and cover).
   struct ChosenPoint
@@ -424,237 +243,534 @@ BuildResult BuildSplats(const double* xyz,
     std::vector<int> Cover;
     std::vector<double> Rho;
   };
-  std::vector<std::unique_ptr<ChosenPoint>> chosenOf(static_cast<size_t>(n));
-  double levelS = params.Quality;
-  int levelIndex = 0;
-  // A coarser level is drawn where its splats are smaller on screen: its
-  // tolerance grows with its s, so that its discs can be as coarse.
-  SplatFitParameters levelFit = fit;
-  FrameFunction frameOf = [&](long long i, LocalFrame& frame)
+
+  void Report(double f) const
   {
-    thread_local std::vector<int> ids;
-    thread_local std::vector<double> d2, coords, w;
-    auto c = std::make_unique<ChosenPoint>();
-    if (!planeOf(i, c->Plane, ids, d2, coords))
+    if (this->Progress)
     {
-      return false;
+      this->Progress(f);
     }
-    frame = c->Plane;
-    if (bounded)
+  }
+  bool Aborted() const { return this->Abort && this->Abort->load(); }
+  // Each point's PCA normal from its NormalNeighbors nearest, for the bounds' normal test.
+  void EstimateNormals();
+  // The neighbours of point i and its plane with h (Normal and Scale).
+  bool PlaneOf(long long i,
+    LocalFrame& frame,
+    std::vector<int>& ids,
+    std::vector<double>& d2,
+    std::vector<double>& coords) const;
+  // Bound a fitted splat of nominal radius `radius` and measure its deviation
+  // against the points around it; returns the covered point ids with their
+  // in-plane distances.
+  // `nearest` (ids, sorted by distance, and their squared distances from the
+  // splat's point `from`), when they reach far enough, stand in for a
+  // search of the index. Otherwise the search is made around `from` and
+  // kept: a second bound of the same point (the narrow refit below) whose
+  // disc it reaches uses it again.
+  void Bound(BuiltSplat& b,
+    double tolerance,
+    std::vector<int>* cover,
+    std::vector<double>* rho,
+    const std::vector<int>* nearest = nullptr,
+    const std::vector<double>* nearestD2 = nullptr,
+    const double* from = nullptr) const;
+  // The selection's FrameFunction: point i's plane, and, error-bounded, its
+  // fitted and bounded splat, kept for its fit.
+  bool FrameOf(long long i, LocalFrame& frame);
+  // A bounded splat cut well inside its nominal disc, fitted again with
+  // narrower weights; the fit that reaches farther is kept in `b`.
+  void NarrowRefit(long long i,
+    ChosenPoint& c,
+    std::unique_ptr<BuiltSplat>& b,
+    const std::vector<int>& ids,
+    const std::vector<double>& d2,
+    const std::vector<double>& coords,
+    std::vector<double>& w);
+  // The selection's CoverFunction: the points chosen point i covers at s.
+  void CoverOf(long long i, double s, std::vector<int>& out) const;
+  // The median h of a sample of 64 points.
+  double MedianScale() const;
+  // 1. Positions: every point, the points chosen by quality level, or LOP's.
+  void AllPositions(std::vector<Position>& positions, BuildResult& result) const;
+  void QualityPositions(std::vector<Position>& positions, BuildResult& result);
+  void LOPPositions(std::vector<Position>& positions, BuildResult& result) const;
+  // 2. Fits, in parallel; each position is fitted once.
+  void Fit(const std::vector<Position>& positions,
+    std::vector<BuiltSplat>& built,
+    std::vector<char>& ok);
+  // [Bolla 2010] 3.3.2: for a fixed count, the radius follows the spacing of the decimated set.
+  void FixedCountRadii(const std::vector<Position>& positions,
+    std::vector<BuiltSplat>& built) const;
+
+  const double* xyz;
+  const long long n;
+  const double* normals;
+  const BuildParameters& params;
+  const std::function<void(double)>& Progress;
+  const std::atomic<bool>* Abort;
+  PointIndex index;
+  SplatFitParameters fit;
+  int kAll;
+  bool bounded;
+  const double* pointNormals = nullptr;
+  std::vector<double> estimated;
+  unsigned long long buildId;
+  std::vector<std::unique_ptr<ChosenPoint>> chosenOf;
+  // The level being selected. A coarser level is drawn where its splats are
+  // smaller on screen: its tolerance grows with its s, so that its discs can
+  // be as coarse.
+  double levelS;
+  int levelIndex = 0;
+  SplatFitParameters levelFit;
+};
+
+//------------------------------------------------------------------------------
+SplatBuild::SplatBuild(const double* xyz_,
+  long long n_,
+  const double* normals_,
+  const BuildParameters& params_,
+  const std::function<void(double)>& progress,
+  const std::atomic<bool>* abort)
+  : xyz(xyz_)
+  , n(n_)
+  , normals(normals_)
+  , params(params_)
+  , Progress(progress)
+  , Abort(abort)
+  , index(xyz_, n_)
+  , fit(params_.Fit)
+  , chosenOf(static_cast<size_t>(n_))
+  , levelS(params_.Quality)
+{
+  fit.NumberOfNeighbors = static_cast<int>(std::min<long long>(fit.NumberOfNeighbors, n));
+  fit.FeatureSizeNeighbors = static_cast<int>(std::min<long long>(fit.FeatureSizeNeighbors, n - 1));
+  kAll = std::max(fit.NumberOfNeighbors, fit.FeatureSizeNeighbors + 1);
+  bounded = fit.MaximumDeviation > 0.0;
+  levelFit = fit;
+  // The bounds' normal test (see BoundParameters::NormalAngle): each point's
+  // normal, the input's or the PCA normal of its NormalNeighbors nearest.
+  if (bounded && params.NormalAngle < 90.0)
+  {
+    pointNormals = normals;
+    if (!normals && params.EstimateNormals)
     {
-      auto b = std::make_unique<BuiltSplat>();
-      b->Fitted = FitSplat(index.Point(i),
-        coords.data(),
-        static_cast<int>(ids.size()),
-        levelFit,
-        normals ? normals + 3 * i : nullptr,
-        params.KeepWeights ? &w : nullptr,
-        &c->Plane);
-      if (b->Fitted.Fit.Degree <= 0)
+      this->EstimateNormals();
+    }
+  }
+  // Tells this call's cached searches (see Bound) from an earlier call's.
+  static std::atomic<unsigned long long> builds{ 0 };
+  buildId = ++builds;
+}
+
+//------------------------------------------------------------------------------
+void SplatBuild::EstimateNormals()
+{
+  estimated.assign(static_cast<size_t>(3 * n), 0.0);
+  vtkSMPTools::For(0,
+    n,
+    [&](long long begin, long long end)
+    {
+      std::vector<int> ids;
+      std::vector<double> d2, coords;
+      for (long long i = begin; i < end; ++i)
       {
-        return false;
-      }
-      b->Level = levelIndex;
-      b->Source = i;
-      // The disc reaches half a spacing past what it claims, so that the
-      // discs of neighbouring claims overlap (see cover below).
-      b->Radius =
-        params.RadiusScale * levelS * b->Fitted.Frame.Scale + ClaimMargin * b->Fitted.Spacing;
-      if (params.KeepWeights)
-      {
-        b->Ids.assign(ids.begin(), ids.begin() + w.size());
-        b->Weights.assign(w.begin(), w.end());
-      }
-      bound(*b, levelFit.MaximumDeviation, &c->Cover, &c->Rho, &ids, &d2, index.Point(i));
-      // Where the surface bent away well inside the disc, the patch averaged
-      // over more than it may cover: fit again with weights that reach no
-      // farther than the bounded disc, and keep the fit that reaches farther.
-      // The weights stay at least NarrowestWeight spacings wide: narrower,
-      // too few points carry a cubic, whose patch then bulges over creases
-      // (at h of two spacings, about the default, they narrow to 0.75 at
-      // most; at h of four, to 0.375).
-      const double nominalRadius = b->NominalRadius;
-      const double narrowScale = std::max({ 0.35,
-        b->Radius / nominalRadius,
-        NarrowestWeight * b->Fitted.Spacing / (levelFit.WeightScale * b->Fitted.Frame.Scale) });
-      if (b->Radius < 0.6 * nominalRadius && narrowScale < 0.9)
-      {
-        SplatFitParameters narrow = levelFit;
-        narrow.WeightScale *= narrowScale;
-        auto n2 = std::make_unique<BuiltSplat>(*b);
-        n2->Fitted = FitSplat(index.Point(i),
-          coords.data(),
-          static_cast<int>(ids.size()),
-          narrow,
-          normals ? normals + 3 * i : nullptr,
-          params.KeepWeights ? &w : nullptr,
-          &c->Plane);
-        if (n2->Fitted.Fit.Degree > 0)
+        Gather(index, index.Point(i), NormalNeighbors, ids, d2, coords);
+        LocalFrame plane;
+        if (FitReferencePlane(
+              coords.data(), nullptr, static_cast<int>(ids.size()), plane, nullptr) ==
+          FitStatus::Ok)
         {
-          n2->Radius = nominalRadius;
-          std::vector<int> cover2;
-          std::vector<double> rho2;
-          bound(*n2, levelFit.MaximumDeviation, &cover2, &rho2, &ids, &d2, index.Point(i));
-          if (n2->Radius > b->Radius)
-          {
-            if (params.KeepWeights)
-            {
-              n2->Ids.assign(ids.begin(), ids.begin() + w.size());
-              n2->Weights.assign(w.begin(), w.end());
-            }
-            b = std::move(n2);
-            c->Cover.swap(cover2);
-            c->Rho.swap(rho2);
-          }
+          std::copy(plane.Normal, plane.Normal + 3, &estimated[static_cast<size_t>(3 * i)]);
         }
       }
-      frame = b->Fitted.Frame;
-      c->Built = std::move(b);
+    });
+  pointNormals = estimated.data();
+}
+
+//------------------------------------------------------------------------------
+bool SplatBuild::PlaneOf(long long i,
+  LocalFrame& frame,
+  std::vector<int>& ids,
+  std::vector<double>& d2,
+  std::vector<double>& coords) const
+{
+  Gather(index, index.Point(i), kAll, ids, d2, coords);
+  const int m = std::min(fit.NumberOfNeighbors, static_cast<int>(ids.size()));
+  if (FitReferencePlane(coords.data(), nullptr, m, frame, normals ? normals + 3 * i : nullptr) !=
+    FitStatus::Ok)
+  {
+    return false;
+  }
+  frame.Scale = FeatureSize(
+    index.Point(i), frame, coords.data(), static_cast<int>(ids.size()), fit.FeatureSizeNeighbors);
+  return frame.Scale > 0.0;
+}
+
+//------------------------------------------------------------------------------
+void SplatBuild::Bound(BuiltSplat& b,
+  double tolerance,
+  std::vector<int>* cover,
+  std::vector<double>* rho,
+  const std::vector<int>* nearest,
+  const std::vector<double>* nearestD2,
+  const double* from) const
+{
+  thread_local std::vector<int> found;
+  thread_local std::vector<double> d2, coords, nrm;
+  thread_local std::vector<int> local;
+  thread_local const double* foundFrom = nullptr;
+  thread_local double foundRadius = 0.0;
+  thread_local unsigned long long foundBuild = 0;
+  const Splat& sp = b.Fitted;
+  BoundParameters bp;
+  bp.Spacing = sp.Spacing;
+  bp.Tolerance = tolerance * sp.Spacing;
+  bp.MaximumReach =
+    std::max(bp.MaximumReach, 2.0 * tolerance); // a looser patch may stray farther
+  bp.MeasureOnly = !bounded;
+  bp.NormalAngle = params.NormalAngle;
+  // BoundSplat's own fallback when the spacing is unknown: h.
+  const double spacing = sp.Spacing > 0.0 ? sp.Spacing : sp.Frame.Scale;
+  const double offset =
+    from ? std::sqrt(vtkMath::Distance2BetweenPoints(from, sp.Frame.Origin)) : 0.0;
+  // A bound looks at every point within BoundSearchRadius of the disc, so
+  // its cost grows with the nominal radius, while the discs the bound
+  // cuts end up near their s = 1 size at any s. The disc therefore grows:
+  // first to FirstTrial spacings, doubling while the bound leaves it
+  // whole, up to the nominal radius; the first trial the bound cuts is the
+  // disc. At s = 1 (a nominal radius under FirstTrial spacings) there is
+  // one trial, the nominal radius.
+  const double nominal = b.Radius;
+  double trial = bounded ? std::min(nominal, FirstTrial * spacing) : nominal;
+  const std::vector<int>* candidates = nullptr; // whose points `coords` holds
+  SplatBound sb;
+  for (;;)
+  {
+    const double search = BoundSearchRadius(trial, spacing);
+    const std::vector<int>* next = &found;
+    bool searched = false;
+    if (nearest && !nearest->empty() && std::sqrt(nearestD2->back()) >= search + offset)
+    {
+      next = nearest; // a superset of the points within `search` of the origin
+    }
+    else if (from)
+    {
+      // A superset of the points within `search` of the origin.
+      if (from != foundFrom || foundBuild != buildId || foundRadius < search + offset)
+      {
+        foundFrom = nullptr;
+        foundRadius = search + 2.0 * offset + 0.25 * sp.Spacing;
+        index.Within(from, foundRadius, found, d2, false);
+        foundFrom = from;
+        foundBuild = buildId;
+        searched = true;
+      }
     }
     else
     {
-      c->Neighbours = ids;
+      foundFrom = nullptr;
+      index.Within(sp.Frame.Origin, search, found, d2, false);
+      searched = true;
     }
-    chosenOf[i] = std::move(c);
-    return true;
-  };
-  CoverFunction cover = [&](long long i, double s, std::vector<int>& out)
-  {
-    const ChosenPoint& c = *chosenOf[i];
-    if (!c.Built)
+    // The candidates' coordinates (and normals), gathered again only when
+    // the candidates changed: a larger trial often reuses the last ones.
+    if (next != candidates || searched)
     {
-      CoverByDistance(index, index.Point(i), c.Plane, s, out);
-      return;
-    }
-    // A bounded splat covers its points up to its own radius, and at a
-    // finer level only as far as that level's discs reach.
-    // Every point it claims lies at least ClaimMargin spacings inside its
-    // disc: a point and its neighbours' claims leave no crack between them.
-    const double limit = std::min(c.Built->Radius - ClaimMargin * c.Built->Fitted.Spacing,
-      params.RadiusScale * s * c.Built->Fitted.Frame.Scale);
-    out.clear();
-    for (size_t j = 0; j < c.Cover.size(); ++j)
-    {
-      if (c.Rho[j] <= limit)
+      candidates = next;
+      const std::vector<int>& ids = *candidates;
+      coords.resize(3 * ids.size());
+      nrm.resize(pointNormals ? 3 * ids.size() : 0);
+      for (size_t j = 0; j < ids.size(); ++j)
       {
-        out.push_back(c.Cover[j]);
+        std::copy(index.Point(ids[j]), index.Point(ids[j]) + 3, &coords[3 * j]);
+        if (pointNormals)
+        {
+          const double* m = pointNormals + 3 * static_cast<size_t>(ids[j]);
+          std::copy(m, m + 3, &nrm[3 * j]);
+        }
       }
     }
-  };
-
-  // 1. Positions.
-  std::vector<Position> positions;
-  if (params.Select == Selection::All)
-  {
-    positions.resize(static_cast<size_t>(n));
-    for (long long i = 0; i < n; ++i)
+    const std::vector<int>& ids = *candidates;
+    sb = BoundSplat(sp,
+      trial,
+      coords.data(),
+      static_cast<int>(ids.size()),
+      bp,
+      &local,
+      rho,
+      pointNormals ? nrm.data() : nullptr);
+    if (sb.Radius < trial || !(trial < nominal))
     {
-      positions[i] =
-        Position{ { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] }, i, 0, params.Quality };
+      break;
     }
-    result.LevelQuality.push_back(params.Quality);
+    trial = std::min(nominal, 2.0 * trial);
   }
-  else if (params.Select == Selection::Quality)
+  const std::vector<int>& ids = *candidates;
+  b.NominalRadius = nominal;
+  b.Radius = sb.Radius;
+  b.MaxDeviation = sb.MaxDeviation;
+  b.Bounded = true;
+  if (cover)
   {
-    const int levels = std::max(1, params.Levels);
-    // Median h of a sample of points: it sizes the Lattice grid and the
-    // slabs of the parallel selection.
-    std::vector<double> hs;
+    cover->resize(local.size());
+    for (size_t j = 0; j < local.size(); ++j)
     {
-      std::mt19937 gen(params.Seed);
-      std::vector<int> ids;
-      std::vector<double> d2, coords;
-      for (int t = 0; t < 64; ++t)
-      {
-        LocalFrame f;
-        if (planeOf(static_cast<long long>(gen() % static_cast<unsigned long long>(n)),
-              f,
-              ids,
-              d2,
-              coords))
-        {
-          hs.push_back(f.Scale);
-        }
-      }
+      (*cover)[j] = ids[local[j]];
     }
-    std::nth_element(hs.begin(), hs.begin() + hs.size() / 2, hs.end());
-    const double h = hs.empty() ? 0.0 : hs[hs.size() / 2];
-    const std::vector<long long> order = params.VisitOrder == Order::Lattice
-      ? LatticeOrder(xyz, n, params.LatticeSpacing * params.Quality * h, params.Seed)
-      : RandomOrder(n, params.Seed);
-    const double coarsest =
-      levels > 1 ? std::max(params.Quality, params.CoarsestQuality) : params.Quality;
-    const double slabWidth =
-      params.SlabSpacing * coarsest * h * (bounded ? std::max(1.0, params.RadiusScale) : 1.0);
-    std::vector<PointState> state(static_cast<size_t>(n), PointState::Free);
-    std::vector<long long> chosenAll;
-    for (int level = 0; level < levels && !aborted(); ++level)
+  }
+}
+
+//------------------------------------------------------------------------------
+bool SplatBuild::FrameOf(long long i, LocalFrame& frame)
+{
+  thread_local std::vector<int> ids;
+  thread_local std::vector<double> d2, coords, w;
+  auto c = std::make_unique<ChosenPoint>();
+  if (!this->PlaneOf(i, c->Plane, ids, d2, coords))
+  {
+    return false;
+  }
+  frame = c->Plane;
+  if (bounded)
+  {
+    auto b = std::make_unique<BuiltSplat>();
+    b->Fitted = FitSplat(index.Point(i),
+      coords.data(),
+      static_cast<int>(ids.size()),
+      levelFit,
+      normals ? normals + 3 * i : nullptr,
+      params.KeepWeights ? &w : nullptr,
+      &c->Plane);
+    if (b->Fitted.Fit.Degree <= 0)
     {
-      const double s = levels == 1 ? params.Quality
-                                   : params.CoarsestQuality +
-          (params.Quality - params.CoarsestQuality) * level / (levels - 1.0);
-      levelS = s;
-      levelIndex = level;
-      levelFit.MaximumDeviation = fit.MaximumDeviation * std::max(1.0, s / params.Quality);
-      result.LevelQuality.push_back(s);
-      for (auto& st : state)
-      {
-        if (st == PointState::Claimed)
-        {
-          st = PointState::Free; // claims depend on s: redo them at this level
-        }
-      }
-      const std::vector<long long> chosen = SelectByQuality(index,
-        s,
-        order,
-        frameOf,
-        cover,
-        state,
-        chosenAll,
-        params.VisitOrder == Order::Front,
-        slabWidth);
-      for (size_t j = 0; j < chosen.size(); ++j)
-      {
-        const double* p = index.Point(chosen[j]);
-        positions.push_back(Position{ { p[0], p[1], p[2] }, chosen[j], level, s });
-      }
-      chosenAll.insert(chosenAll.end(), chosen.begin(), chosen.end());
-      report(0.5 * (level + 1) / levels);
+      return false;
     }
-    for (const auto st : state)
+    b->Level = levelIndex;
+    b->Source = i;
+    // The disc reaches half a spacing past what it claims, so that the
+    // discs of neighbouring claims overlap (see cover below).
+    b->Radius =
+      params.RadiusScale * levelS * b->Fitted.Frame.Scale + ClaimMargin * b->Fitted.Spacing;
+    if (params.KeepWeights)
     {
-      result.Degenerate += st == PointState::Unusable ? 1 : 0;
+      b->Ids.assign(ids.begin(), ids.begin() + w.size());
+      b->Weights.assign(w.begin(), w.end());
     }
+    this->Bound(*b, levelFit.MaximumDeviation, &c->Cover, &c->Rho, &ids, &d2, index.Point(i));
+    this->NarrowRefit(i, *c, b, ids, d2, coords, w);
+    frame = b->Fitted.Frame;
+    c->Built = std::move(b);
   }
   else
   {
-    const long long m = std::min(params.Count, n);
-    const std::vector<long long> order = RandomOrder(n, params.Seed);
-    std::vector<double> x(static_cast<size_t>(3 * m));
-    for (long long i = 0; i < m; ++i)
-    {
-      std::copy(xyz + 3 * order[i], xyz + 3 * order[i] + 3, &x[3 * i]);
-    }
-    LocallyOptimalProjection(xyz, n, x, params.Weighted, params.LOPIterations);
-    for (long long i = 0; i < m; ++i)
-    {
-      positions.push_back(Position{ { x[3 * i], x[3 * i + 1], x[3 * i + 2] }, -1, 0, 1.0 });
-    }
-    result.LevelQuality.push_back(1.0);
-    report(0.5);
+    c->Neighbours = ids;
   }
+  chosenOf[i] = std::move(c);
+  return true;
+}
 
-  // 2. Fits, in parallel; each position is fitted once.
+//------------------------------------------------------------------------------
+void SplatBuild::NarrowRefit(long long i,
+  ChosenPoint& c,
+  std::unique_ptr<BuiltSplat>& b,
+  const std::vector<int>& ids,
+  const std::vector<double>& d2,
+  const std::vector<double>& coords,
+  std::vector<double>& w)
+{
+  // Where the surface bent away well inside the disc, the patch averaged
+  // over more than it may cover: fit again with weights that reach no
+  // farther than the bounded disc, and keep the fit that reaches farther.
+  // The weights stay at least NarrowestWeight spacings wide: narrower,
+  // too few points carry a cubic, whose patch then bulges over creases
+  // (at h of two spacings, about the default, they narrow to 0.75 at
+  // most; at h of four, to 0.375).
+  const double nominalRadius = b->NominalRadius;
+  const double narrowScale = std::max({ 0.35,
+    b->Radius / nominalRadius,
+    NarrowestWeight * b->Fitted.Spacing / (levelFit.WeightScale * b->Fitted.Frame.Scale) });
+  if (b->Radius < 0.6 * nominalRadius && narrowScale < 0.9)
+  {
+    SplatFitParameters narrow = levelFit;
+    narrow.WeightScale *= narrowScale;
+    auto n2 = std::make_unique<BuiltSplat>(*b);
+    n2->Fitted = FitSplat(index.Point(i),
+      coords.data(),
+      static_cast<int>(ids.size()),
+      narrow,
+      normals ? normals + 3 * i : nullptr,
+      params.KeepWeights ? &w : nullptr,
+      &c.Plane);
+    if (n2->Fitted.Fit.Degree > 0)
+    {
+      n2->Radius = nominalRadius;
+      std::vector<int> cover2;
+      std::vector<double> rho2;
+      this->Bound(*n2, levelFit.MaximumDeviation, &cover2, &rho2, &ids, &d2, index.Point(i));
+      if (n2->Radius > b->Radius)
+      {
+        if (params.KeepWeights)
+        {
+          n2->Ids.assign(ids.begin(), ids.begin() + w.size());
+          n2->Weights.assign(w.begin(), w.end());
+        }
+        b = std::move(n2);
+        c.Cover.swap(cover2);
+        c.Rho.swap(rho2);
+      }
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void SplatBuild::CoverOf(long long i, double s, std::vector<int>& out) const
+{
+  const ChosenPoint& c = *chosenOf[i];
+  if (!c.Built)
+  {
+    CoverByDistance(index, index.Point(i), c.Plane, s, out);
+    return;
+  }
+  // A bounded splat covers its points up to its own radius, and at a
+  // finer level only as far as that level's discs reach.
+  // Every point it claims lies at least ClaimMargin spacings inside its
+  // disc: a point and its neighbours' claims leave no crack between them.
+  const double limit = std::min(c.Built->Radius - ClaimMargin * c.Built->Fitted.Spacing,
+    params.RadiusScale * s * c.Built->Fitted.Frame.Scale);
+  out.clear();
+  for (size_t j = 0; j < c.Cover.size(); ++j)
+  {
+    if (c.Rho[j] <= limit)
+    {
+      out.push_back(c.Cover[j]);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+double SplatBuild::MedianScale() const
+{
+  // Median h of a sample of points: it sizes the Lattice grid and the
+  // slabs of the parallel selection.
+  std::vector<double> hs;
+  {
+    std::mt19937 gen(params.Seed);
+    std::vector<int> ids;
+    std::vector<double> d2, coords;
+    for (int t = 0; t < 64; ++t)
+    {
+      LocalFrame f;
+      if (this->PlaneOf(static_cast<long long>(gen() % static_cast<unsigned long long>(n)),
+            f,
+            ids,
+            d2,
+            coords))
+      {
+        hs.push_back(f.Scale);
+      }
+    }
+  }
+  std::nth_element(hs.begin(), hs.begin() + hs.size() / 2, hs.end());
+  return hs.empty() ? 0.0 : hs[hs.size() / 2];
+}
+
+//------------------------------------------------------------------------------
+void SplatBuild::AllPositions(std::vector<Position>& positions, BuildResult& result) const
+{
+  positions.resize(static_cast<size_t>(n));
+  for (long long i = 0; i < n; ++i)
+  {
+    positions[i] = Position{ { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] }, i, 0, params.Quality };
+  }
+  result.LevelQuality.push_back(params.Quality);
+}
+
+//------------------------------------------------------------------------------
+void SplatBuild::QualityPositions(std::vector<Position>& positions, BuildResult& result)
+{
+  const int levels = std::max(1, params.Levels);
+  const double h = this->MedianScale();
+  const std::vector<long long> order = params.VisitOrder == Order::Lattice
+    ? LatticeOrder(xyz, n, params.LatticeSpacing * params.Quality * h, params.Seed)
+    : RandomOrder(n, params.Seed);
+  const double coarsest =
+    levels > 1 ? std::max(params.Quality, params.CoarsestQuality) : params.Quality;
+  const double slabWidth =
+    params.SlabSpacing * coarsest * h * (bounded ? std::max(1.0, params.RadiusScale) : 1.0);
+  std::vector<PointState> state(static_cast<size_t>(n), PointState::Free);
+  std::vector<long long> chosenAll;
+  for (int level = 0; level < levels && !this->Aborted(); ++level)
+  {
+    const double s = levels == 1 ? params.Quality
+                                 : params.CoarsestQuality +
+        (params.Quality - params.CoarsestQuality) * level / (levels - 1.0);
+    levelS = s;
+    levelIndex = level;
+    levelFit.MaximumDeviation = fit.MaximumDeviation * std::max(1.0, s / params.Quality);
+    result.LevelQuality.push_back(s);
+    for (auto& st : state)
+    {
+      if (st == PointState::Claimed)
+      {
+        st = PointState::Free; // claims depend on s: redo them at this level
+      }
+    }
+    const std::vector<long long> chosen = SelectByQuality(index,
+      s,
+      order,
+      [this](long long i, LocalFrame& frame) { return this->FrameOf(i, frame); },
+      [this](long long i, double q, std::vector<int>& out) { this->CoverOf(i, q, out); },
+      state,
+      chosenAll,
+      params.VisitOrder == Order::Front,
+      slabWidth);
+    for (size_t j = 0; j < chosen.size(); ++j)
+    {
+      const double* p = index.Point(chosen[j]);
+      positions.push_back(Position{ { p[0], p[1], p[2] }, chosen[j], level, s });
+    }
+    chosenAll.insert(chosenAll.end(), chosen.begin(), chosen.end());
+    this->Report(0.5 * (level + 1) / levels);
+  }
+  for (const auto st : state)
+  {
+    result.Degenerate += st == PointState::Unusable ? 1 : 0;
+  }
+}
+
+//------------------------------------------------------------------------------
+void SplatBuild::LOPPositions(std::vector<Position>& positions, BuildResult& result) const
+{
+  const long long m = std::min(params.Count, n);
+  const std::vector<long long> order = RandomOrder(n, params.Seed);
+  std::vector<double> x(static_cast<size_t>(3 * m));
+  for (long long i = 0; i < m; ++i)
+  {
+    std::copy(xyz + 3 * order[i], xyz + 3 * order[i] + 3, &x[3 * i]);
+  }
+  LocallyOptimalProjection(xyz, n, x, params.Weighted, params.LOPIterations);
+  for (long long i = 0; i < m; ++i)
+  {
+    positions.push_back(Position{ { x[3 * i], x[3 * i + 1], x[3 * i + 2] }, -1, 0, 1.0 });
+  }
+  result.LevelQuality.push_back(1.0);
+  this->Report(0.5);
+}
+
+//------------------------------------------------------------------------------
+void SplatBuild::Fit(const std::vector<Position>& positions,
+  std::vector<BuiltSplat>& built,
+  std::vector<char>& ok)
+{
   const long long count = static_cast<long long>(positions.size());
-  std::vector<BuiltSplat> built(static_cast<size_t>(count));
-  std::vector<char> ok(static_cast<size_t>(count), 0);
   vtkSMPTools::For(0,
     count,
     [&](long long begin, long long end)
     {
       std::vector<int> ids;
       std::vector<double> d2, coords, w;
-      for (long long k = begin; k < end && !aborted(); ++k)
+      for (long long k = begin; k < end && !this->Aborted(); ++k)
       {
         const Position& pos = positions[k];
         ChosenPoint* chosen = pos.Source >= 0 ? chosenOf[pos.Source].get() : nullptr;
@@ -697,52 +813,81 @@ BuildResult BuildSplats(const double* xyz,
         }
       }
     });
-  report(0.9);
 
+}
+
+//------------------------------------------------------------------------------
+void SplatBuild::FixedCountRadii(const std::vector<Position>& positions,
+  std::vector<BuiltSplat>& built) const
+{
+  const long long count = static_cast<long long>(positions.size());
+  std::vector<double> centres(static_cast<size_t>(3 * count));
+  for (long long k = 0; k < count; ++k)
+  {
+    std::copy(positions[k].Q, positions[k].Q + 3, &centres[3 * k]);
+  }
+  PointIndex decimated(centres.data(), count);
+  vtkSMPTools::For(0,
+    count,
+    [&](long long begin, long long end)
+    {
+      std::vector<int> ids;
+      std::vector<double> d2, near;
+      for (long long k = begin; k < end; ++k)
+      {
+        decimated.Nearest(&centres[3 * k], 7, ids, d2);
+        near.resize(3 * ids.size());
+        for (size_t j = 0; j < ids.size(); ++j)
+        {
+          std::copy(&centres[3 * ids[j]], &centres[3 * ids[j]] + 3, &near[3 * j]);
+        }
+        const double hd = FeatureSize(
+          &centres[3 * k], built[k].Fitted.Frame, near.data(), static_cast<int>(ids.size()), 6);
+        built[k].Radius = params.RadiusScale * (hd > 0.0 ? hd : built[k].Fitted.Frame.Scale);
+      }
+    });
+}
+
+//------------------------------------------------------------------------------
+BuildResult SplatBuild::Run()
+{
+  BuildResult result;
+  std::vector<Position> positions;
+  if (params.Select == Selection::All)
+  {
+    this->AllPositions(positions, result);
+  }
+  else if (params.Select == Selection::Quality)
+  {
+    this->QualityPositions(positions, result);
+  }
+  else
+  {
+    this->LOPPositions(positions, result);
+  }
+  const long long count = static_cast<long long>(positions.size());
+  std::vector<BuiltSplat> built(static_cast<size_t>(count));
+  std::vector<char> ok(static_cast<size_t>(count), 0);
+  this->Fit(positions, built, ok);
+  this->Report(0.9);
   if (params.Select == Selection::FixedCount && count > 1)
   {
-    // [Bolla 2010] 3.3.2: the radius follows the spacing of the decimated set.
-    std::vector<double> centres(static_cast<size_t>(3 * count));
-    for (long long k = 0; k < count; ++k)
-    {
-      std::copy(positions[k].Q, positions[k].Q + 3, &centres[3 * k]);
-    }
-    PointIndex decimated(centres.data(), count);
-    vtkSMPTools::For(0,
-      count,
-      [&](long long begin, long long end)
-      {
-        std::vector<int> ids;
-        std::vector<double> d2, near;
-        for (long long k = begin; k < end; ++k)
-        {
-          decimated.Nearest(&centres[3 * k], 7, ids, d2);
-          near.resize(3 * ids.size());
-          for (size_t j = 0; j < ids.size(); ++j)
-          {
-            std::copy(&centres[3 * ids[j]], &centres[3 * ids[j]] + 3, &near[3 * j]);
-          }
-          const double hd = FeatureSize(
-            &centres[3 * k], built[k].Fitted.Frame, near.data(), static_cast<int>(ids.size()), 6);
-          built[k].Radius = params.RadiusScale * (hd > 0.0 ? hd : built[k].Fitted.Frame.Scale);
-        }
-      });
+    this->FixedCountRadii(positions, built);
   }
-
   // Every disc not bounded at selection: bounded (or, unbounded, measured) now.
   vtkSMPTools::For(0,
     count,
     [&](long long begin, long long end)
     {
-      for (long long k = begin; k < end && !aborted(); ++k)
+      for (long long k = begin; k < end && !this->Aborted(); ++k)
       {
         if (ok[k] && !built[k].Bounded)
         {
-          bound(built[k], fit.MaximumDeviation, nullptr, nullptr);
+          this->Bound(built[k], fit.MaximumDeviation, nullptr, nullptr);
         }
       }
     });
-  report(0.95);
+  this->Report(0.95);
 
   for (long long k = 0; k < count; ++k)
   {
@@ -757,7 +902,25 @@ BuildResult BuildSplats(const double* xyz,
   std::stable_sort(result.Splats.begin(),
     result.Splats.end(),
     [](const BuiltSplat& a, const BuiltSplat& b) { return a.Level < b.Level; });
-  report(1.0);
+  this->Report(1.0);
   return result;
 }
+} // namespace
+
+//------------------------------------------------------------------------------
+BuildResult BuildSplats(const double* xyz,
+  long long n,
+  const double* normals,
+  const BuildParameters& params,
+  const std::function<void(double)>& progress,
+  const std::atomic<bool>* abort)
+{
+  if (n < 3)
+  {
+    return BuildResult();
+  }
+  SplatBuild build(xyz, n, normals, params, progress, abort);
+  return build.Run();
+}
+
 } // namespace pointsurfaces
