@@ -5,64 +5,140 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace pointsurfaces
 {
 namespace
 {
 constexpr double Pi = 3.14159265358979323846;
-} // namespace
+// The directions of the plane in which the border and the rim are tested.
+constexpr int Directions = 16;
 
-double BoundSearchRadius(double radius, double spacing)
+// In-plane position (world units), in-plane distance and deviation of each
+// candidate within reach (the patch is evaluated only there). Candidates
+// farther than BoundSearchRadius from the origin are left out, so that
+// the result does not depend on how many more the caller passed.
+struct Candidate
 {
-  return std::sqrt(2.0) * std::max(radius, 3.0 * spacing);
-}
+  double U, V, Rho, E;
+  int Index;
+  bool Turned; // within the tolerance, but its normal turns away from the patch's
+};
 
-SplatBound BoundSplat(const Splat& splat,
-  double radius,
-  const double* points,
-  int n,
-  const BoundParameters& params,
-  std::vector<int>* covered,
-  std::vector<double>* rho,
-  const double* normals)
+// One BoundSplat call: the candidates on and off the patch, the points near
+// it binned by in-plane distance, and the phases that cut the disc (where
+// the surface bends away, where the data ends, where the patch leaves the
+// data). Its scratch is per thread and kept between calls: BoundSplat calls
+// back into nothing and starts no parallel work, so no thread re-enters it
+// while it is in use.
+class DiscBound
 {
-  SplatBound bound;
-  if (covered)
+public:
+  DiscBound(const Splat& splat,
+    double radius,
+    const double* points,
+    int n,
+    const BoundParameters& params,
+    const double* normals)
+    : S(splat)
+    , F(splat.Frame)
+    , H(splat.Frame.Scale)
+    , Radius(radius)
+    , Points(points)
+    , N(n)
+    , P(params)
+    , Normals(normals)
+    , Spacing(params.Spacing > 0.0 ? params.Spacing : splat.Frame.Scale)
+    , Tol(params.Tolerance)
+    , Reach(std::max(radius, 3.0 * this->Spacing)) // the border test looks this far
   {
-    covered->clear();
   }
-  if (rho)
-  {
-    rho->clear();
-  }
-  const LocalFrame& f = splat.Frame;
-  const double h = f.Scale;
-  if (splat.Fit.Degree <= 0 || !(h > 0.0) || !(radius > 0.0) || !std::isfinite(radius))
-  {
-    return bound;
-  }
-  const double spacing = params.Spacing > 0.0 ? params.Spacing : h;
-  const double tol = params.Tolerance;
-  const double reach = std::max(radius, 3.0 * spacing); // the border test looks this far
 
-  // In-plane position (world units), in-plane distance and deviation of each
-  // candidate within reach (the patch is evaluated only there). Candidates
-  // farther than BoundSearchRadius from the origin are left out, so that
-  // the result does not depend on how many more the caller passed.
-  struct Candidate
+  // The candidates within reach, on the patch (within the tolerance, not
+  // turned) or off it.
+  void Gather();
+  // The points on or near the patch, binned by in-plane distance.
+  void BinNearPoints();
+  // The radius at which the surface bends away, from r; sets BentAway.
+  double BendRadius(double r, SplatBound& bound) const;
+  // The radius at which the data ends, from r; sets Border.
+  double BorderRadius(double r, SplatBound& bound) const;
+  // r, shrunk until the patch's rim stays by the data; sets Border.
+  double RimRadius(double r, SplatBound& bound) const;
+  // The bound of the disc of radius r: it covers the points on the patch within it.
+  SplatBound Finish(double r,
+    SplatBound& bound,
+    std::vector<int>* covered,
+    std::vector<double>* rho) const;
+
+private:
+  using NearIterator = std::vector<const double*>::const_iterator;
+  // The bin of in-plane distance `value`.
+  int BinOf(double value) const
   {
-    double U, V, Rho, E;
-    int Index;
-    bool Turned; // within the tolerance, but its normal turns away from the patch's
-  };
+    const double x = value / this->BinWidth;
+    return x > 0.0 ? (x < this->Bins - 1 ? static_cast<int>(x) : this->Bins - 1) : 0;
+  }
+  // The near points whose rho may lie in [lo, hi] (a superset: whole bins).
+  std::pair<NearIterator, NearIterator> NearBand(double lo, double hi) const
+  {
+    const std::vector<const double*>& near = NearScratch();
+    const std::vector<int>& binStart = BinStartScratch();
+    return std::make_pair(near.begin() + binStart[this->BinOf(lo) > 0 ? this->BinOf(lo) - 1 : 0],
+      near.begin() + binStart[std::min(this->Bins, this->BinOf(hi) + 2)]);
+  }
+  bool IsNear(const Candidate& c) const { return c.E <= 2.0 * this->Tol && !c.Turned; }
+
+  static std::vector<Candidate>& OnScratch()
+  {
+    thread_local std::vector<Candidate> on;
+    return on;
+  }
+  static std::vector<Candidate>& OffScratch()
+  {
+    thread_local std::vector<Candidate> off;
+    return off;
+  }
+  static std::vector<const double*>& NearScratch()
+  {
+    thread_local std::vector<const double*> near;
+    return near;
+  }
+  static std::vector<int>& BinStartScratch()
+  {
+    thread_local std::vector<int> binStart;
+    return binStart;
+  }
+
+  const Splat& S;
+  const LocalFrame& F;
+  const double H;
+  const double Radius;
+  const double* Points;
+  const int N;
+  const BoundParameters& P;
+  const double* Normals;
+  const double Spacing, Tol, Reach;
+  double Adjacency = 0.0, BinWidth = 1.0;
+  int Bins = 1;
+};
+
+//------------------------------------------------------------------------------
+void DiscBound::Gather()
+{
+  const LocalFrame& f = this->F;
+  const Splat& splat = this->S;
+  const BoundParameters& params = this->P;
+  const double h = this->H, tol = this->Tol, reach = this->Reach, radius = this->Radius;
+  const double* points = this->Points;
+  const double* normals = this->Normals;
+  const int n = this->N;
   // |cos| of the largest angle between a covered point's normal and the patch's.
   const double agreement =
     normals && params.NormalAngle < 90.0 ? std::cos(params.NormalAngle * Pi / 180.0) : -1.0;
-  // Per-thread scratch, kept between calls: BoundSplat calls back into
-  // nothing and starts no parallel work, so no thread re-enters it while
-  // these are in use.
-  thread_local std::vector<Candidate> on, off;
+  std::vector<Candidate>& on = OnScratch();
+  std::vector<Candidate>& off = OffScratch();
   on.clear();
   off.clear();
   const double search2 = 2.0 * reach * reach;
@@ -111,55 +187,33 @@ SplatBound BoundSplat(const Splat& splat,
     }
     (c.E <= tol && !c.Turned ? on : off).push_back(c);
   }
-  // The disc of radius r covers the points on the patch within it.
-  auto finish = [&](double r)
-  {
-    bound.Radius = r;
-    for (const Candidate& m : on)
-    {
-      if (m.Rho <= r)
-      {
-        bound.MaxDeviation = std::max(bound.MaxDeviation, m.E);
-        if (covered)
-        {
-          covered->push_back(m.Index);
-        }
-        if (rho)
-        {
-          rho->push_back(m.Rho);
-        }
-      }
-    }
-    return bound;
-  };
-  if (params.MeasureOnly)
-  {
-    return finish(radius);
-  }
+}
 
+//------------------------------------------------------------------------------
+void DiscBound::BinNearPoints()
+{
   // The points on or near the patch (within twice the tolerance), binned by
   // in-plane distance (a counting sort into bins an adjacency wide): two
   // points closer than d in space differ by at most d in rho, so each
   // nearness test below looks only at the bins of a band of rho.
-  const double adjacency = std::abs(params.Adjacency * spacing);
-  const double binWidth = std::max(1e-3 * reach, adjacency); // NaN gives way to the first
-  const int bins = static_cast<int>(reach / binWidth) + 1;
-  auto binOf = [&](double value)
-  {
-    const double x = value / binWidth;
-    return x > 0.0 ? (x < bins - 1 ? static_cast<int>(x) : bins - 1) : 0;
-  };
-  thread_local std::vector<const double*> near;
-  thread_local std::vector<int> binStart;
+  this->Adjacency = std::abs(this->P.Adjacency * this->Spacing);
+  // NaN gives way to the first.
+  this->BinWidth = std::max(1e-3 * this->Reach, this->Adjacency);
+  this->Bins = static_cast<int>(this->Reach / this->BinWidth) + 1;
+  const int bins = this->Bins;
+  const double* points = this->Points;
+  const std::vector<Candidate>& on = OnScratch();
+  const std::vector<Candidate>& off = OffScratch();
+  std::vector<const double*>& near = NearScratch();
+  std::vector<int>& binStart = BinStartScratch();
   binStart.assign(static_cast<size_t>(bins) + 1, 0);
-  auto isNear = [&](const Candidate& c) { return c.E <= 2.0 * tol && !c.Turned; };
   for (const Candidate& c : on)
   {
-    ++binStart[binOf(c.Rho) + 1];
+    ++binStart[this->BinOf(c.Rho) + 1];
   }
   for (const Candidate& c : off)
   {
-    binStart[binOf(c.Rho) + 1] += isNear(c) ? 1 : 0;
+    binStart[this->BinOf(c.Rho) + 1] += this->IsNear(c) ? 1 : 0;
   }
   for (int b = 0; b < bins; ++b)
   {
@@ -171,23 +225,21 @@ SplatBound BoundSplat(const Splat& splat,
     fill.assign(binStart.begin(), binStart.end() - 1);
     for (const Candidate& c : on)
     {
-      near[fill[binOf(c.Rho)]++] = points + 3 * c.Index;
+      near[fill[this->BinOf(c.Rho)]++] = points + 3 * c.Index;
     }
     for (const Candidate& c : off)
     {
-      if (isNear(c))
+      if (this->IsNear(c))
       {
-        near[fill[binOf(c.Rho)]++] = points + 3 * c.Index;
+        near[fill[this->BinOf(c.Rho)]++] = points + 3 * c.Index;
       }
     }
   }
-  // The near points whose rho may lie in [lo, hi] (a superset: whole bins).
-  auto nearBand = [&](double lo, double hi)
-  {
-    return std::make_pair(near.begin() + binStart[binOf(lo) > 0 ? binOf(lo) - 1 : 0],
-      near.begin() + binStart[std::min(bins, binOf(hi) + 2)]);
-  };
+}
 
+//------------------------------------------------------------------------------
+double DiscBound::BendRadius(double r, SplatBound& bound) const
+{
   // Where the surface bends away: the nearest point off the patch that
   // continues the points on or near it. A point barely off (under twice
   // the tolerance) is noise as often as it is a bend: it is not covered,
@@ -197,12 +249,11 @@ SplatBound BoundSplat(const Splat& splat,
   // stops it however near the patch it lies. A splat whose point sits on
   // the lip of a deep fold is stopped half a spacing out: with a whole
   // spacing, its disc hung over the fold's opening as a light half-disc.
-  double r = radius;
   thread_local std::vector<const Candidate*> stoppers;
   stoppers.clear();
-  for (const Candidate& c : off)
+  for (const Candidate& c : OffScratch())
   {
-    if (c.Rho < r && (c.E > 2.0 * tol || c.Turned) && c.Rho >= params.CentreReach * spacing)
+    if (c.Rho < r && (c.E > 2.0 * this->Tol || c.Turned) && c.Rho >= this->P.CentreReach * this->Spacing)
     {
       stoppers.push_back(&c);
     }
@@ -210,11 +261,11 @@ SplatBound BoundSplat(const Splat& splat,
   std::sort(stoppers.begin(),
     stoppers.end(),
     [](const Candidate* a, const Candidate* b) { return a->Rho < b->Rho; });
-  const double adjacent2 = adjacency * adjacency;
+  const double adjacent2 = this->Adjacency * this->Adjacency;
   for (const Candidate* c : stoppers)
   {
-    const double* p = points + 3 * c->Index;
-    const auto range = nearBand(c->Rho - adjacency, c->Rho + adjacency);
+    const double* p = this->Points + 3 * c->Index;
+    const auto range = this->NearBand(c->Rho - this->Adjacency, c->Rho + this->Adjacency);
     for (auto it = range.first; it != range.second; ++it)
     {
       const double* q = *it;
@@ -232,7 +283,12 @@ SplatBound BoundSplat(const Splat& splat,
       break;
     }
   }
+  return r;
+}
 
+//------------------------------------------------------------------------------
+double DiscBound::BorderRadius(double r, SplatBound& bound) const
+{
   // Where the data ends: the support of the points on the patch in
   // Directions directions of the plane (how far they reach each way). A
   // side that falls short of the disc by more than a band w has a border:
@@ -240,11 +296,10 @@ SplatBound BoundSplat(const Splat& splat,
   // for points spread at random with the density found around the splat
   // (Poisson), the band would hold BorderPoints points on average, so that
   // irregular sampling does not pass for a border: a spacing or two.
-  constexpr int Directions = 16;
-  // The density from the spacing (the mean distance of the 6 nearest is
+  // The density from the this->Spacing (the mean distance of the 6 nearest is
   // about 1 / sqrt(density) for random points, 1.14 of it on a grid), not
   // from a count in the disc, which a thin strip of data would make small.
-  const double density = 1.0 / (spacing * spacing);
+  const double density = 1.0 / (this->Spacing * this->Spacing);
   double cosine[Directions], sine[Directions], support[Directions];
   for (int k = 0; k < Directions; ++k)
   {
@@ -261,9 +316,9 @@ SplatBound BoundSplat(const Splat& splat,
   // spread at random over the Bunny (200 000), 45 degrees gave 8 % more
   // splats and 30 degrees 37 %; on the benchmark scans at s = 1, 1 to 2 %
   // and 2 to 5 %, and a half (30 degrees: three quarters) fewer discs
-  // straying a spacing from the surface.
-  const double coneCos = std::cos(std::min(std::abs(params.BorderAngle), 180.0) * Pi / 180.0);
-  for (const Candidate& m : on)
+  // straying a this->Spacing from the surface.
+  const double coneCos = std::cos(std::min(std::abs(this->P.BorderAngle), 180.0) * Pi / 180.0);
+  for (const Candidate& m : OnScratch())
   {
     for (int k = 0; k < Directions; ++k)
     {
@@ -276,36 +331,45 @@ SplatBound BoundSplat(const Splat& splat,
   }
   // A cap of depth w of a disc of radius r has an area of about (4/3) sqrt(2 r w) w.
   const double band = density > 0.0 && r > 0.0
-    ? std::pow(3.0 * params.BorderPoints / (4.0 * density * std::sqrt(2.0 * r)), 2.0 / 3.0)
+    ? std::pow(3.0 * this->P.BorderPoints / (4.0 * density * std::sqrt(2.0 * r)), 2.0 / 3.0)
     : r;
   const double shortest = *std::min_element(support, support + Directions);
   // A small disc holds too few points to tell a border from chance; half its
   // radius short is a border all the same (the cap of the band: a disc of a
-  // spacing or so, centred on the edge of a thin part, otherwise hung a
-  // whole spacing past it).
-  if (shortest + std::min(std::max(band, params.BorderSlack * spacing), 0.5 * r) < r)
+  // this->Spacing or so, centred on the edge of a thin part, otherwise hung a
+  // whole this->Spacing past it).
+  if (shortest + std::min(std::max(band, this->P.BorderSlack * this->Spacing), 0.5 * r) < r)
   {
-    r = std::min(r, shortest + params.BorderMargin * spacing);
+    r = std::min(r, shortest + this->P.BorderMargin * this->Spacing);
     bound.Border = true;
   }
+  return r;
+}
+
+//------------------------------------------------------------------------------
+double DiscBound::RimRadius(double r, SplatBound& bound) const
+{
   // Last, the patch itself must stay by the data over its whole disc: its
   // rim, sampled in the same directions, must lie near a point on or near
   // the patch: within MaximumReach sampling distances (1 / sqrt(density))
   // along the plane and twice the tolerance (at least half a spacing) across
   // it. A patch fitted on one side of a border can turn steeply past it.
   // Shrink until it does.
-  const double along = std::abs(params.MaximumReach) / std::sqrt(std::max(density, 1e-300));
-  const double across = std::max(2.0 * tol, 0.5 * spacing);
+  const double density = 1.0 / (this->Spacing * this->Spacing);
+  const LocalFrame& f = this->F;
+  const double h = this->H;
+  const double along = std::abs(this->P.MaximumReach) / std::sqrt(std::max(density, 1e-300));
+  const double across = std::max(2.0 * this->Tol, 0.5 * this->Spacing);
   for (int step = 0; step < 8 && r > 0.0; ++step)
   {
     bool inside = true;
     // A rim sample lies at rho = r: a point within `along` of it in the
     // plane has rho within `along` of r.
-    const auto range = nearBand(r - along, r + along);
+    const auto range = this->NearBand(r - along, r + along);
     for (int k = 0; k < Directions && inside; ++k)
     {
-      const double u = r * cosine[k] / h, v = r * sine[k] / h;
-      const double g = Evaluate(splat.Fit.Coefficients, splat.Fit.Degree, u, v);
+      const double u = r * std::cos(2.0 * Pi * k / Directions) / h, v = r * std::sin(2.0 * Pi * k / Directions) / h;
+      const double g = Evaluate(this->S.Fit.Coefficients, this->S.Fit.Degree, u, v);
       double p[3];
       for (int c = 0; c < 3; ++c)
       {
@@ -328,6 +392,73 @@ SplatBound BoundSplat(const Splat& splat,
     r *= 0.8;
     bound.Border = true;
   }
-  return finish(r);
+  return r;
+}
+
+//------------------------------------------------------------------------------
+SplatBound DiscBound::Finish(double r,
+  SplatBound& bound,
+  std::vector<int>* covered,
+  std::vector<double>* rho) const
+{
+  bound.Radius = r;
+  for (const Candidate& m : OnScratch())
+  {
+    if (m.Rho <= r)
+    {
+      bound.MaxDeviation = std::max(bound.MaxDeviation, m.E);
+      if (covered)
+      {
+        covered->push_back(m.Index);
+      }
+      if (rho)
+      {
+        rho->push_back(m.Rho);
+      }
+    }
+  }
+  return bound;
+}
+} // namespace
+
+double BoundSearchRadius(double radius, double spacing)
+{
+  return std::sqrt(2.0) * std::max(radius, 3.0 * spacing);
+}
+
+SplatBound BoundSplat(const Splat& splat,
+  double radius,
+  const double* points,
+  int n,
+  const BoundParameters& params,
+  std::vector<int>* covered,
+  std::vector<double>* rho,
+  const double* normals)
+{
+  SplatBound bound;
+  if (covered)
+  {
+    covered->clear();
+  }
+  if (rho)
+  {
+    rho->clear();
+  }
+  const double h = splat.Frame.Scale;
+  if (splat.Fit.Degree <= 0 || !(h > 0.0) || !(radius > 0.0) || !std::isfinite(radius))
+  {
+    return bound;
+  }
+  DiscBound disc(splat, radius, points, n, params, normals);
+  disc.Gather();
+  if (params.MeasureOnly)
+  {
+    return disc.Finish(radius, bound, covered, rho);
+  }
+  disc.BinNearPoints();
+  double r = disc.BendRadius(radius, bound);
+  r = disc.BorderRadius(r, bound);
+  r = disc.RimRadius(r, bound);
+  return disc.Finish(r, bound, covered, rho);
 }
 } // namespace pointsurfaces
