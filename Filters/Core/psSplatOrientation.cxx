@@ -312,28 +312,159 @@ void FlipSplat(Splat& splat)
   }
 }
 
-long long OrientSplats(const std::vector<Splat*>& splats,
-  int k,
-  long long* parts,
-  const std::vector<double>* radii)
+namespace
 {
-  const long long n = static_cast<long long>(splats.size());
-  if (parts)
+// One OrientSplats call: the splats' k-nearest-neighbour graph with its
+// edges cheapest first, the spanning trees over it, and the state of the
+// propagation (which splats are reached, which turned, how each is seen
+// from outside).
+class Orientation
+{
+public:
+  Orientation(const std::vector<Splat*>& splats, const std::vector<double>* radii)
+    : Splats(splats)
+    , N(static_cast<long long>(splats.size()))
+    , Radii(radii)
+    , XYZ(3 * splats.size())
+    , Root(splats.size())
+    , Tree(splats.size())
+    , Done(splats.size(), 0)
+    , Turned(splats.size(), 0)
   {
-    *parts = 0;
+    for (long long i = 0; i < this->N; ++i)
+    {
+      std::copy(splats[i]->Frame.Origin, splats[i]->Frame.Origin + 3, &this->XYZ[3 * i]);
+    }
   }
-  if (n == 0)
+
+  // The symmetric k-nearest-neighbour graph's edges, each once, cheapest first.
+  void BuildGraph(int k);
+  // Orients every part from its highest splat, then regrows the closed
+  // parts that their views disagree with. Returns the splats flipped.
+  long long Run(long long* parts);
+
+private:
+  struct Edge
   {
-    return 0;
-  }
-  std::vector<double> xyz(3 * n);
-  for (long long i = 0; i < n; ++i)
+    double Cost;
+    int From, To;
+    bool operator<(const Edge& other) const
+    {
+      return Cost < other.Cost ||
+        (Cost == other.Cost && (From < other.From || (From == other.From && To < other.To)));
+    }
+  };
+
+// The cost of an edge: how far the normals turn (Hoppe's 1 - |n_i.n_j|),
+// plus how steeply the edge leaves each splat's plane (|e.n| for the unit
+// edge e). Along the surface an edge lies nearly in both planes; between
+// the two faces of a thin part it runs along their normals, which are
+// antiparallel and so turn by nothing: by angle alone such an edge was as
+// cheap as any, and the propagation crossed through the part and turned
+// one face inward (a third of Lucy's splats).
+  double Cost(long long i, long long j) const;
+  int Find(int i);
+// Minimum spanning trees (Kruskal's algorithm) over the edges whose ends
+// `use` accepts, with each set of `joined` splats one node from the start
+// (the seeds of a part: the tree then grows from all of them at once,
+// as Prim's algorithm would from several roots). `tree` receives each
+// splat's tree neighbours.
+  template <typename Use>
+  void Span(Use&& use, const std::vector<std::vector<long long>>& joined);
+  void Flip(long long i)
   {
-    std::copy(splats[i]->Frame.Origin, splats[i]->Frame.Origin + 3, &xyz[3 * i]);
+    FlipSplat(*this->Splats[i]);
+    this->Turned[i] = !this->Turned[i];
   }
+// From the splats in `front` (oriented already), along the tree: each
+// splat reached takes the side of the one it is reached from, and is
+// added to `reached` when given.
+  void Grow(std::vector<long long> front, std::vector<long long>* reached);
+  // Which way is out, on a closed part: there the integral of (x - c).n
+  // over the area is three times the enclosed volume, positive for
+  // outward normals whatever c and the shape. Summed over the part's
+  // splats (weighted by h squared, their share of the area) it decides,
+  // unless it is too close to zero to. The seed's rule alone (the highest
+  // normal points up) turned all of Lucy inward at some settings: her
+  // highest splat, on a wing's tip, lies on its underside. An open sheet
+  // (a range scan, whose patch may be concave towards the scanner) keeps
+  // the seed's rule: a part is taken for closed when its normals nearly
+  // cancel (the area-weighted sum of a closed surface's normals is zero),
+  // under OpenSheet of their total.
+  // Returns whether the part is closed.
+  bool OrientByFlux(const std::vector<long long>& part);
+  // What is seen from outside decides each side of a closed part: the
+  // tree can cross between two sheets that touch (a fold of drapery, a
+  // wing against a body, two parts a spacing apart), where no edge looks
+  // steep, and turn a whole sheet inward that the flux, a sum over the
+  // part, outweighs. The splats that the views agree on are seeds with
+  // their side; where one disagrees with the tree, a tree grows again
+  // from all of them at once (below), so that a sheet takes its sign
+  // from its own seeds. Open sheets are seen from both sides and keep
+  // theirs.
+  // Records the part for regrowing when a seed disagrees with its tree.
+  void CheckByViews(const std::vector<long long>& part);
+  // The regrowth of the parts CheckByViews recorded.
+  void Regrow();
+  double Vote(long long i) const
+  {
+    return this->Turned[i] != this->TurnedWhenSeen[i] ? -this->Votes[i] : this->Votes[i];
+  }
+  bool IsSeed(long long i) const
+  {
+    return this->Seen[i] >= SeenEnough && std::abs(this->Votes[i]) >= Unanimous * this->Seen[i];
+  }
+
+  const std::vector<Splat*>& Splats;
+  const long long N;
+  const std::vector<double>* Radii;
+  std::vector<double> XYZ;
+  std::vector<int> Neighbours;
+  int KK = 1;
+  std::vector<Edge> Edges;
+  std::vector<int> Root;
+  std::vector<std::vector<int>> Tree;
+  std::vector<char> Done, Turned;
+  // The visibility votes (of every splat, computed when the first closed
+  // part is reached) and which splats were turned then; the closed parts
+  // where a seed disagrees with its tree, and their seeds.
+  std::vector<double> Votes, Seen;
+  std::vector<char> TurnedWhenSeen;
+  std::vector<std::vector<long long>> RegrowParts, RegrowSeeds;
+};
+
+//------------------------------------------------------------------------------
+double Orientation::Cost(long long i, long long j) const
+{
+  const std::vector<Splat*>& splats = this->Splats;
+  const std::vector<double>& xyz = this->XYZ;
+  const double* a = splats[i]->Frame.Normal;
+  const double* b = splats[j]->Frame.Normal;
+  const double turn = 1.0 - std::abs(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+  const double e[3] = {
+    xyz[3 * j] - xyz[3 * i], xyz[3 * j + 1] - xyz[3 * i + 1], xyz[3 * j + 2] - xyz[3 * i + 2]
+  };
+  const double length = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+  double total = turn;
+  if (length > 0.0)
+  {
+    total += (std::abs(e[0] * a[0] + e[1] * a[1] + e[2] * a[2]) +
+               std::abs(e[0] * b[0] + e[1] * b[1] + e[2] * b[2])) /
+      length;
+  }
+  // A NaN would break the sort's order: such an edge comes last.
+  return std::isfinite(total) ? total : std::numeric_limits<double>::infinity();
+}
+
+//------------------------------------------------------------------------------
+void Orientation::BuildGraph(int k)
+{
+  const long long n = this->N;
+  const std::vector<double>& xyz = this->XYZ;
   // The k-nearest-neighbour graph, made symmetric.
-  const int kk = static_cast<int>(std::min<long long>(std::max(k, 1) + 1, n));
-  std::vector<int> neighbours(static_cast<size_t>(n) * kk, -1);
+  const int kk = this->KK = static_cast<int>(std::min<long long>(std::max(k, 1) + 1, n));
+  std::vector<int>& neighbours = this->Neighbours;
+  neighbours.assign(static_cast<size_t>(n) * kk, -1);
   {
     PointIndex index(xyz.data(), n);
     vtkSMPTools::For(0,
@@ -349,45 +480,9 @@ long long OrientSplats(const std::vector<Splat*>& splats,
         }
       });
   }
-  // The cost of an edge: how far the normals turn (Hoppe's 1 - |n_i.n_j|),
-  // plus how steeply the edge leaves each splat's plane (|e.n| for the unit
-  // edge e). Along the surface an edge lies nearly in both planes; between
-  // the two faces of a thin part it runs along their normals, which are
-  // antiparallel and so turn by nothing: by angle alone such an edge was as
-  // cheap as any, and the propagation crossed through the part and turned
-  // one face inward (a third of Lucy's splats).
-  auto cost = [&](long long i, long long j)
-  {
-    const double* a = splats[i]->Frame.Normal;
-    const double* b = splats[j]->Frame.Normal;
-    const double turn = 1.0 - std::abs(a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
-    const double e[3] = {
-      xyz[3 * j] - xyz[3 * i], xyz[3 * j + 1] - xyz[3 * i + 1], xyz[3 * j + 2] - xyz[3 * i + 2]
-    };
-    const double length = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-    double total = turn;
-    if (length > 0.0)
-    {
-      total += (std::abs(e[0] * a[0] + e[1] * a[1] + e[2] * a[2]) +
-                 std::abs(e[0] * b[0] + e[1] * b[1] + e[2] * b[2])) /
-        length;
-    }
-    // A NaN would break the sort's order: such an edge comes last.
-    return std::isfinite(total) ? total : std::numeric_limits<double>::infinity();
-  };
   // The graph's edges, each once, cheapest first (ties by their ends, so
   // that the trees do not depend on the sort).
-  struct Edge
-  {
-    double Cost;
-    int From, To;
-    bool operator<(const Edge& other) const
-    {
-      return Cost < other.Cost ||
-        (Cost == other.Cost && (From < other.From || (From == other.From && To < other.To)));
-    }
-  };
-  std::vector<Edge> edges;
+  std::vector<Edge>& edges = this->Edges;
   edges.reserve(static_cast<size_t>(n) * kk);
   for (long long i = 0; i < n; ++i)
   {
@@ -416,114 +511,211 @@ long long OrientSplats(const std::vector<Splat*>& splats,
     {
       for (vtkIdType e = begin; e < end; ++e)
       {
-        edges[e].Cost = cost(edges[e].From, edges[e].To);
+        edges[e].Cost = this->Cost(edges[e].From, edges[e].To);
       }
     });
   vtkSMPTools::Sort(edges.begin(), edges.end());
+}
 
-  // Minimum spanning trees (Kruskal's algorithm) over the edges whose ends
-  // `use` accepts, with each set of `joined` splats one node from the start
-  // (the seeds of a part: the tree then grows from all of them at once,
-  // as Prim's algorithm would from several roots). `tree` receives each
-  // splat's tree neighbours.
-  std::vector<int> root(static_cast<size_t>(n));
-  auto find = [&](int i)
+//------------------------------------------------------------------------------
+int Orientation::Find(int i)
+{
+  std::vector<int>& root = this->Root;
+  while (root[i] != i)
   {
-    while (root[i] != i)
-    {
-      root[i] = root[root[i]];
-      i = root[i];
-    }
-    return i;
-  };
-  std::vector<std::vector<int>> tree(static_cast<size_t>(n));
-  auto span = [&](auto&& use, const std::vector<std::vector<long long>>& joined)
+    root[i] = root[root[i]];
+    i = root[i];
+  }
+  return i;
+  return i;
+}
+
+//------------------------------------------------------------------------------
+template <typename Use>
+void Orientation::Span(Use&& use, const std::vector<std::vector<long long>>& joined)
+{
+  std::vector<int>& root = this->Root;
+  std::iota(root.begin(), root.end(), 0);
+  for (auto& t : this->Tree)
   {
-    std::iota(root.begin(), root.end(), 0);
-    for (auto& t : tree)
+    t.clear();
+  }
+  for (const auto& set : joined)
+  {
+    for (const long long i : set)
     {
-      t.clear();
+      root[this->Find(static_cast<int>(i))] = this->Find(static_cast<int>(set.front()));
     }
-    for (const auto& set : joined)
+  }
+  for (const Edge& e : this->Edges)
+  {
+    if (!use(e.From) || !use(e.To))
     {
-      for (const long long i : set)
-      {
-        root[find(static_cast<int>(i))] = find(static_cast<int>(set.front()));
-      }
+      continue;
     }
-    for (const Edge& e : edges)
+    const int a = this->Find(e.From), b = this->Find(e.To);
+    if (a != b)
     {
-      if (!use(e.From) || !use(e.To))
+      root[a] = b;
+      this->Tree[e.From].push_back(e.To);
+      this->Tree[e.To].push_back(e.From);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void Orientation::Grow(std::vector<long long> front, std::vector<long long>* reached)
+{
+  for (size_t f = 0; f < front.size(); ++f)
+  {
+    const long long from = front[f];
+    for (const int to : this->Tree[from])
+    {
+      if (this->Done[to])
       {
         continue;
       }
-      const int a = find(e.From), b = find(e.To);
-      if (a != b)
+      this->Done[to] = 1;
+      front.push_back(to);
+      if (reached)
       {
-        root[a] = b;
-        tree[e.From].push_back(e.To);
-        tree[e.To].push_back(e.From);
+        reached->push_back(to);
+      }
+      const double* a = this->Splats[from]->Frame.Normal;
+      const double* b = this->Splats[to]->Frame.Normal;
+      if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0)
+      {
+        this->Flip(to);
       }
     }
-  };
+  }
+}
 
-  std::vector<char> done(n, 0);
-  std::vector<char> turned(n, 0);
-  auto flip = [&](long long i)
+//------------------------------------------------------------------------------
+bool Orientation::OrientByFlux(const std::vector<long long>& part)
+{
+  const std::vector<Splat*>& splats = this->Splats;
+  const std::vector<double>& xyz = this->XYZ;
+  double centre[3] = { 0.0, 0.0, 0.0 }, weight = 0.0;
+  for (const long long i : part)
   {
-    FlipSplat(*splats[i]);
-    turned[i] = !turned[i];
-  };
-  // From the splats in `front` (oriented already), along the tree: each
-  // splat reached takes the side of the one it is reached from, and is
-  // added to `reached` when given.
-  auto grow = [&](std::vector<long long> front, std::vector<long long>* reached)
-  {
-    for (size_t f = 0; f < front.size(); ++f)
+    const double w = splats[i]->Frame.Scale * splats[i]->Frame.Scale;
+    for (int c = 0; c < 3; ++c)
     {
-      const long long from = front[f];
-      for (const int to : tree[from])
-      {
-        if (done[to])
-        {
-          continue;
-        }
-        done[to] = 1;
-        front.push_back(to);
-        if (reached)
-        {
-          reached->push_back(to);
-        }
-        const double* a = splats[from]->Frame.Normal;
-        const double* b = splats[to]->Frame.Normal;
-        if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0)
-        {
-          flip(to);
-        }
-      }
+      centre[c] += w * xyz[3 * i + c];
     }
-  };
+    weight += w;
+  }
+  if (!(weight > 0.0) || part.size() < 4)
+  {
+    return false;
+  }
+  for (double& c : centre)
+  {
+    c /= weight;
+  }
+  double flux = 0.0, magnitude = 0.0, area[3] = { 0.0, 0.0, 0.0 };
+  for (const long long i : part)
+  {
+    const double w = splats[i]->Frame.Scale * splats[i]->Frame.Scale;
+    const double* m = splats[i]->Frame.Normal;
+    double along = 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      along += (xyz[3 * i + c] - centre[c]) * m[c];
+      area[c] += w * m[c];
+    }
+    flux += w * along;
+    magnitude += w * std::abs(along);
+  }
+  const double open =
+    std::sqrt(area[0] * area[0] + area[1] * area[1] + area[2] * area[2]) / weight;
+  if (open < OpenSheet && flux < -Decisive * magnitude)
+  {
+    for (const long long i : part)
+    {
+      this->Flip(i);
+    }
+  }
+  return open < OpenSheet;
+}
 
+//------------------------------------------------------------------------------
+void Orientation::CheckByViews(const std::vector<long long>& part)
+{
+  const long long n = this->N;
+  if (this->Votes.empty())
+  {
+    // How each splat is seen from outside, with the signs it has now.
+    std::vector<double> r(static_cast<size_t>(n));
+    for (long long i = 0; i < n; ++i)
+    {
+      r[i] =
+        this->Radii && this->Radii->size() == static_cast<size_t>(n) ? (*this->Radii)[i] : this->Splats[i]->Frame.Scale;
+    }
+    VisibilityVotes(this->Splats, r, this->Votes, this->Seen);
+    this->TurnedWhenSeen = this->Turned;
+  }
+  std::vector<long long> seeds;
+  bool against = false;
+  for (const long long i : part)
+  {
+    if (this->IsSeed(i))
+    {
+      seeds.push_back(i);
+      against = against || this->Vote(i) < 0.0;
+    }
+  }
+  if (against)
+  {
+    this->RegrowParts.push_back(part);
+    this->RegrowSeeds.push_back(std::move(seeds));
+  }
+}
+
+//------------------------------------------------------------------------------
+void Orientation::Regrow()
+{
+  const long long n = this->N;
+  // The parts to grow again, each from its seeds with their sides.
+  std::vector<char> again(static_cast<size_t>(n), 0);
+  std::vector<long long> front;
+  for (size_t r = 0; r < this->RegrowParts.size(); ++r)
+  {
+    for (const long long i : this->RegrowParts[r])
+    {
+      again[i] = 1;
+      this->Done[i] = 0;
+    }
+    for (const long long i : this->RegrowSeeds[r])
+    {
+      if (this->Vote(i) < 0.0)
+      {
+        this->Flip(i);
+      }
+      this->Done[i] = 1;
+      front.push_back(i);
+    }
+  }
+  this->Span([&](int i) { return again[i] != 0; }, this->RegrowSeeds);
+  this->Grow(front, nullptr);
+}
+
+//------------------------------------------------------------------------------
+long long Orientation::Run(long long* parts)
+{
+  const long long n = this->N;
   // Seeds in order of decreasing height; one tree over each part.
-  span([](int) { return true; }, {});
+  this->Span([](int) { return true; }, {});
   std::vector<long long> order(n);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(),
     order.end(),
-    [&](long long a, long long b) { return xyz[3 * a + 2] > xyz[3 * b + 2]; });
-  // The visibility votes (of every splat, computed when the first closed
-  // part is reached) and which splats were turned then; the closed parts
-  // where a seed disagrees with its tree, and their seeds.
-  std::vector<double> votes, seen;
-  std::vector<char> turnedWhenSeen;
-  auto vote = [&](long long i) { return turned[i] != turnedWhenSeen[i] ? -votes[i] : votes[i]; };
-  auto isSeed = [&](long long i)
-  { return seen[i] >= SeenEnough && std::abs(votes[i]) >= Unanimous * seen[i]; };
-  std::vector<std::vector<long long>> regrow, regrowSeeds;
+    [&](long long a, long long b) { return this->XYZ[3 * a + 2] > this->XYZ[3 * b + 2]; });
   std::vector<long long> part;
   for (const long long seed : order)
   {
-    if (done[seed])
+    if (this->Done[seed])
     {
       continue;
     }
@@ -531,136 +723,46 @@ long long OrientSplats(const std::vector<Splat*>& splats,
     {
       ++*parts;
     }
-    if (splats[seed]->Frame.Normal[2] < 0.0)
+    if (this->Splats[seed]->Frame.Normal[2] < 0.0)
     {
-      flip(seed);
+      this->Flip(seed);
     }
-    done[seed] = 1;
+    this->Done[seed] = 1;
     part.assign(1, seed);
-    grow({ seed }, &part);
-    // Which way is out, on a closed part: there the integral of (x - c).n
-    // over the area is three times the enclosed volume, positive for
-    // outward normals whatever c and the shape. Summed over the part's
-    // splats (weighted by h squared, their share of the area) it decides,
-    // unless it is too close to zero to. The seed's rule alone (the highest
-    // normal points up) turned all of Lucy inward at some settings: her
-    // highest splat, on a wing's tip, lies on its underside. An open sheet
-    // (a range scan, whose patch may be concave towards the scanner) keeps
-    // the seed's rule: a part is taken for closed when its normals nearly
-    // cancel (the area-weighted sum of a closed surface's normals is zero),
-    // under OpenSheet of their total.
-    double centre[3] = { 0.0, 0.0, 0.0 }, weight = 0.0;
-    for (const long long i : part)
+    this->Grow({ seed }, &part);
+    if (this->OrientByFlux(part))
     {
-      const double w = splats[i]->Frame.Scale * splats[i]->Frame.Scale;
-      for (int c = 0; c < 3; ++c)
-      {
-        centre[c] += w * xyz[3 * i + c];
-      }
-      weight += w;
-    }
-    if (!(weight > 0.0) || part.size() < 4)
-    {
-      continue;
-    }
-    for (double& c : centre)
-    {
-      c /= weight;
-    }
-    double flux = 0.0, magnitude = 0.0, area[3] = { 0.0, 0.0, 0.0 };
-    for (const long long i : part)
-    {
-      const double w = splats[i]->Frame.Scale * splats[i]->Frame.Scale;
-      const double* m = splats[i]->Frame.Normal;
-      double along = 0.0;
-      for (int c = 0; c < 3; ++c)
-      {
-        along += (xyz[3 * i + c] - centre[c]) * m[c];
-        area[c] += w * m[c];
-      }
-      flux += w * along;
-      magnitude += w * std::abs(along);
-    }
-    const double open =
-      std::sqrt(area[0] * area[0] + area[1] * area[1] + area[2] * area[2]) / weight;
-    if (open < OpenSheet && flux < -Decisive * magnitude)
-    {
-      for (const long long i : part)
-      {
-        flip(i);
-      }
-    }
-    if (!(open < OpenSheet))
-    {
-      continue;
-    }
-    // What is seen from outside decides each side of a closed part: the
-    // tree can cross between two sheets that touch (a fold of drapery, a
-    // wing against a body, two parts a spacing apart), where no edge looks
-    // steep, and turn a whole sheet inward that the flux, a sum over the
-    // part, outweighs. The splats that the views agree on are seeds with
-    // their side; where one disagrees with the tree, a tree grows again
-    // from all of them at once (below), so that a sheet takes its sign
-    // from its own seeds. Open sheets are seen from both sides and keep
-    // theirs.
-    if (votes.empty())
-    {
-      // How each splat is seen from outside, with the signs it has now.
-      std::vector<double> r(static_cast<size_t>(n));
-      for (long long i = 0; i < n; ++i)
-      {
-        r[i] =
-          radii && radii->size() == static_cast<size_t>(n) ? (*radii)[i] : splats[i]->Frame.Scale;
-      }
-      VisibilityVotes(splats, r, votes, seen);
-      turnedWhenSeen = turned;
-    }
-    std::vector<long long> seeds;
-    bool against = false;
-    for (const long long i : part)
-    {
-      if (isSeed(i))
-      {
-        seeds.push_back(i);
-        against = against || vote(i) < 0.0;
-      }
-    }
-    if (against)
-    {
-      regrow.push_back(part);
-      regrowSeeds.push_back(std::move(seeds));
+      this->CheckByViews(part);
     }
   }
-  if (!regrow.empty())
+  if (!this->RegrowParts.empty())
   {
-    // The parts to grow again, each from its seeds with their sides.
-    std::vector<char> again(static_cast<size_t>(n), 0);
-    std::vector<long long> front;
-    for (size_t r = 0; r < regrow.size(); ++r)
-    {
-      for (const long long i : regrow[r])
-      {
-        again[i] = 1;
-        done[i] = 0;
-      }
-      for (const long long i : regrowSeeds[r])
-      {
-        if (vote(i) < 0.0)
-        {
-          flip(i);
-        }
-        done[i] = 1;
-        front.push_back(i);
-      }
-    }
-    span([&](int i) { return again[i] != 0; }, regrowSeeds);
-    grow(front, nullptr);
+    this->Regrow();
   }
   long long flipped = 0;
-  for (const char t : turned)
+  for (const char t : this->Turned)
   {
     flipped += t;
   }
   return flipped;
+}
+} // namespace
+
+long long OrientSplats(const std::vector<Splat*>& splats,
+  int k,
+  long long* parts,
+  const std::vector<double>* radii)
+{
+  if (parts)
+  {
+    *parts = 0;
+  }
+  if (splats.empty())
+  {
+    return 0;
+  }
+  Orientation orientation(splats, radii);
+  orientation.BuildGraph(k);
+  return orientation.Run(parts);
 }
 } // namespace pointsurfaces
