@@ -96,7 +96,6 @@ public:
     return static_cast<pointsurfaces::MetaballKernel>(this->Kernel);
   }
 
-
   ///@{
   /**
    * The field's kernel. Default Wyvill. The SPH kernels (CubicSpline,

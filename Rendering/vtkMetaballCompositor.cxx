@@ -156,9 +156,11 @@ bool vtkMetaballCompositor::Draw(vtkRenderer* ren,
   // The material.
   const double* ambient = prop->GetAmbientColor();
   const double* specular = prop->GetSpecularColor();
-  const float ac[3] = { static_cast<float>(ambient[0]), static_cast<float>(ambient[1]),
-    static_cast<float>(ambient[2]) };
-  const float sc[3] = { static_cast<float>(specular[0]), static_cast<float>(specular[1]),
+  const float ac[3] = {
+    static_cast<float>(ambient[0]), static_cast<float>(ambient[1]), static_cast<float>(ambient[2])
+  };
+  const float sc[3] = { static_cast<float>(specular[0]),
+    static_cast<float>(specular[1]),
     static_cast<float>(specular[2]) };
   program->SetUniformf("ambient", static_cast<float>(prop->GetAmbient()));
   program->SetUniformf("diffuse", static_cast<float>(prop->GetDiffuse()));

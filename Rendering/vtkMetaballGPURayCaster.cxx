@@ -71,8 +71,14 @@ bool vtkMetaballGPURayCaster::Cast(vtkOpenGLRenderWindow* renWin,
   this->Grid->SetTileSize(request.TileSize);
   this->Grid->SetCollectStatistics(request.CollectStatistics);
   this->Grid->SetSlabs(request.Slabs);
-  if (!this->Grid->Build(renWin, balls.Balls, balls.Count, view.WorldToView, view.ViewToClip,
-        view.Parallel, view.Width, view.Height))
+  if (!this->Grid->Build(renWin,
+        balls.Balls,
+        balls.Count,
+        view.WorldToView,
+        view.ViewToClip,
+        view.Parallel,
+        view.Width,
+        view.Height))
   {
     return false;
   }
@@ -115,7 +121,9 @@ bool vtkMetaballGPURayCaster::Cast(vtkOpenGLRenderWindow* renWin,
   glBindImageTexture(1, images.Normal->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(2, images.Depth->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   this->Timer.ReusableStart();
-  const bool cast = program->Dispatch(this->Grid->GetTilesX(), this->Grid->GetTilesY(), 1,
+  const bool cast = program->Dispatch(this->Grid->GetTilesX(),
+    this->Grid->GetTilesY(),
+    1,
     GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT |
       GL_SHADER_STORAGE_BARRIER_BIT);
   program->Unbind();

@@ -16,8 +16,8 @@
 
 #include "PointSurfacesRenderingModule.h" // For export macro
 #include "vtkMetaballRayCaster.h"
-#include "vtkNew.h"                  // For the members
-#include "vtkOpenGLRenderTimer.h"    // For the GPU time
+#include "vtkNew.h"               // For the members
+#include "vtkOpenGLRenderTimer.h" // For the GPU time
 
 #include <string> // For the defines
 

@@ -232,7 +232,8 @@ struct vtkMetaballGridBuilder::Internals
       this->PairVoxels->BindBase(PairVoxelsBinding);
       this->PairBalls->BindBase(PairBallsBinding);
       this->Histogram->BindBase(HistogramBinding);
-      ok = scatter->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), BallGroup));
+      ok =
+        scatter->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), BallGroup));
     }
     ok = ok && this->ExclusiveScan(renWin, this->Histogram, voxels + 1, 0, true);
 
@@ -327,8 +328,16 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
 
   pointsurfaces::PerspectiveGridGeometry geometry(
     viewToClip, parallel, width, height, this->TileSize, this->Slabs);
-  const PassUniforms common(worldToView, viewToClip, geometry, parallel, width, height,
-    this->TileSize, this->TilesX, this->TilesY, this->Slabs);
+  const PassUniforms common(worldToView,
+    viewToClip,
+    geometry,
+    parallel,
+    width,
+    height,
+    this->TileSize,
+    this->TilesX,
+    this->TilesY,
+    this->Slabs);
 
   // Stats: nearest, farthest (float bits), culled, invalid, max per voxel.
   const float big = std::numeric_limits<float>::max();

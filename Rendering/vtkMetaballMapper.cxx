@@ -365,7 +365,10 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
     if (!selector)
     {
       // Shade and composite with the true depth, depth-tested against the scene.
-      if (in.Compositor->Draw(ren, act->GetProperty(), in.Cast, in.Images,
+      if (in.Compositor->Draw(ren,
+            act->GetProperty(),
+            in.Cast,
+            in.Images,
             shadowLights > 0 ? in.Shadows->GetShadowImage() : nullptr))
       {
         this->InvokeEvent(vtkCommand::EndEvent, nullptr);
@@ -514,8 +517,15 @@ void vtkMetaballMapper::DrawSelection(vtkRenderer* ren,
   {
     ids = nullptr;
   }
-  in.Selection->Draw(static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow()), selector, x0,
-    y0, in.Cast, in.CastSerial, in.Balls, in.Images, ids);
+  in.Selection->Draw(static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow()),
+    selector,
+    x0,
+    y0,
+    in.Cast,
+    in.CastSerial,
+    in.Balls,
+    in.Images,
+    ids);
 }
 
 //------------------------------------------------------------------------------

@@ -69,7 +69,10 @@ private:
     const pointsurfaces::MetaballBalls& balls,
     const pointsurfaces::MetaballImages& images);
   /** The pass's colour per hit pixel of the area, into Pixels. */
-  void PassColors(vtkHardwareSelector* selector, const int area[4], int width, int height,
+  void PassColors(vtkHardwareSelector* selector,
+    const int area[4],
+    int width,
+    int height,
     vtkDataArray* ids);
   /** The unlit composite program, compiled and ready; null on failure. */
   bool ReadyComposite(vtkOpenGLRenderWindow* renWin);

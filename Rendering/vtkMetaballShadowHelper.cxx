@@ -64,7 +64,8 @@ bool LightCamera(vtkLight* light, const double centre[3], double radius, vtkCame
     eye->SetClippingRange(std::max(distance - radius, 1e-3 * distance), distance + radius);
     return true;
   }
-  eye->SetPosition(centre[0] - 2.0 * radius * dir[0], centre[1] - 2.0 * radius * dir[1],
+  eye->SetPosition(centre[0] - 2.0 * radius * dir[0],
+    centre[1] - 2.0 * radius * dir[1],
     centre[2] - 2.0 * radius * dir[2]);
   eye->SetFocalPoint(centre);
   eye->SetViewUp(up);
@@ -173,8 +174,14 @@ int vtkMetaballShadowHelper::Cast(vtkRenderer* ren,
     vtkNew<vtkMatrix4x4> modelToLight, lightToClip;
     vtkMatrix4x4::Multiply4x4(eye->GetViewTransformMatrix(), model, modelToLight);
     lightToClip->DeepCopy(eye->GetProjectionTransformMatrix(1.0, -1, 1));
-    if (!this->LightGrid->Build(renWin, balls.Balls, balls.Count, modelToLight->GetData(),
-          lightToClip->GetData(), eye->GetParallelProjection() != 0, LightSize, LightSize))
+    if (!this->LightGrid->Build(renWin,
+          balls.Balls,
+          balls.Count,
+          modelToLight->GetData(),
+          lightToClip->GetData(),
+          eye->GetParallelProjection() != 0,
+          LightSize,
+          LightSize))
     {
       return 0;
     }
@@ -210,7 +217,8 @@ int vtkMetaballShadowHelper::Cast(vtkRenderer* ren,
     glBindImageTexture(
       3, this->ShadowImage->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     shadow->Dispatch(vtkComputeShaderProgram::GroupCount(width, 16),
-      vtkComputeShaderProgram::GroupCount(height, 16), 1,
+      vtkComputeShaderProgram::GroupCount(height, 16),
+      1,
       GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     shadow->Unbind();
   }

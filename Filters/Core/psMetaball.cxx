@@ -33,8 +33,8 @@ double KernelValue(MetaballKernel kernel, double x, double* derivative)
   double slope = 0.0, value = 0.0;
   if (x < 1.0)
   {
-    value = VisitMetaballKernel<double>(
-      kernel, [&](auto k) { return k.Value(std::max(x, 0.0), slope); });
+    value =
+      VisitMetaballKernel<double>(kernel, [&](auto k) { return k.Value(std::max(x, 0.0), slope); });
   }
   if (derivative)
   {
@@ -316,7 +316,8 @@ PerspectiveGrid BuildPerspectiveGrid(const MetaballSet& set, const GridView& vie
     {
       ++grid.Invalid;
     }
-    else if (geometry.Outside(cv, set.Radii[i]) || !geometry.Range(cv, set.Radii[i], &ranges[6 * i]))
+    else if (geometry.Outside(cv, set.Radii[i]) ||
+      !geometry.Range(cv, set.Radii[i], &ranges[6 * i]))
     {
       ++grid.Culled;
     }
@@ -325,9 +326,15 @@ PerspectiveGrid BuildPerspectiveGrid(const MetaballSet& set, const GridView& vie
       placed[i] = 1;
     }
   }
-  grid.MaxPerVoxel = static_cast<unsigned>(SortIntoVoxels(set.Count, grid.TilesX, grid.TilesY,
-    grid.Slabs, VoxelOrder::SlabMajor,
-    [&](long long i) { return placed[i] ? &ranges[6 * i] : nullptr; }, grid.Offsets, grid.Balls));
+  grid.MaxPerVoxel = static_cast<unsigned>(SortIntoVoxels(
+    set.Count,
+    grid.TilesX,
+    grid.TilesY,
+    grid.Slabs,
+    VoxelOrder::SlabMajor,
+    [&](long long i) { return placed[i] ? &ranges[6 * i] : nullptr; },
+    grid.Offsets,
+    grid.Balls));
   grid.Pairs = static_cast<long long>(grid.Balls.size());
   return grid;
 }

@@ -25,7 +25,7 @@
 
 #include "PointSurfacesFiltersModule.h" // For export macro
 
-#include "psMetaballKernels.h"  // For MetaballKernel
+#include "psMetaballKernels.h" // For MetaballKernel
 #include "psPerspectiveGrid.h" // For the grid geometry
 
 #include <vector> // For grid lists

@@ -881,7 +881,8 @@ void BuildGrid(const MetaballCastInput& in,
   balls.Q.assign(n, 1.0f);
   balls.Color.assign(n, 0xffffffffu);
   balls.Range.assign(6 * n, 0);
-  PerspectiveGridGeometry geometry(S.ViewToClip, S.Parallel, S.Width, S.Height, S.TileSize, S.Slabs);
+  PerspectiveGridGeometry geometry(
+    S.ViewToClip, S.Parallel, S.Width, S.Height, S.TileSize, S.Slabs);
   struct Extent
   {
     double Near = std::numeric_limits<double>::max();
@@ -960,9 +961,16 @@ void BuildGrid(const MetaballCastInput& in,
     });
   stats.Culled += culled;
   // The lists, tile-major: a tile's slabs lie together.
-  stats.MaxPerVoxel = SortIntoVoxels(n, tilesX, tilesY, S.Slabs, VoxelOrder::TileMajor,
-    [&](long long i) { return balls.Range[6 * i] <= balls.Range[6 * i + 1] ? &balls.Range[6 * i] : nullptr; },
-    offsets, lists);
+  stats.MaxPerVoxel = SortIntoVoxels(
+    n,
+    tilesX,
+    tilesY,
+    S.Slabs,
+    VoxelOrder::TileMajor,
+    [&](long long i)
+    { return balls.Range[6 * i] <= balls.Range[6 * i + 1] ? &balls.Range[6 * i] : nullptr; },
+    offsets,
+    lists);
   stats.Pairs = static_cast<long long>(lists.size());
 }
 

@@ -65,8 +65,11 @@ struct MetaballKernelEnum
 using MetaballKernel = MetaballKernelEnum::Id;
 
 /** Every kernel, in MetaballKernel's order. */
-constexpr MetaballKernel AllMetaballKernels[] = { MetaballKernel::Wyvill, MetaballKernel::Quartic,
-  MetaballKernel::Gaussian, MetaballKernel::CubicSpline, MetaballKernel::WendlandC2,
+constexpr MetaballKernel AllMetaballKernels[] = { MetaballKernel::Wyvill,
+  MetaballKernel::Quartic,
+  MetaballKernel::Gaussian,
+  MetaballKernel::CubicSpline,
+  MetaballKernel::WendlandC2,
   MetaballKernel::WendlandC4 };
 
 /** How many kernels MetaballKernel names. */
@@ -75,7 +78,7 @@ constexpr int NumberOfMetaballKernels = sizeof(AllMetaballKernels) / sizeof(Meta
 namespace kernels
 {
 /** Wyvill's sixth-order polynomial in r (thesis eq. 1.4). */
-template <typename Real>
+template<typename Real>
 struct Wyvill
 {
   static constexpr MetaballKernel Id = MetaballKernel::Wyvill;
@@ -95,7 +98,7 @@ struct Wyvill
 };
 
 /** (1 - x)^2 (thesis eq. 1.3). */
-template <typename Real>
+template<typename Real>
 struct Quartic
 {
   static constexpr MetaballKernel Id = MetaballKernel::Quartic;
@@ -112,7 +115,7 @@ struct Quartic
 };
 
 /** A Gaussian of sharpness 4, shifted and scaled to 1 at x = 0 and 0 at x = 1. */
-template <typename Real>
+template<typename Real>
 struct Gaussian
 {
   static constexpr MetaballKernel Id = MetaballKernel::Gaussian;
@@ -132,7 +135,7 @@ struct Gaussian
 };
 
 /** The SPH M4 cubic spline, Gadget's convention (support radius = h). */
-template <typename Real>
+template<typename Real>
 struct CubicSpline
 {
   static constexpr MetaballKernel Id = MetaballKernel::CubicSpline;
@@ -160,7 +163,7 @@ struct CubicSpline
 };
 
 /** The SPH Wendland C2 kernel. */
-template <typename Real>
+template<typename Real>
 struct WendlandC2
 {
   static constexpr MetaballKernel Id = MetaballKernel::WendlandC2;
@@ -182,7 +185,7 @@ struct WendlandC2
 };
 
 /** The SPH Wendland C4 kernel. */
-template <typename Real>
+template<typename Real>
 struct WendlandC4
 {
   static constexpr MetaballKernel Id = MetaballKernel::WendlandC4;
@@ -209,7 +212,7 @@ struct WendlandC4
  * what it returns: one switch for every place that needs a kernel's formulas
  * inlined (an unknown value gives Wyvill, the default).
  */
-template <typename Real, typename Visitor>
+template<typename Real, typename Visitor>
 decltype(auto) VisitMetaballKernel(MetaballKernel kernel, Visitor&& visit)
 {
   switch (kernel)

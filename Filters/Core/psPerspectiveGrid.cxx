@@ -176,7 +176,8 @@ bool PerspectiveGridGeometry::Range(const double c[3], double r, int range[6]) c
   for (int k = 0; k < 8 && !everywhere; ++k)
   {
     const double clip[4] = { centre[0] + r * this->Corners[k][0],
-      centre[1] + r * this->Corners[k][1], centre[2] + r * this->Corners[k][2],
+      centre[1] + r * this->Corners[k][1],
+      centre[2] + r * this->Corners[k][2],
       centre[3] + r * this->Corners[k][3] };
     if (!(clip[3] > 0.0))
     {

@@ -121,7 +121,7 @@ private:
 enum class VoxelOrder
 {
   SlabMajor, ///< voxel = (slab * tilesY + ty) * tilesX + tx (the GPU's and the reference's)
-  TileMajor  ///< voxel = (ty * tilesX + tx) * slabs + slab (a tile's slabs together: the CPU caster's)
+  TileMajor ///< voxel = (ty * tilesX + tx) * slabs + slab (a tile's slabs together: the CPU caster's)
 };
 
 /**
@@ -131,7 +131,7 @@ enum class VoxelOrder
  * ball i's int[6] voxel range, or null when it is in no voxel. Returns the
  * largest list.
  */
-template <typename Offset, typename RangeOf>
+template<typename Offset, typename RangeOf>
 long long SortIntoVoxels(long long count,
   int tilesX,
   int tilesY,

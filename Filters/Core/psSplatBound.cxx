@@ -253,7 +253,8 @@ double DiscBound::BendRadius(double r, SplatBound& bound) const
   stoppers.clear();
   for (const Candidate& c : OffScratch())
   {
-    if (c.Rho < r && (c.E > 2.0 * this->Tol || c.Turned) && c.Rho >= this->P.CentreReach * this->Spacing)
+    if (c.Rho < r && (c.E > 2.0 * this->Tol || c.Turned) &&
+      c.Rho >= this->P.CentreReach * this->Spacing)
     {
       stoppers.push_back(&c);
     }
@@ -368,7 +369,8 @@ double DiscBound::RimRadius(double r, SplatBound& bound) const
     const auto range = this->NearBand(r - along, r + along);
     for (int k = 0; k < Directions && inside; ++k)
     {
-      const double u = r * std::cos(2.0 * Pi * k / Directions) / h, v = r * std::sin(2.0 * Pi * k / Directions) / h;
+      const double u = r * std::cos(2.0 * Pi * k / Directions) / h,
+                   v = r * std::sin(2.0 * Pi * k / Directions) / h;
       const double g = Evaluate(this->S.Fit.Coefficients, this->S.Fit.Degree, u, v);
       double p[3];
       for (int c = 0; c < 3; ++c)

@@ -426,8 +426,7 @@ void SplatBuild::Bound(BuiltSplat& b,
   BoundParameters bp;
   bp.Spacing = sp.Spacing;
   bp.Tolerance = tolerance * sp.Spacing;
-  bp.MaximumReach =
-    std::max(bp.MaximumReach, 2.0 * tolerance); // a looser patch may stray farther
+  bp.MaximumReach = std::max(bp.MaximumReach, 2.0 * tolerance); // a looser patch may stray farther
   bp.MeasureOnly = !bounded;
   bp.NormalAngle = params.NormalAngle;
   // BoundSplat's own fallback when the spacing is unknown: h.
@@ -661,11 +660,8 @@ double SplatBuild::MedianScale() const
     for (int t = 0; t < 64; ++t)
     {
       LocalFrame f;
-      if (this->PlaneOf(static_cast<long long>(gen() % static_cast<unsigned long long>(n)),
-            f,
-            ids,
-            d2,
-            coords))
+      if (this->PlaneOf(
+            static_cast<long long>(gen() % static_cast<unsigned long long>(n)), f, ids, d2, coords))
       {
         hs.push_back(f.Scale);
       }
@@ -702,9 +698,9 @@ void SplatBuild::QualityPositions(std::vector<Position>& positions, BuildResult&
   std::vector<long long> chosenAll;
   for (int level = 0; level < levels && !this->Aborted(); ++level)
   {
-    const double s = levels == 1 ? params.Quality
-                                 : params.CoarsestQuality +
-        (params.Quality - params.CoarsestQuality) * level / (levels - 1.0);
+    const double s = levels == 1
+      ? params.Quality
+      : params.CoarsestQuality + (params.Quality - params.CoarsestQuality) * level / (levels - 1.0);
     levelS = s;
     levelIndex = level;
     levelFit.MaximumDeviation = fit.MaximumDeviation * std::max(1.0, s / params.Quality);
@@ -716,7 +712,8 @@ void SplatBuild::QualityPositions(std::vector<Position>& positions, BuildResult&
         st = PointState::Free; // claims depend on s: redo them at this level
       }
     }
-    const std::vector<long long> chosen = SelectByQuality(index,
+    const std::vector<long long> chosen = SelectByQuality(
+      index,
       s,
       order,
       [this](long long i, LocalFrame& frame) { return this->FrameOf(i, frame); },
@@ -813,7 +810,6 @@ void SplatBuild::Fit(const std::vector<Position>& positions,
         }
       }
     });
-
 }
 
 //------------------------------------------------------------------------------

@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <utility>
 
@@ -40,6 +41,286 @@ constexpr int LargestImage = 1024;
 constexpr double PixelRadii = 0.5;
 constexpr double CoarsestPixel = 2.0;
 
+// The splats as the views see them: which take part, their origins (from
+// the mean of the valid ones, so that the depths, stored as floats, keep
+// their digits far from the coordinates' origin), normals, radii, depth
+// slacks (half a spacing) and the median radius.
+struct ViewedSplats
+{
+  long long N = 0;
+  std::vector<char> Valid;
+  std::vector<double> Origins, Normals, Slacks;
+  const double* Radii = nullptr;
+  double Median = 0.0;
+
+  // False when no splat takes part or the median radius is not positive.
+  bool Gather(const std::vector<Splat*>& splats, const std::vector<double>& radii)
+  {
+    const long long n = static_cast<long long>(splats.size());
+    this->N = n;
+    this->Radii = radii.data();
+    this->Valid.assign(static_cast<size_t>(n), 0);
+    std::vector<double> sorted;
+    double centre[3] = { 0.0, 0.0, 0.0 };
+    long long count = 0;
+    for (long long i = 0; i < n; ++i)
+    {
+      const LocalFrame& f = splats[i]->Frame;
+      this->Valid[i] = std::isfinite(vtkMath::Dot(f.Origin, f.Origin)) &&
+        std::isfinite(vtkMath::Dot(f.Normal, f.Normal)) && std::isfinite(radii[i]) &&
+        radii[i] >= 0.0;
+      if (this->Valid[i])
+      {
+        sorted.push_back(radii[i]);
+        for (int c = 0; c < 3; ++c)
+        {
+          centre[c] += f.Origin[c];
+        }
+        ++count;
+      }
+    }
+    if (count == 0)
+    {
+      return false;
+    }
+    std::nth_element(sorted.begin(), sorted.begin() + count / 2, sorted.end());
+    this->Median = sorted[count / 2];
+    if (!(this->Median > 0.0))
+    {
+      return false;
+    }
+    for (double& c : centre)
+    {
+      c /= static_cast<double>(count);
+    }
+    this->Origins.assign(3 * static_cast<size_t>(n), 0.0);
+    this->Normals.assign(3 * static_cast<size_t>(n), 0.0);
+    this->Slacks.assign(static_cast<size_t>(n), 0.0);
+    for (long long i = 0; i < n; ++i)
+    {
+      if (!this->Valid[i])
+      {
+        continue;
+      }
+      const LocalFrame& f = splats[i]->Frame;
+      for (int c = 0; c < 3; ++c)
+      {
+        this->Origins[3 * i + c] = f.Origin[c] - centre[c];
+        this->Normals[3 * i + c] = f.Normal[c];
+      }
+      this->Slacks[i] = 0.5 * (splats[i]->Spacing > 0.0 ? splats[i]->Spacing : radii[i]);
+    }
+    return true;
+  }
+};
+
+// One end of each of the 13 axes of a cube's neighbours (its first non-zero
+// component positive).
+std::vector<std::array<double, 3>> ViewAxes()
+{
+  std::vector<std::array<double, 3>> axes;
+  for (int i = -1; i <= 1; ++i)
+  {
+    for (int j = -1; j <= 1; ++j)
+    {
+      for (int k = -1; k <= 1; ++k)
+      {
+        if (i > 0 || (i == 0 && (j > 0 || (j == 0 && k > 0))))
+        {
+          const double length = std::sqrt(double(i * i + j * j + k * k));
+          axes.push_back({ i / length, j / length, k / length });
+        }
+      }
+    }
+  }
+  return axes;
+}
+
+// The depth images of the splats along one axis u: the nearest and the
+// farthest depth per pixel, seen in parallel projection. Its buffers are
+// kept from one axis to the next of a thread.
+class AxisImage
+{
+public:
+  explicit AxisImage(const ViewedSplats* splats = nullptr)
+    : S(splats)
+  {
+  }
+
+  // Each disc's centre on the image of axis `axis`, and its plane's depth
+  // there and gradient; false when the image's pixels would pass
+  // CoarsestPixel median radii (no votes from this axis).
+  bool Project(const double axis[3]);
+  // The discs into the nearest and farthest depth images.
+  void Draw();
+  // Whether each splat is seen from the + end (bit 0) and the - end (bit 1).
+  void See(unsigned char* sight) const;
+
+private:
+  int Column(double value) const
+  {
+    return std::min(
+      this->Width - 1, std::max(0, static_cast<int>((value - this->Lo[0]) / this->Pixel)));
+  }
+  int Row(double value) const
+  {
+    return std::min(
+      this->Height - 1, std::max(0, static_cast<int>((value - this->Lo[1]) / this->Pixel)));
+  }
+  // Splat i's depth at its own centre's pixel (x, y): its plane's at the
+  // pixel's centre, where its disc reaches that far, else its centre's.
+  double OwnDepth(long long i, int x, int y) const
+  {
+    const double ga = this->Gradient[2 * i], gb = this->Gradient[2 * i + 1];
+    const double da = this->Lo[0] + (x + 0.5) * this->Pixel - this->A[i];
+    const double db = this->Lo[1] + (y + 0.5) * this->Pixel - this->B[i];
+    const double dt = ga * da + gb * db;
+    const double t0 = -vtkMath::Dot(&this->S->Origins[3 * i], this->U);
+    const double r = this->S->Radii[i];
+    return da * da + db * db + dt * dt <= r * r ? t0 + dt : t0;
+  }
+
+  const ViewedSplats* S;
+  double U[3] = { 0.0, 0.0, 1.0 };
+  std::vector<double> A, B, Gradient;
+  std::vector<float> Near, Far;
+  double Lo[2] = { 0.0, 0.0 }, Hi[2] = { 0.0, 0.0 };
+  double Pixel = 1.0;
+  int Width = 1, Height = 1;
+};
+
+//------------------------------------------------------------------------------
+bool AxisImage::Project(const double axis[3])
+{
+  const double* u = axis;
+  std::copy(axis, axis + 3, this->U);
+  const long long n = this->S->N;
+  this->A.resize(static_cast<size_t>(n));
+  this->B.resize(static_cast<size_t>(n));
+  this->Gradient.resize(2 * static_cast<size_t>(n));
+  // The image plane's axes a and b.
+  const int least = std::abs(u[0]) < std::abs(u[1]) ? (std::abs(u[0]) < std::abs(u[2]) ? 0 : 2)
+                                                    : (std::abs(u[1]) < std::abs(u[2]) ? 1 : 2);
+  double e[3] = { 0.0, 0.0, 0.0 };
+  e[least] = 1.0;
+  double a[3], b[3];
+  vtkMath::Cross(u, e, a);
+  vtkMath::Normalize(a);
+  vtkMath::Cross(u, a, b);
+  // Each disc's centre on the image, and its plane's depth t (along
+  // -u) there and its gradient: t = -o.u + ga da + gb db.
+  this->Lo[0] = this->Lo[1] = std::numeric_limits<double>::max();
+  this->Hi[0] = this->Hi[1] = -std::numeric_limits<double>::max();
+  for (long long i = 0; i < n; ++i)
+  {
+    if (!this->S->Valid[i])
+    {
+      continue;
+    }
+    const double* o = &this->S->Origins[3 * i];
+    const double* m = &this->S->Normals[3 * i];
+    this->A[i] = vtkMath::Dot(o, a);
+    this->B[i] = vtkMath::Dot(o, b);
+    const double nu = vtkMath::Dot(m, u);
+    const bool steep = std::abs(nu) > 1e-6;
+    this->Gradient[2 * i] = steep ? vtkMath::Dot(m, a) / nu : 0.0;
+    this->Gradient[2 * i + 1] = steep ? vtkMath::Dot(m, b) / nu : 0.0;
+    this->Lo[0] = std::min(this->Lo[0], this->A[i] - this->S->Radii[i]);
+    this->Hi[0] = std::max(this->Hi[0], this->A[i] + this->S->Radii[i]);
+    this->Lo[1] = std::min(this->Lo[1], this->B[i] - this->S->Radii[i]);
+    this->Hi[1] = std::max(this->Hi[1], this->B[i] + this->S->Radii[i]);
+  }
+  this->Pixel = std::max({ PixelRadii * this->S->Median,
+    (this->Hi[0] - this->Lo[0]) / LargestImage,
+    (this->Hi[1] - this->Lo[1]) / LargestImage });
+  if (!(this->Pixel <= CoarsestPixel * this->S->Median))
+  {
+    return false;
+  }
+  this->Width = static_cast<int>((this->Hi[0] - this->Lo[0]) / this->Pixel) + 1;
+  this->Height = static_cast<int>((this->Hi[1] - this->Lo[1]) / this->Pixel) + 1;
+  const size_t pixels = static_cast<size_t>(this->Width) * this->Height;
+  this->Near.assign(pixels, std::numeric_limits<float>::max());
+  this->Far.assign(pixels, -std::numeric_limits<float>::max());
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void AxisImage::Draw()
+{
+  const double* u = this->U;
+  const long long n = this->S->N;
+  for (long long i = 0; i < n; ++i)
+  {
+    if (!this->S->Valid[i] || !(std::abs(vtkMath::Dot(&this->S->Normals[3 * i], u)) > 1e-6))
+    {
+      continue; // seen edge on
+    }
+    const double t0 = -vtkMath::Dot(&this->S->Origins[3 * i], u), ga = this->Gradient[2 * i],
+                 gb = this->Gradient[2 * i + 1], r2 = this->S->Radii[i] * this->S->Radii[i];
+    const double ca = this->A[i], cb = this->B[i];
+    // Row by row, the pixels whose rays meet the plane within the
+    // disc: at (da, db) from the centre the ray meets it at depth
+    // t0 + dt, dt = ga da + gb db, da a + db b - dt u from the
+    // centre, inside where da^2 + db^2 + dt^2 <= r^2: an interval
+    // of da, (-ga gb db +- sqrt(D)) / (1 + ga^2) with
+    // D = (1 + ga^2) r^2 - (1 + ga^2 + gb^2) db^2.
+    const double qa = 1.0 + ga * ga;
+    for (int y = this->Row(cb - this->S->Radii[i]), y1 = this->Row(cb + this->S->Radii[i]); y <= y1;
+         ++y)
+    {
+      const double db = this->Lo[1] + (y + 0.5) * this->Pixel - cb;
+      const double discriminant = qa * r2 - (qa + gb * gb) * db * db;
+      if (!(discriminant >= 0.0))
+      {
+        continue;
+      }
+      const double root = std::sqrt(discriminant), middle = -ga * gb * db;
+      const double first = ca + (middle - root) / qa - this->Lo[0];
+      const double last = ca + (middle + root) / qa - this->Lo[0];
+      const int x0 = std::max(0, static_cast<int>(std::ceil(first / this->Pixel - 0.5)));
+      const int x1 =
+        std::min(this->Width - 1, static_cast<int>(std::floor(last / this->Pixel - 0.5)));
+      float* nearRow = this->Near.data() + static_cast<size_t>(y) * this->Width;
+      float* farRow = this->Far.data() + static_cast<size_t>(y) * this->Width;
+      for (int x = x0; x <= x1; ++x)
+      {
+        const float t =
+          static_cast<float>(t0 + ga * (this->Lo[0] + (x + 0.5) * this->Pixel - ca) + gb * db);
+        nearRow[x] = std::min(nearRow[x], t);
+        farRow[x] = std::max(farRow[x], t);
+      }
+    }
+    // A disc that misses its own pixel's centre still hides it, at
+    // its centre's depth.
+    const int x = this->Column(ca), y = this->Row(cb);
+    const float t = static_cast<float>(this->OwnDepth(i, x, y));
+    const size_t p = static_cast<size_t>(y) * this->Width + x;
+    this->Near[p] = std::min(this->Near[p], t);
+    this->Far[p] = std::max(this->Far[p], t);
+  }
+}
+
+//------------------------------------------------------------------------------
+void AxisImage::See(unsigned char* sight) const
+{
+  const double* u = this->U;
+  const long long n = this->S->N;
+  for (long long i = 0; i < n; ++i)
+  {
+    if (!this->S->Valid[i] || !(std::abs(vtkMath::Dot(&this->S->Normals[3 * i], u)) > Facing))
+    {
+      continue;
+    }
+    const int x = this->Column(this->A[i]), y = this->Row(this->B[i]);
+    const double t = this->OwnDepth(i, x, y);
+    const size_t p = static_cast<size_t>(y) * this->Width + x;
+    // Seen from the + end (nearest depth) and from the - end (farthest).
+    sight[i] = static_cast<unsigned char>((t <= this->Near[p] + this->S->Slacks[i] ? 1 : 0) |
+      (t >= this->Far[p] - this->S->Slacks[i] ? 2 : 0));
+  }
+}
+
 // How the splats are seen from outside: from each of the 26 directions of a
 // cube's neighbours (13 axes, each seen from both ends), the discs are
 // drawn in parallel projection into a depth image (pixels of PixelRadii
@@ -61,217 +342,30 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
   const long long n = static_cast<long long>(splats.size());
   votes.assign(static_cast<size_t>(n), 0.0);
   seen.assign(static_cast<size_t>(n), 0.0);
-  std::vector<char> valid(static_cast<size_t>(n), 0);
-  std::vector<double> sorted;
-  double centre[3] = { 0.0, 0.0, 0.0 };
-  long long count = 0;
-  for (long long i = 0; i < n; ++i)
-  {
-    const LocalFrame& f = splats[i]->Frame;
-    valid[i] = std::isfinite(vtkMath::Dot(f.Origin, f.Origin)) &&
-      std::isfinite(vtkMath::Dot(f.Normal, f.Normal)) && std::isfinite(radii[i]) && radii[i] >= 0.0;
-    if (valid[i])
-    {
-      sorted.push_back(radii[i]);
-      for (int c = 0; c < 3; ++c)
-      {
-        centre[c] += f.Origin[c];
-      }
-      ++count;
-    }
-  }
-  if (count == 0)
+  ViewedSplats viewed;
+  if (!viewed.Gather(splats, radii))
   {
     return;
   }
-  std::nth_element(sorted.begin(), sorted.begin() + count / 2, sorted.end());
-  const double median = sorted[count / 2];
-  if (!(median > 0.0))
-  {
-    return;
-  }
-  // Origins from their mean, so that the depths, stored as floats, keep
-  // their digits far from the coordinates' origin; normals and slacks;
-  // gathered once for the 13 passes.
-  for (double& c : centre)
-  {
-    c /= static_cast<double>(count);
-  }
-  std::vector<double> origins(3 * static_cast<size_t>(n), 0.0),
-    normals(3 * static_cast<size_t>(n), 0.0), slacks(static_cast<size_t>(n), 0.0);
-  for (long long i = 0; i < n; ++i)
-  {
-    if (!valid[i])
-    {
-      continue;
-    }
-    const LocalFrame& f = splats[i]->Frame;
-    for (int c = 0; c < 3; ++c)
-    {
-      origins[3 * i + c] = f.Origin[c] - centre[c];
-      normals[3 * i + c] = f.Normal[c];
-    }
-    slacks[i] = 0.5 * (splats[i]->Spacing > 0.0 ? splats[i]->Spacing : radii[i]);
-  }
-  // One end of each axis (its first non-zero component positive).
-  std::vector<std::array<double, 3>> axes;
-  for (int i = -1; i <= 1; ++i)
-  {
-    for (int j = -1; j <= 1; ++j)
-    {
-      for (int k = -1; k <= 1; ++k)
-      {
-        if (i > 0 || (i == 0 && (j > 0 || (j == 0 && k > 0))))
-        {
-          const double length = std::sqrt(double(i * i + j * j + k * k));
-          axes.push_back({ i / length, j / length, k / length });
-        }
-      }
-    }
-  }
+  const std::vector<std::array<double, 3>> axes = ViewAxes();
   // What each axis sees of each splat: bit 0 from its + end, bit 1 from its
   // - end; summed in the axes' order below, so that the votes do not
   // depend on the threads.
   const size_t axisCount = axes.size();
   std::vector<unsigned char> sights(axisCount * static_cast<size_t>(n), 0);
-  struct Scratch
-  {
-    std::vector<double> A, B, Gradient;
-    std::vector<float> Near, Far;
-  };
-  vtkSMPThreadLocal<Scratch> scratches;
+  vtkSMPThreadLocal<AxisImage> images(AxisImage{ &viewed });
   vtkSMPTools::For(0,
     static_cast<vtkIdType>(axisCount),
     1,
     [&](vtkIdType begin, vtkIdType end)
     {
-      Scratch& scratch = scratches.Local();
-      scratch.A.resize(static_cast<size_t>(n));
-      scratch.B.resize(static_cast<size_t>(n));
-      scratch.Gradient.resize(2 * static_cast<size_t>(n));
+      AxisImage& image = images.Local();
       for (vtkIdType axis = begin; axis < end; ++axis)
       {
-        const double* u = axes[axis].data();
-        unsigned char* sight = sights.data() + static_cast<size_t>(axis) * n;
-        // The image plane's axes a and b.
-        const int least = std::abs(u[0]) < std::abs(u[1])
-          ? (std::abs(u[0]) < std::abs(u[2]) ? 0 : 2)
-          : (std::abs(u[1]) < std::abs(u[2]) ? 1 : 2);
-        double e[3] = { 0.0, 0.0, 0.0 };
-        e[least] = 1.0;
-        double a[3], b[3];
-        vtkMath::Cross(u, e, a);
-        vtkMath::Normalize(a);
-        vtkMath::Cross(u, a, b);
-        // Each disc's centre on the image, and its plane's depth t (along
-        // -u) there and its gradient: t = -o.u + ga da + gb db.
-        double lo[2] = { std::numeric_limits<double>::max(), std::numeric_limits<double>::max() };
-        double hi[2] = { -lo[0], -lo[1] };
-        for (long long i = 0; i < n; ++i)
+        if (image.Project(axes[axis].data()))
         {
-          if (!valid[i])
-          {
-            continue;
-          }
-          const double* o = &origins[3 * i];
-          const double* m = &normals[3 * i];
-          scratch.A[i] = vtkMath::Dot(o, a);
-          scratch.B[i] = vtkMath::Dot(o, b);
-          const double nu = vtkMath::Dot(m, u);
-          const bool steep = std::abs(nu) > 1e-6;
-          scratch.Gradient[2 * i] = steep ? vtkMath::Dot(m, a) / nu : 0.0;
-          scratch.Gradient[2 * i + 1] = steep ? vtkMath::Dot(m, b) / nu : 0.0;
-          lo[0] = std::min(lo[0], scratch.A[i] - radii[i]);
-          hi[0] = std::max(hi[0], scratch.A[i] + radii[i]);
-          lo[1] = std::min(lo[1], scratch.B[i] - radii[i]);
-          hi[1] = std::max(hi[1], scratch.B[i] + radii[i]);
-        }
-        const double pixel = std::max(
-          { PixelRadii * median, (hi[0] - lo[0]) / LargestImage, (hi[1] - lo[1]) / LargestImage });
-        if (!(pixel <= CoarsestPixel * median))
-        {
-          continue;
-        }
-        const int width = static_cast<int>((hi[0] - lo[0]) / pixel) + 1;
-        const int height = static_cast<int>((hi[1] - lo[1]) / pixel) + 1;
-        const size_t pixels = static_cast<size_t>(width) * height;
-        scratch.Near.assign(pixels, std::numeric_limits<float>::max());
-        scratch.Far.assign(pixels, -std::numeric_limits<float>::max());
-        auto column = [&](double value)
-        { return std::min(width - 1, std::max(0, static_cast<int>((value - lo[0]) / pixel))); };
-        auto row = [&](double value)
-        { return std::min(height - 1, std::max(0, static_cast<int>((value - lo[1]) / pixel))); };
-        // Splat i's depth at its own centre's pixel (x, y): its plane's at
-        // the pixel's centre, where its disc reaches that far, else its
-        // centre's.
-        auto ownDepth = [&](long long i, int x, int y)
-        {
-          const double ga = scratch.Gradient[2 * i], gb = scratch.Gradient[2 * i + 1];
-          const double da = lo[0] + (x + 0.5) * pixel - scratch.A[i];
-          const double db = lo[1] + (y + 0.5) * pixel - scratch.B[i];
-          const double dt = ga * da + gb * db;
-          const double t0 = -vtkMath::Dot(&origins[3 * i], u);
-          return da * da + db * db + dt * dt <= radii[i] * radii[i] ? t0 + dt : t0;
-        };
-        for (long long i = 0; i < n; ++i)
-        {
-          if (!valid[i] || !(std::abs(vtkMath::Dot(&normals[3 * i], u)) > 1e-6))
-          {
-            continue; // seen edge on
-          }
-          const double t0 = -vtkMath::Dot(&origins[3 * i], u), ga = scratch.Gradient[2 * i],
-                       gb = scratch.Gradient[2 * i + 1], r2 = radii[i] * radii[i];
-          const double ca = scratch.A[i], cb = scratch.B[i];
-          // Row by row, the pixels whose rays meet the plane within the
-          // disc: at (da, db) from the centre the ray meets it at depth
-          // t0 + dt, dt = ga da + gb db, da a + db b - dt u from the
-          // centre, inside where da^2 + db^2 + dt^2 <= r^2: an interval
-          // of da, (-ga gb db +- sqrt(D)) / (1 + ga^2) with
-          // D = (1 + ga^2) r^2 - (1 + ga^2 + gb^2) db^2.
-          const double qa = 1.0 + ga * ga;
-          for (int y = row(cb - radii[i]), y1 = row(cb + radii[i]); y <= y1; ++y)
-          {
-            const double db = lo[1] + (y + 0.5) * pixel - cb;
-            const double discriminant = qa * r2 - (qa + gb * gb) * db * db;
-            if (!(discriminant >= 0.0))
-            {
-              continue;
-            }
-            const double root = std::sqrt(discriminant), middle = -ga * gb * db;
-            const double first = ca + (middle - root) / qa - lo[0];
-            const double last = ca + (middle + root) / qa - lo[0];
-            const int x0 = std::max(0, static_cast<int>(std::ceil(first / pixel - 0.5)));
-            const int x1 = std::min(width - 1, static_cast<int>(std::floor(last / pixel - 0.5)));
-            float* nearRow = scratch.Near.data() + static_cast<size_t>(y) * width;
-            float* farRow = scratch.Far.data() + static_cast<size_t>(y) * width;
-            for (int x = x0; x <= x1; ++x)
-            {
-              const float t =
-                static_cast<float>(t0 + ga * (lo[0] + (x + 0.5) * pixel - ca) + gb * db);
-              nearRow[x] = std::min(nearRow[x], t);
-              farRow[x] = std::max(farRow[x], t);
-            }
-          }
-          // A disc that misses its own pixel's centre still hides it, at
-          // its centre's depth.
-          const int x = column(ca), y = row(cb);
-          const float t = static_cast<float>(ownDepth(i, x, y));
-          const size_t p = static_cast<size_t>(y) * width + x;
-          scratch.Near[p] = std::min(scratch.Near[p], t);
-          scratch.Far[p] = std::max(scratch.Far[p], t);
-        }
-        for (long long i = 0; i < n; ++i)
-        {
-          if (!valid[i] || !(std::abs(vtkMath::Dot(&normals[3 * i], u)) > Facing))
-          {
-            continue;
-          }
-          const int x = column(scratch.A[i]), y = row(scratch.B[i]);
-          const double t = ownDepth(i, x, y);
-          const size_t p = static_cast<size_t>(y) * width + x;
-          // Seen from the + end (nearest depth) and from the - end (farthest).
-          sight[i] = static_cast<unsigned char>(
-            (t <= scratch.Near[p] + slacks[i] ? 1 : 0) | (t >= scratch.Far[p] - slacks[i] ? 2 : 0));
+          image.Draw();
+          image.See(sights.data() + static_cast<size_t>(axis) * n);
         }
       }
     });
@@ -282,7 +376,7 @@ void VisibilityVotes(const std::vector<Splat*>& splats,
     {
       if (sight[i])
       {
-        const double nu = vtkMath::Dot(&normals[3 * i], axes[axis].data());
+        const double nu = vtkMath::Dot(&viewed.Normals[3 * i], axes[axis].data());
         const int ends = (sight[i] & 1) + (sight[i] >> 1);
         votes[i] += ((sight[i] & 1) ? nu : 0.0) - ((sight[i] & 2) ? nu : 0.0);
         seen[i] += ends * std::abs(nu);
@@ -355,30 +449,30 @@ private:
     }
   };
 
-// The cost of an edge: how far the normals turn (Hoppe's 1 - |n_i.n_j|),
-// plus how steeply the edge leaves each splat's plane (|e.n| for the unit
-// edge e). Along the surface an edge lies nearly in both planes; between
-// the two faces of a thin part it runs along their normals, which are
-// antiparallel and so turn by nothing: by angle alone such an edge was as
-// cheap as any, and the propagation crossed through the part and turned
-// one face inward (a third of Lucy's splats).
+  // The cost of an edge: how far the normals turn (Hoppe's 1 - |n_i.n_j|),
+  // plus how steeply the edge leaves each splat's plane (|e.n| for the unit
+  // edge e). Along the surface an edge lies nearly in both planes; between
+  // the two faces of a thin part it runs along their normals, which are
+  // antiparallel and so turn by nothing: by angle alone such an edge was as
+  // cheap as any, and the propagation crossed through the part and turned
+  // one face inward (a third of Lucy's splats).
   double Cost(long long i, long long j) const;
   int Find(int i);
-// Minimum spanning trees (Kruskal's algorithm) over the edges whose ends
-// `use` accepts, with each set of `joined` splats one node from the start
-// (the seeds of a part: the tree then grows from all of them at once,
-// as Prim's algorithm would from several roots). `tree` receives each
-// splat's tree neighbours.
-  template <typename Use>
+  // Minimum spanning trees (Kruskal's algorithm) over the edges whose ends
+  // `use` accepts, with each set of `joined` splats one node from the start
+  // (the seeds of a part: the tree then grows from all of them at once,
+  // as Prim's algorithm would from several roots). `tree` receives each
+  // splat's tree neighbours.
+  template<typename Use>
   void Span(Use&& use, const std::vector<std::vector<long long>>& joined);
   void Flip(long long i)
   {
     FlipSplat(*this->Splats[i]);
     this->Turned[i] = !this->Turned[i];
   }
-// From the splats in `front` (oriented already), along the tree: each
-// splat reached takes the side of the one it is reached from, and is
-// added to `reached` when given.
+  // From the splats in `front` (oriented already), along the tree: each
+  // splat reached takes the side of the one it is reached from, and is
+  // added to `reached` when given.
   void Grow(std::vector<long long> front, std::vector<long long>* reached);
   // Which way is out, on a closed part: there the integral of (x - c).n
   // over the area is three times the enclosed volume, positive for
@@ -531,7 +625,7 @@ int Orientation::Find(int i)
 }
 
 //------------------------------------------------------------------------------
-template <typename Use>
+template<typename Use>
 void Orientation::Span(Use&& use, const std::vector<std::vector<long long>>& joined)
 {
   std::vector<int>& root = this->Root;
@@ -628,8 +722,7 @@ bool Orientation::OrientByFlux(const std::vector<long long>& part)
     flux += w * along;
     magnitude += w * std::abs(along);
   }
-  const double open =
-    std::sqrt(area[0] * area[0] + area[1] * area[1] + area[2] * area[2]) / weight;
+  const double open = std::sqrt(area[0] * area[0] + area[1] * area[1] + area[2] * area[2]) / weight;
   if (open < OpenSheet && flux < -Decisive * magnitude)
   {
     for (const long long i : part)
@@ -650,8 +743,9 @@ void Orientation::CheckByViews(const std::vector<long long>& part)
     std::vector<double> r(static_cast<size_t>(n));
     for (long long i = 0; i < n; ++i)
     {
-      r[i] =
-        this->Radii && this->Radii->size() == static_cast<size_t>(n) ? (*this->Radii)[i] : this->Splats[i]->Frame.Scale;
+      r[i] = this->Radii && this->Radii->size() == static_cast<size_t>(n)
+        ? (*this->Radii)[i]
+        : this->Splats[i]->Frame.Scale;
     }
     VisibilityVotes(this->Splats, r, this->Votes, this->Seen);
     this->TurnedWhenSeen = this->Turned;

@@ -249,7 +249,8 @@ int TestMetaballCast(int, char*[])
   }
   for (int k = 0; k < 6; ++k)
   {
-    const std::string what = std::string(pointsurfaces::MetaballKernelName(MetaballKernels[k])) + ", perspective";
+    const std::string what =
+      std::string(pointsurfaces::MetaballKernelName(MetaballKernels[k])) + ", perspective";
     Check(Compare(scene, MetaballKernels[k], MakeSettings(100, 90, false), what.c_str()),
       "the CPU caster matches the reference in perspective");
   }

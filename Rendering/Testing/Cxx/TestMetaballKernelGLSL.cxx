@@ -70,7 +70,7 @@ bool RunShader(vtkOpenGLRenderWindow* win,
 }
 
 // The table's value and slope in float, with the double reference's clamping.
-template <typename K>
+template<typename K>
 void Table(float x, float& value, float& slope)
 {
   value = slope = 0.0f;
@@ -148,8 +148,14 @@ int TestMetaballKernelGLSL(int, char*[])
   {
     arguments.push_back(-0.01f + 1.02f * static_cast<float>(i) / 4096.0f);
   }
-  for (float x : { 0.0f, 1.0f, 0.25f, std::nextafter(0.25f, 0.0f), std::nextafter(0.25f, 1.0f),
-         std::nextafter(1.0f, 0.0f), 1e-30f, 1e-8f })
+  for (float x : { 0.0f,
+         1.0f,
+         0.25f,
+         std::nextafter(0.25f, 0.0f),
+         std::nextafter(0.25f, 1.0f),
+         std::nextafter(1.0f, 0.0f),
+         1e-30f,
+         1e-8f })
   {
     arguments.push_back(x);
   }
