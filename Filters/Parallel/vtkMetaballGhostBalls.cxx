@@ -200,6 +200,105 @@ std::vector<vtkIdType> AllIds(vtkIdType n)
   }
   return ids;
 }
+// The point-set leaves of `input`, in order (itself when it is one).
+std::vector<vtkPointSet*> PointSetLeaves(vtkDataObject* input)
+{
+  std::vector<vtkPointSet*> leaves;
+  if (vtkCompositeDataSet* composite = vtkCompositeDataSet::SafeDownCast(input))
+  {
+    vtkSmartPointer<vtkCompositeDataIterator> it =
+      vtkSmartPointer<vtkCompositeDataIterator>::Take(composite->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      if (vtkPointSet* leaf = vtkPointSet::SafeDownCast(it->GetCurrentDataObject()))
+      {
+        leaves.push_back(leaf);
+      }
+    }
+  }
+  else if (vtkPointSet* set = vtkPointSet::SafeDownCast(input))
+  {
+    leaves.push_back(set);
+  }
+
+  return leaves;
+}
+
+// Each leaf as a point cloud of its own balls (`own`); `received`, when
+// given, follows the first non-empty one. Split across processes, each
+// cloud flags what follows its own balls as ghosts.
+std::vector<vtkSmartPointer<vtkPolyData>> OwnClouds(const std::vector<vtkPointSet*>& leaves,
+  const std::vector<std::vector<vtkIdType>>& own,
+  vtkPolyData* received,
+  bool split,
+  std::set<std::string>& missing,
+  bool& placed)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> clouds;
+  placed = false;
+  for (size_t k = 0; k < leaves.size(); ++k)
+  {
+    std::vector<vtkPointSet*> sets{ leaves[k] };
+    std::vector<std::vector<vtkIdType>> keep{ own[k] };
+    const bool here = received && !placed && !own[k].empty();
+    if (here)
+    {
+      sets.push_back(received);
+      keep.push_back(AllIds(received->GetNumberOfPoints()));
+      placed = true;
+    }
+    vtkSmartPointer<vtkPolyData> cloud = MergePoints(sets, keep, missing);
+    cloud->GetFieldData()->PassData(leaves[k]->GetFieldData());
+    if (split)
+    {
+      vtkNew<vtkUnsignedCharArray> flags;
+      flags->SetName(vtkDataSetAttributes::GhostArrayName());
+      flags->SetNumberOfValues(cloud->GetNumberOfPoints());
+      flags->FillValue(0);
+      for (vtkIdType i = static_cast<vtkIdType>(own[k].size()); i < cloud->GetNumberOfPoints(); ++i)
+      {
+        flags->SetValue(i, vtkDataSetAttributes::DUPLICATEPOINT);
+      }
+      cloud->GetPointData()->AddArray(flags);
+    }
+    clouds.push_back(cloud);
+  }
+  return clouds;
+}
+
+// The clouds into `output`: the composite input's structure with each point
+// set leaf replaced by its cloud (others passed through), or the one cloud.
+void SetCloudsAsOutput(vtkDataObject* input,
+  vtkDataObject* output,
+  const std::vector<vtkSmartPointer<vtkPolyData>>& clouds)
+{
+  vtkCompositeDataSet* composite = vtkCompositeDataSet::SafeDownCast(input);
+  if (composite)
+  {
+    vtkCompositeDataSet* out = vtkCompositeDataSet::SafeDownCast(output);
+    out->CopyStructure(composite);
+    vtkSmartPointer<vtkCompositeDataIterator> it =
+      vtkSmartPointer<vtkCompositeDataIterator>::Take(composite->NewIterator());
+    size_t k = 0;
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    {
+      vtkDataObject* leaf = it->GetCurrentDataObject();
+      if (vtkPointSet::SafeDownCast(leaf))
+      {
+        out->SetDataSet(it, clouds[k++]);
+      }
+      else
+      {
+        out->SetDataSet(it, leaf); // not balls: passed through
+      }
+    }
+    out->GetFieldData()->PassData(composite->GetFieldData());
+  }
+  else if (!clouds.empty())
+  {
+    vtkPolyData::SafeDownCast(output)->ShallowCopy(clouds[0]);
+  }
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -264,6 +363,33 @@ double vtkMetaballGhostBalls::SpacingOfAllProcesses(const std::vector<vtkPointSe
   const std::vector<std::vector<vtkIdType>>& own,
   const std::vector<pointsurfaces::RadiusSource>& sources)
 {
+  const pointsurfaces::NearestNeighbours& mine = this->OwnNeighbours(leaves, own, sources);
+  std::vector<double> distances = mine.Distances;
+  this->NearestOnAllProcesses(mine, distances);
+  const int ranks = this->Controller->GetNumberOfProcesses();
+  // Every process's sum and count, added in rank order on every process:
+  // the same mean everywhere, to the last bit (a reduction's order may
+  // differ between processes).
+  const pointsurfaces::NeighbourSpacing local =
+    pointsurfaces::NearestNeighbours::Spacing(distances);
+  const double sums[2] = { local.Sum, static_cast<double>(local.Count) };
+  std::vector<double> all(2 * static_cast<size_t>(ranks));
+  this->Controller->AllGather(sums, all.data(), 2);
+  double sum = 0.0, count = 0.0;
+  for (int r = 0; r < ranks; ++r)
+  {
+    sum += all[2 * r];
+    count += all[2 * r + 1];
+  }
+  return count > 0.0 ? sum / count : 0.0;
+}
+
+//------------------------------------------------------------------------------
+const pointsurfaces::NearestNeighbours& vtkMetaballGhostBalls::OwnNeighbours(
+  const std::vector<vtkPointSet*>& leaves,
+  const std::vector<std::vector<vtkIdType>>& own,
+  const std::vector<pointsurfaces::RadiusSource>& sources)
+{
   // Our own balls of the leaves whose radii follow the spacing, each with
   // its nearest neighbour among them; measured again only when a leaf
   // changed.
@@ -297,9 +423,13 @@ double vtkMetaballGhostBalls::SpacingOfAllProcesses(const std::vector<vtkPointSe
     this->SpacingLeaves = measured;
     this->SpacingTimes = times;
   }
-  const pointsurfaces::NearestNeighbours& mine = *this->Neighbours;
-  std::vector<double> distances = mine.Distances;
+  return *this->Neighbours;
+}
 
+//------------------------------------------------------------------------------
+void vtkMetaballGhostBalls::NearestOnAllProcesses(const pointsurfaces::NearestNeighbours& mine,
+  std::vector<double>& distances)
+{
   // Points near a cut may have their nearest neighbour on another process.
   // Each process asks the others about its points whose distance to their
   // nearest here reaches that process's box (all of them when alone), and
@@ -385,22 +515,6 @@ double vtkMetaballGhostBalls::SpacingOfAllProcesses(const std::vector<vtkPointSe
       distances[asked[q]] = std::min(distances[asked[q]], replies[q]);
     }
   }
-
-  // Every process's sum and count, added in rank order on every process:
-  // the same mean everywhere, to the last bit (a reduction's order may
-  // differ between processes).
-  const pointsurfaces::NeighbourSpacing local =
-    pointsurfaces::NearestNeighbours::Spacing(distances);
-  const double sums[2] = { local.Sum, static_cast<double>(local.Count) };
-  std::vector<double> all(2 * static_cast<size_t>(ranks));
-  this->Controller->AllGather(sums, all.data(), 2);
-  double sum = 0.0, count = 0.0;
-  for (int r = 0; r < ranks; ++r)
-  {
-    sum += all[2 * r];
-    count += all[2 * r + 1];
-  }
-  return count > 0.0 ? sum / count : 0.0;
 }
 
 //------------------------------------------------------------------------------
@@ -411,26 +525,7 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
   vtkDataObject* input = vtkDataObject::GetData(inputVector[0], 0);
   vtkDataObject* output = vtkDataObject::GetData(outputVector, 0);
   this->NumberOfGhostBalls = 0;
-
-  // The point-set leaves, in order.
-  std::vector<vtkPointSet*> leaves;
-  vtkCompositeDataSet* composite = vtkCompositeDataSet::SafeDownCast(input);
-  if (composite)
-  {
-    vtkSmartPointer<vtkCompositeDataIterator> it =
-      vtkSmartPointer<vtkCompositeDataIterator>::Take(composite->NewIterator());
-    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
-    {
-      if (vtkPointSet* leaf = vtkPointSet::SafeDownCast(it->GetCurrentDataObject()))
-      {
-        leaves.push_back(leaf);
-      }
-    }
-  }
-  else if (vtkPointSet* set = vtkPointSet::SafeDownCast(input))
-  {
-    leaves.push_back(set);
-  }
+  const std::vector<vtkPointSet*> leaves = PointSetLeaves(input);
 
   // Our own balls: every point not flagged as another process's duplicate;
   // their centres and radii only when there are others to send them to.
@@ -493,98 +588,14 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
   std::set<std::string> missing; // point arrays some pieces lack
   if (ranks > 1)
   {
-    pointsurfaces::MetaballSet balls;
-    balls.Centers = centres.data();
-    balls.Radii = radii.data();
-    balls.Count = static_cast<long long>(radii.size());
-    double box[6];
-    pointsurfaces::SupportBounds(balls, box);
-    std::vector<double> boxes(6 * ranks);
-    this->Controller->AllGather(box, boxes.data(), 6);
-
-    // Our balls that reach each process's box, as (leaf, point) lists.
-    const int me = this->Controller->GetLocalProcessId();
-    std::vector<vtkSmartPointer<vtkDataObject>> pieces;
-    for (int rank = 0; rank < ranks; ++rank)
-    {
-      std::vector<std::vector<vtkIdType>> send(leaves.size());
-      if (rank != me)
-      {
-        const std::vector<long long> ids =
-          pointsurfaces::BallsReachingBox(balls, boxes.data() + 6 * rank);
-        size_t k = 0;
-        long long first = 0; // ball id of own[k][0]
-        for (long long id : ids)
-        {
-          while (id - first >= static_cast<long long>(own[k].size()))
-          {
-            first += static_cast<long long>(own[k].size());
-            ++k;
-          }
-          send[k].push_back(own[k][id - first]);
-        }
-      }
-      vtkSmartPointer<vtkDataObject> piece = vtkSmartPointer<vtkPolyData>::New();
-      if (!leaves.empty())
-      {
-        piece = MergePoints(leaves, send, missing);
-      }
-      std::vector<vtkSmartPointer<vtkDataObject>> gathered;
-      this->Controller->Gather(piece, gathered, rank);
-      if (rank == me)
-      {
-        pieces = gathered;
-      }
-    }
-    std::vector<vtkPointSet*> from;
-    std::vector<std::vector<vtkIdType>> all;
-    for (vtkDataObject* piece : pieces)
-    {
-      vtkPointSet* set = vtkPointSet::SafeDownCast(piece);
-      if (set && set->GetNumberOfPoints() > 0)
-      {
-        from.push_back(set);
-        all.push_back(AllIds(set->GetNumberOfPoints()));
-      }
-    }
-    if (!from.empty())
-    {
-      received = MergePoints(from, all, missing);
-      this->NumberOfGhostBalls = received->GetNumberOfPoints();
-    }
+    received = this->ExchangeGhosts(leaves, own, centres, radii, missing);
   }
 
   // Each leaf as a point cloud of its own balls; the ghosts follow the first
   // non-empty one, flagged.
-  std::vector<vtkSmartPointer<vtkPolyData>> clouds;
   bool placed = false;
-  for (size_t k = 0; k < leaves.size(); ++k)
-  {
-    std::vector<vtkPointSet*> sets{ leaves[k] };
-    std::vector<std::vector<vtkIdType>> keep{ own[k] };
-    const bool here = received && !placed && !own[k].empty();
-    if (here)
-    {
-      sets.push_back(received);
-      keep.push_back(AllIds(received->GetNumberOfPoints()));
-      placed = true;
-    }
-    vtkSmartPointer<vtkPolyData> cloud = MergePoints(sets, keep, missing);
-    cloud->GetFieldData()->PassData(leaves[k]->GetFieldData());
-    if (ranks > 1)
-    {
-      vtkNew<vtkUnsignedCharArray> flags;
-      flags->SetName(vtkDataSetAttributes::GhostArrayName());
-      flags->SetNumberOfValues(cloud->GetNumberOfPoints());
-      flags->FillValue(0);
-      for (vtkIdType i = static_cast<vtkIdType>(own[k].size()); i < cloud->GetNumberOfPoints(); ++i)
-      {
-        flags->SetValue(i, vtkDataSetAttributes::DUPLICATEPOINT);
-      }
-      cloud->GetPointData()->AddArray(flags);
-    }
-    clouds.push_back(cloud);
-  }
+  const std::vector<vtkSmartPointer<vtkPolyData>> clouds =
+    OwnClouds(leaves, own, received, ranks > 1, missing, placed);
   if (received && !placed)
   {
     this->NumberOfGhostBalls = 0; // no own ball: nothing could have reached us
@@ -610,32 +621,80 @@ int vtkMetaballGhostBalls::RequestData(vtkInformation*,
     }
   }
 
-  if (composite)
+  SetCloudsAsOutput(input, output, clouds);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+vtkSmartPointer<vtkPolyData> vtkMetaballGhostBalls::ExchangeGhosts(
+  const std::vector<vtkPointSet*>& leaves,
+  const std::vector<std::vector<vtkIdType>>& own,
+  std::vector<double>& centres,
+  std::vector<double>& radii,
+  std::set<std::string>& missing)
+{
+  const int ranks = this->Controller->GetNumberOfProcesses();
+  pointsurfaces::MetaballSet balls;
+  balls.Centers = centres.data();
+  balls.Radii = radii.data();
+  balls.Count = static_cast<long long>(radii.size());
+  double box[6];
+  pointsurfaces::SupportBounds(balls, box);
+  std::vector<double> boxes(6 * ranks);
+  this->Controller->AllGather(box, boxes.data(), 6);
+
+  // Our balls that reach each process's box, as (leaf, point) lists.
+  const int me = this->Controller->GetLocalProcessId();
+  std::vector<vtkSmartPointer<vtkDataObject>> pieces;
+  for (int rank = 0; rank < ranks; ++rank)
   {
-    vtkCompositeDataSet* out = vtkCompositeDataSet::SafeDownCast(output);
-    out->CopyStructure(composite);
-    vtkSmartPointer<vtkCompositeDataIterator> it =
-      vtkSmartPointer<vtkCompositeDataIterator>::Take(composite->NewIterator());
-    size_t k = 0;
-    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+    std::vector<std::vector<vtkIdType>> send(leaves.size());
+    if (rank != me)
     {
-      vtkDataObject* leaf = it->GetCurrentDataObject();
-      if (vtkPointSet::SafeDownCast(leaf))
+      const std::vector<long long> ids =
+        pointsurfaces::BallsReachingBox(balls, boxes.data() + 6 * rank);
+      size_t k = 0;
+      long long first = 0; // ball id of own[k][0]
+      for (long long id : ids)
       {
-        out->SetDataSet(it, clouds[k++]);
-      }
-      else
-      {
-        out->SetDataSet(it, leaf); // not balls: passed through
+        while (id - first >= static_cast<long long>(own[k].size()))
+        {
+          first += static_cast<long long>(own[k].size());
+          ++k;
+        }
+        send[k].push_back(own[k][id - first]);
       }
     }
-    out->GetFieldData()->PassData(composite->GetFieldData());
+    vtkSmartPointer<vtkDataObject> piece = vtkSmartPointer<vtkPolyData>::New();
+    if (!leaves.empty())
+    {
+      piece = MergePoints(leaves, send, missing);
+    }
+    std::vector<vtkSmartPointer<vtkDataObject>> gathered;
+    this->Controller->Gather(piece, gathered, rank);
+    if (rank == me)
+    {
+      pieces = gathered;
+    }
   }
-  else if (!clouds.empty())
+  std::vector<vtkPointSet*> from;
+  std::vector<std::vector<vtkIdType>> all;
+  for (vtkDataObject* piece : pieces)
   {
-    vtkPolyData::SafeDownCast(output)->ShallowCopy(clouds[0]);
+    vtkPointSet* set = vtkPointSet::SafeDownCast(piece);
+    if (set && set->GetNumberOfPoints() > 0)
+    {
+      from.push_back(set);
+      all.push_back(AllIds(set->GetNumberOfPoints()));
+    }
   }
-  return 1;
+  if (from.empty())
+  {
+    return nullptr;
+  }
+  vtkSmartPointer<vtkPolyData> received = MergePoints(from, all, missing);
+  this->NumberOfGhostBalls = received->GetNumberOfPoints();
+  return received;
 }
 
 //------------------------------------------------------------------------------

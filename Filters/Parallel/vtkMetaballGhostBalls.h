@@ -67,10 +67,13 @@
 #include "vtkSmartPointer.h"  // For the field
 
 #include <memory> // For the neighbours
+#include <set>    // For the missing arrays
+#include <string> // For the missing arrays
 #include <vector> // For the leaves
 
 class vtkMultiProcessController;
 class vtkPointSet;
+class vtkPolyData;
 
 class POINTSURFACESFILTERSPARALLEL_EXPORT vtkMetaballGhostBalls : public vtkDataObjectAlgorithm
 {
@@ -126,6 +129,35 @@ protected:
   double SpacingOfAllProcesses(const std::vector<vtkPointSet*>& leaves,
     const std::vector<std::vector<vtkIdType>>& own,
     const std::vector<pointsurfaces::RadiusSource>& sources);
+
+  /**
+   * This process's own balls of the leaves whose radii follow the spacing
+   * (`sources`), with their nearest neighbours here; measured again only
+   * when a leaf changed.
+   */
+  const pointsurfaces::NearestNeighbours& OwnNeighbours(const std::vector<vtkPointSet*>& leaves,
+    const std::vector<std::vector<vtkIdType>>& own,
+    const std::vector<pointsurfaces::RadiusSource>& sources);
+
+  /**
+   * Lowers `distances` (of `mine`'s points) to their nearest neighbour on
+   * any process: each process asks the others about its points whose
+   * distance reaches their boxes. Collective.
+   */
+  void NearestOnAllProcesses(const pointsurfaces::NearestNeighbours& mine,
+    std::vector<double>& distances);
+
+  /**
+   * The ghosts: every process's own balls (`centres`, `radii`) that reach
+   * this process's box, gathered here from all processes as one point
+   * cloud (null when none). Arrays that some pieces lack go to `missing`.
+   * Collective.
+   */
+  vtkSmartPointer<vtkPolyData> ExchangeGhosts(const std::vector<vtkPointSet*>& leaves,
+    const std::vector<std::vector<vtkIdType>>& own,
+    std::vector<double>& centres,
+    std::vector<double>& radii,
+    std::set<std::string>& missing);
 #endif
 
   vtkMultiProcessController* Controller = nullptr;
