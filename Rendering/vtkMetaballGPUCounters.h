@@ -35,6 +35,7 @@ public:
 
   /** How many counters a frame has. */
   static constexpr int Count = 9;
+  /** What takes a frame's counters once they are read. */
   using Report = std::function<void(const unsigned int counters[Count])>;
 
   /**

@@ -296,11 +296,11 @@ public:
 
   // The ray's march through one voxel's balls (loaded into s) over [t0, t1].
   // True when it hit (and the pixel is written).
-  bool MarchVoxel(Scratch& s, Ray& ray, int count, float t0, float t1, bool nearSlab, int pixel)
-    const
+  // The supports the ray crosses within [t0, t1], sorted by where it
+  // enters them, into s.Crossings (left empty when their peaks sum below T);
+  // returns the sum of their peaks.
+  float GatherCrossings(Scratch& s, const Ray& ray, int count, float t0, float t1) const
   {
-    ++s.Stats.VoxelVisits;
-    s.Stats.SupportTests += count;
     // The supports the ray crosses: the distance from the centre to the ray,
     // formed directly (no cancellation far from the eye).
     const float ox = ray.Origin[0], oy = ray.Origin[1], oz = ray.Origin[2];
@@ -339,14 +339,10 @@ public:
         }
       }
     }
-    // f <= sum of the peaks - T on the whole stretch: below T, no crossing
-    // here (and the ray arrives outside: whatever made f >= 0 before this
-    // voxel reaches into it and would count among the peaks).
+    s.Crossings.clear();
     if (m == 0 || peaks < this->Threshold)
     {
-      ++s.Stats.EmptyVoxelVisits;
-      this->Outside(ray, t1);
-      return false;
+      return peaks; // no crossing here: left unsorted
     }
     // Sorted as integers, then gathered.
     std::sort(s.Order.begin(), s.Order.begin() + m);
@@ -354,6 +350,118 @@ public:
     for (int i = 0; i < m; ++i)
     {
       s.Crossings[i] = s.Unsorted[s.Order[i] & 0xffffffffu];
+    }
+    return peaks;
+  }
+
+  // The supports whose stretch begins by t, from s.Crossings[next] on, into
+  // the active set.
+  void Activate(Scratch& s, int& next, float t) const
+  {
+    const int n = static_cast<int>(s.Crossings.size());
+    ActiveSet& active = s.Active;
+    while (next < n && s.Crossings[next].Enter <= t)
+    {
+      const Crossing& c = s.Crossings[next++];
+      const int j = c.Ball, k = active.N++;
+      active.X[k] = s.X[j];
+      active.Y[k] = s.Y[j];
+      active.Z[k] = s.Z[j];
+      active.InvR2[k] = s.InvR2[j];
+      active.Q[k] = s.Q[j];
+      active.QOverR[k] = s.QOverR[j];
+      active.R[k] = s.R[j];
+      active.Peak[k] = c.Peak;
+      active.Exit[k] = c.Exit;
+      active.Along[k] = c.Along;
+      active.Across[k] = c.Across;
+      active.Ball[k] = j;
+    }
+  }
+
+  // The crossing in [ray.TA, t], where f changes sign: bisected over the
+  // active balls (none left before TA, none enters after t).
+  float Bisect(Scratch& s, const Ray& ray, float t) const
+  {
+    // The first sign change: bisect [TA, t] over the balls in reach there
+    // (the active ones: none left before TA, none enters after t).
+    float a = ray.TA, b = t, fa = ray.FA;
+    for (int k = 0; k < this->S.Bisections; ++k)
+    {
+      const float m = 0.5f * (a + b);
+      const float fm = this->Field(s, ray, m, s.Stats.KernelTerms);
+      ++s.Stats.BisectionSamples;
+      if ((fa < 0.0f) == (fm < 0.0f))
+      {
+        a = m;
+        fa = fm;
+      }
+      else
+      {
+        b = m;
+      }
+    }
+    return 0.5f * (a + b);
+  }
+
+  // The step bounds over the active balls: the sum of |q| / R (times the
+  // kernel's slope bound, a Lipschitz constant of f), the sum of the peaks,
+  // the smallest radius and the farthest exit.
+  struct StepBounds
+  {
+    float Lipschitz = 0.0f, Smallest = std::numeric_limits<float>::max(), Reach = 0.0f,
+          Bound = 0.0f;
+  };
+
+  // Drops the supports the ray has left by t; the step bounds over the rest.
+  StepBounds DropAndBound(Scratch& s, float t) const
+  {
+    ActiveSet& active = s.Active;
+    for (int k = 0; k < active.N;)
+    {
+      if (active.Exit[k] <= t)
+      {
+        active.Remove(k);
+        continue;
+      }
+      ++k;
+    }
+    float lipschitz = 0.0f, smallest = std::numeric_limits<float>::max(), reach = t, bound = 0.0f;
+    {
+      const float *QOverR = active.QOverR.data(), *Peak = active.Peak.data(), *R = active.R.data(),
+                  *Exit = active.Exit.data();
+      const int m = active.N;
+#pragma omp simd reduction(+ : lipschitz, bound) reduction(min : smallest) reduction(max : reach)
+      for (int k = 0; k < m; ++k)
+      {
+        lipschitz += QOverR[k];
+        bound += Peak[k];
+        smallest = std::min(smallest, R[k]);
+        reach = std::max(reach, Exit[k]);
+      }
+    }
+    StepBounds bounds;
+    bounds.Lipschitz = lipschitz;
+    bounds.Smallest = smallest;
+    bounds.Reach = reach;
+    bounds.Bound = bound;
+    return bounds;
+  }
+
+  bool MarchVoxel(Scratch& s, Ray& ray, int count, float t0, float t1, bool nearSlab, int pixel)
+    const
+  {
+    ++s.Stats.VoxelVisits;
+    s.Stats.SupportTests += count;
+    this->GatherCrossings(s, ray, count, t0, t1);
+    // f <= sum of the peaks - T on the whole stretch: below T, no crossing
+    // here (and the ray arrives outside: whatever made f >= 0 before this
+    // voxel reaches into it and would count among the peaks).
+    if (s.Crossings.empty())
+    {
+      ++s.Stats.EmptyVoxelVisits;
+      this->Outside(ray, t1);
+      return false;
     }
     const int n = static_cast<int>(s.Crossings.size());
     ActiveSet& active = s.Active;
@@ -363,46 +471,13 @@ public:
     float t = s.Crossings[0].Enter;
     while (true)
     {
-      while (next < n && s.Crossings[next].Enter <= t)
-      {
-        const Crossing& c = s.Crossings[next++];
-        const int j = c.Ball, k = active.N++;
-        active.X[k] = s.X[j];
-        active.Y[k] = s.Y[j];
-        active.Z[k] = s.Z[j];
-        active.InvR2[k] = s.InvR2[j];
-        active.Q[k] = s.Q[j];
-        active.QOverR[k] = s.QOverR[j];
-        active.R[k] = s.R[j];
-        active.Peak[k] = c.Peak;
-        active.Exit[k] = c.Exit;
-        active.Along[k] = c.Along;
-        active.Across[k] = c.Across;
-        active.Ball[k] = j;
-      }
+      this->Activate(s, next, t);
       const float f = this->Field(s, ray, t, s.Stats.KernelTerms);
       ++s.Stats.Samples;
       if (ray.HaveA && (ray.FA < 0.0f) != (f < 0.0f))
       {
-        // The first sign change: bisect [TA, t] over the balls in reach there
-        // (the active ones: none left before TA, none enters after t).
-        float a = ray.TA, b = t, fa = ray.FA;
-        for (int k = 0; k < this->S.Bisections; ++k)
-        {
-          const float m = 0.5f * (a + b);
-          const float fm = this->Field(s, ray, m, s.Stats.KernelTerms);
-          ++s.Stats.BisectionSamples;
-          if ((fa < 0.0f) == (fm < 0.0f))
-          {
-            a = m;
-            fa = fm;
-          }
-          else
-          {
-            b = m;
-          }
-        }
-        this->Shade(s, ray, 0.5f * (a + b), pixel);
+        // The first sign change: bisected there.
+        this->Shade(s, ray, this->Bisect(s, ray, t), pixel);
         ray.Searching = false;
         return true;
       }
@@ -417,30 +492,9 @@ public:
       {
         return false;
       }
-      // Drop the supports the ray has left; the step bounds over the rest.
-      for (int k = 0; k < active.N;)
-      {
-        if (active.Exit[k] <= t)
-        {
-          active.Remove(k);
-          continue;
-        }
-        ++k;
-      }
-      float lipschitz = 0.0f, smallest = std::numeric_limits<float>::max(), reach = t, bound = 0.0f;
-      {
-        const float *QOverR = active.QOverR.data(), *Peak = active.Peak.data(),
-                    *R = active.R.data(), *Exit = active.Exit.data();
-        const int m = active.N;
-#pragma omp simd reduction(+ : lipschitz, bound) reduction(min : smallest) reduction(max : reach)
-        for (int k = 0; k < m; ++k)
-        {
-          lipschitz += QOverR[k];
-          bound += Peak[k];
-          smallest = std::min(smallest, R[k]);
-          reach = std::max(reach, Exit[k]);
-        }
-      }
+      const StepBounds bounds = this->DropAndBound(s, t);
+      const float lipschitz = bounds.Lipschitz, smallest = bounds.Smallest, reach = bounds.Reach,
+                  bound = bounds.Bound;
       float tNext;
       if (active.N == 0 || bound < this->Threshold)
       {
@@ -707,6 +761,39 @@ public:
     }
   }
 
+  // The ray through the centre of pixel (x, y), in view space, as the GPU
+  // pass casts it.
+  Ray PixelRay(int x, int y) const
+  {
+    Ray ray;
+    const double ndc[2] = { (x + 0.5) / this->S.Width * 2.0 - 1.0,
+      (y + 0.5) / this->S.Height * 2.0 - 1.0 };
+    double nearPoint[4], farPoint[4];
+    const double nearClip[3] = { ndc[0], ndc[1], -1.0 }, farClip[3] = { ndc[0], ndc[1], 1.0 };
+    Apply(this->S.ClipToView, nearClip, 1.0, nearPoint);
+    Apply(this->S.ClipToView, farClip, 1.0, farPoint);
+    double dir[3], norm = 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      nearPoint[k] /= nearPoint[3];
+      farPoint[k] /= farPoint[3];
+      dir[k] = farPoint[k] - nearPoint[k];
+      norm += dir[k] * dir[k];
+    }
+    norm = std::sqrt(norm);
+    for (int k = 0; k < 3; ++k)
+    {
+      ray.Dir[k] = static_cast<float>(dir[k] / norm);
+    }
+    ray.Origin[0] = this->S.Parallel ? static_cast<float>(nearPoint[0]) : 0.0f;
+    ray.Origin[1] = this->S.Parallel ? static_cast<float>(nearPoint[1]) : 0.0f;
+    ray.Origin[2] = 0.0f;
+    ray.PerDistance = -ray.Dir[2];
+    ray.Searching = ray.PerDistance > 0.0f;
+    return ray;
+  }
+
+  // One screen tile: its rays, block by block, walk its voxels front to back.
   void CastTile(int tile) const
   {
     Scratch& s = this->Local.Local();
@@ -737,33 +824,7 @@ public:
             {
               for (int x = bx; x < bx1; ++x)
               {
-                Ray ray;
-                const double ndc[2] = { (x + 0.5) / this->S.Width * 2.0 - 1.0,
-                  (y + 0.5) / this->S.Height * 2.0 - 1.0 };
-                double nearPoint[4], farPoint[4];
-                const double nearClip[3] = { ndc[0], ndc[1], -1.0 },
-                             farClip[3] = { ndc[0], ndc[1], 1.0 };
-                Apply(this->S.ClipToView, nearClip, 1.0, nearPoint);
-                Apply(this->S.ClipToView, farClip, 1.0, farPoint);
-                double dir[3], norm = 0.0;
-                for (int k = 0; k < 3; ++k)
-                {
-                  nearPoint[k] /= nearPoint[3];
-                  farPoint[k] /= farPoint[3];
-                  dir[k] = farPoint[k] - nearPoint[k];
-                  norm += dir[k] * dir[k];
-                }
-                norm = std::sqrt(norm);
-                for (int k = 0; k < 3; ++k)
-                {
-                  ray.Dir[k] = static_cast<float>(dir[k] / norm);
-                }
-                ray.Origin[0] = this->S.Parallel ? static_cast<float>(nearPoint[0]) : 0.0f;
-                ray.Origin[1] = this->S.Parallel ? static_cast<float>(nearPoint[1]) : 0.0f;
-                ray.Origin[2] = 0.0f;
-                ray.PerDistance = -ray.Dir[2];
-                ray.Searching = ray.PerDistance > 0.0f;
-                rays.push_back(ray);
+                rays.push_back(this->PixelRay(x, y));
                 pixels.push_back(y * this->S.Width + x);
               }
             }
