@@ -260,6 +260,32 @@ struct vtkMetaballGridBuilder::Internals
     }
     return ok;
   }
+
+  // The nearest and farthest view distance that the balls in the frustum
+  // reach (the range pass; float max and 0 when none is in view).
+  bool DepthRange(vtkOpenGLRenderWindow* renWin,
+    const PassUniforms& common,
+    size_t n,
+    double& nearD,
+    double& farD)
+  {
+    vtkComputeShaderProgram* range = this->Use(renWin, Range);
+    bool ok = range != nullptr;
+    if (ok)
+    {
+      common.Set(range);
+      range->SetUniformui("count", static_cast<unsigned int>(n));
+      ok = range->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), BallGroup));
+    }
+    unsigned int bits[2] = { 0, 0 };
+    ok = ok && this->Stats->Download(bits, sizeof(bits));
+    float lo = 0.0f, hi = 0.0f;
+    std::memcpy(&lo, &bits[0], sizeof(float));
+    std::memcpy(&hi, &bits[1], sizeof(float));
+    nearD = lo;
+    farD = hi;
+    return ok;
+  }
 };
 
 //------------------------------------------------------------------------------
@@ -352,21 +378,7 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
   double slabNear = this->SlabRange[0], slabFar = this->SlabRange[1];
   if (ok && !(slabFar > slabNear))
   {
-    vtkComputeShaderProgram* range = in.Use(renWin, Range);
-    ok = range != nullptr;
-    if (ok)
-    {
-      common.Set(range);
-      range->SetUniformui("count", static_cast<unsigned int>(n));
-      ok = range->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), BallGroup));
-    }
-    unsigned int bits[2] = { 0, 0 };
-    ok = ok && in.Stats->Download(bits, sizeof(bits));
-    float lo = 0.0f, hi = 0.0f;
-    std::memcpy(&lo, &bits[0], sizeof(float));
-    std::memcpy(&hi, &bits[1], sizeof(float));
-    slabNear = lo;
-    slabFar = hi;
+    ok = in.DepthRange(renWin, common, n, slabNear, slabFar);
   }
   // The fallback when nothing is in view, and the planes, as the CPU builders.
   geometry.SetSlabRange(slabNear, slabFar);
