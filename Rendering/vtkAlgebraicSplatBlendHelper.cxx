@@ -91,6 +91,23 @@ int ReadDepthFormat(GLuint framebuffer)
                     : (bits <= 24 ? vtkTextureObject::Fixed24 : vtkTextureObject::Fixed32);
 }
 
+// vtkOpenGLState's Push on construction and Pop on every way out: the
+// framebuffer bindings, viewport, blending, depth and program as they were.
+class ScopedStatePush
+{
+public:
+  explicit ScopedStatePush(vtkOpenGLState* state)
+    : State(state)
+  {
+    this->State->Push();
+  }
+  ~ScopedStatePush() { this->State->Pop(); }
+  ScopedStatePush(const ScopedStatePush&) = delete;
+  ScopedStatePush& operator=(const ScopedStatePush&) = delete;
+
+private:
+  vtkOpenGLState* State;
+};
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -114,79 +131,137 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   const Passes& passes,
   vtkObject* owner)
 {
-  vtkOpenGLState* ostate = renWin->GetState();
-  Targets& t = *this->T;
-
   GLint viewport[4];
-  ostate->vtkglGetIntegerv(GL_VIEWPORT, viewport);
-  const int width = viewport[2], height = viewport[3];
-  if (width <= 0 || height <= 0)
+  renWin->GetState()->vtkglGetIntegerv(GL_VIEWPORT, viewport);
+  if (viewport[2] <= 0 || viewport[3] <= 0)
   {
     return;
   }
+  // The accumulation, in the scene's framebuffer, viewport, blending and
+  // program as they were when it ends; then the composite, likewise.
+  if (this->Accumulate(renWin, viewport, settings, passes, owner))
+  {
+    this->Composite(renWin, owner);
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkAlgebraicSplatBlendHelper::Accumulate(vtkOpenGLRenderWindow* renWin,
+  const int viewport[4],
+  const Settings& settings,
+  const Passes& passes,
+  vtkObject* owner)
+{
+  vtkOpenGLState* ostate = renWin->GetState();
+  Targets& t = *this->T;
+  const int width = viewport[2], height = viewport[3];
   GLint scene = 0, sampleBuffers = 0;
   ostate->vtkglGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &scene);
   ostate->vtkglGetIntegerv(GL_SAMPLE_BUFFERS, &sampleBuffers); // of the scene's framebuffer
 
-  ostate->Push();
+  const ScopedStatePush push(ostate);
   ostate->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(scene));
   const int depthFormat = ReadDepthFormat(static_cast<GLuint>(scene));
   if (width != t.Width || height != t.Height || depthFormat != t.DepthFormat)
   {
-    // New textures, not new storage in the old ones: VTK 9.6's AllocateDepth
-    // on a texture that has storage keeps the old format (seen on Mesa 26: a
-    // Float32 request after a Fixed32 one stayed GL_DEPTH_COMPONENT32, and
-    // the depth blit failed on the mismatch).
-    for (vtkTextureObject* texture : { t.Accumulation.GetPointer(),
-           t.DepthCoverage.GetPointer(),
-           t.Depth.GetPointer(),
-           t.VisibleDepth.GetPointer() })
-    {
-      texture->ReleaseGraphicsResources(renWin);
-    }
-    t.Framebuffer->SetContext(renWin);
-    t.Accumulation->SetContext(renWin);
-    t.DepthCoverage->SetContext(renWin);
-    t.Depth->SetContext(renWin);
-    t.CopyFramebuffer->SetContext(renWin);
-    t.VisibleDepth->SetContext(renWin);
-    t.Accumulation->Allocate2D(width, height, 4, VTK_FLOAT);
-    t.DepthCoverage->Allocate2D(width, height, 2, VTK_FLOAT);
-    for (vtkTextureObject* depth : { t.Depth.GetPointer(), t.VisibleDepth.GetPointer() })
-    {
-      if (depthFormat == -2)
-      {
-        depth->AllocateDepthStencil(width, height);
-      }
-      else
-      {
-        depth->AllocateDepth(
-          width, height, depthFormat >= 0 ? depthFormat : vtkTextureObject::Float32);
-      }
-    }
-    // Detach first: the framebuffers know their attachments by object and
-    // would keep the released textures' names.
-    t.CopyFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-    t.CopyFramebuffer->RemoveDepthAttachment();
-    t.CopyFramebuffer->AddDepthAttachment(t.VisibleDepth);
-    // Depth only: no colour buffer to draw to (without this the framebuffer
-    // is incomplete before GL 4.1).
-    ostate->vtkglDrawBuffer(GL_NONE);
-    t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
-    t.Framebuffer->RemoveColorAttachments(2);
-    t.Framebuffer->RemoveDepthAttachment();
-    t.Framebuffer->AddColorAttachment(0, t.Accumulation);
-    t.Framebuffer->AddColorAttachment(1, t.DepthCoverage);
-    t.Framebuffer->AddDepthAttachment(t.Depth);
-    t.Width = width;
-    t.Height = height;
-    t.DepthFormat = depthFormat;
+    this->AllocateTargets(renWin, width, height, depthFormat);
   }
   t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
   t.Framebuffer->ActivateDrawBuffers(2);
   ostate->vtkglDisable(GL_SCISSOR_TEST);
   ostate->vtkglViewport(0, 0, width, height);
+  this->CopySceneDepth(ostate, viewport, sampleBuffers != 0, depthFormat, owner);
+  const GLfloat zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+  const GLfloat one[4] = { 1.0f, 1.0f, 1.0f, 1.0f };
+  glClearBufferfv(GL_COLOR, 0, zero);
+  glClearBufferfv(GL_COLOR, 1, one);
 
+  // Visibility: the nearest hits pushed back by delta h. The nearest hit of
+  // the pixel centre's ray is enough here: no supersampling.
+  vtkShaderProgram* program = passes.UseVisibility();
+  if (!program)
+  {
+    return false;
+  }
+  const float offset = static_cast<float>(settings.Blending ? settings.BlendDepthOffset : 1e-3);
+  program->SetUniformf("splatBlendOffset", offset);
+  ostate->vtkglEnable(GL_DEPTH_TEST);
+  ostate->vtkglDepthFunc(GL_LESS);
+  ostate->vtkglDepthMask(GL_TRUE);
+  ostate->vtkglDisable(GL_BLEND);
+  ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  passes.Draw();
+
+  return this->Blend(ostate, width, height, depthFormat, settings, passes);
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatBlendHelper::AllocateTargets(vtkOpenGLRenderWindow* renWin,
+  int width,
+  int height,
+  int depthFormat)
+{
+  vtkOpenGLState* ostate = renWin->GetState();
+  Targets& t = *this->T;
+  // New textures, not new storage in the old ones: VTK 9.6's AllocateDepth
+  // on a texture that has storage keeps the old format (seen on Mesa 26: a
+  // Float32 request after a Fixed32 one stayed GL_DEPTH_COMPONENT32, and
+  // the depth blit failed on the mismatch).
+  for (vtkTextureObject* texture : { t.Accumulation.GetPointer(),
+         t.DepthCoverage.GetPointer(),
+         t.Depth.GetPointer(),
+         t.VisibleDepth.GetPointer() })
+  {
+    texture->ReleaseGraphicsResources(renWin);
+  }
+  t.Framebuffer->SetContext(renWin);
+  t.Accumulation->SetContext(renWin);
+  t.DepthCoverage->SetContext(renWin);
+  t.Depth->SetContext(renWin);
+  t.CopyFramebuffer->SetContext(renWin);
+  t.VisibleDepth->SetContext(renWin);
+  t.Accumulation->Allocate2D(width, height, 4, VTK_FLOAT);
+  t.DepthCoverage->Allocate2D(width, height, 2, VTK_FLOAT);
+  for (vtkTextureObject* depth : { t.Depth.GetPointer(), t.VisibleDepth.GetPointer() })
+  {
+    if (depthFormat == -2)
+    {
+      depth->AllocateDepthStencil(width, height);
+    }
+    else
+    {
+      depth->AllocateDepth(
+        width, height, depthFormat >= 0 ? depthFormat : vtkTextureObject::Float32);
+    }
+  }
+  // Detach first: the framebuffers know their attachments by object and
+  // would keep the released textures' names.
+  t.CopyFramebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  t.CopyFramebuffer->RemoveDepthAttachment();
+  t.CopyFramebuffer->AddDepthAttachment(t.VisibleDepth);
+  // Depth only: no colour buffer to draw to (without this the framebuffer
+  // is incomplete before GL 4.1).
+  ostate->vtkglDrawBuffer(GL_NONE);
+  t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
+  t.Framebuffer->RemoveColorAttachments(2);
+  t.Framebuffer->RemoveDepthAttachment();
+  t.Framebuffer->AddColorAttachment(0, t.Accumulation);
+  t.Framebuffer->AddColorAttachment(1, t.DepthCoverage);
+  t.Framebuffer->AddDepthAttachment(t.Depth);
+  t.Width = width;
+  t.Height = height;
+  t.DepthFormat = depthFormat;
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatBlendHelper::CopySceneDepth(vtkOpenGLState* ostate,
+  const int viewport[4],
+  bool multisampled,
+  int depthFormat,
+  vtkObject* owner)
+{
+  Targets& t = *this->T;
+  const int width = viewport[2], height = viewport[3];
   // The scene's depth, so that the actors drawn before hide the splats. A
   // depth blit needs the same depth (and stencil) format on both sides; the
   // targets were allocated in the scene's own format, so the blit works
@@ -194,7 +269,7 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   // -1); a multisampled scene is resolved by the blit when the viewport
   // starts at the origin, the only place its rectangle may be.
   const bool copied =
-    depthFormat != -1 && (sampleBuffers == 0 || (viewport[0] == 0 && viewport[1] == 0));
+    depthFormat != -1 && (!multisampled || (viewport[0] == 0 && viewport[1] == 0));
   if (copied)
   {
     ostate->vtkglBlitFramebuffer(viewport[0],
@@ -221,28 +296,17 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
     ostate->vtkglClearDepth(1.0);
     ostate->vtkglClear(GL_DEPTH_BUFFER_BIT);
   }
-  const GLfloat zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
-  const GLfloat one[4] = { 1.0f, 1.0f, 1.0f, 1.0f };
-  glClearBufferfv(GL_COLOR, 0, zero);
-  glClearBufferfv(GL_COLOR, 1, one);
+}
 
-  // Visibility: the nearest hits pushed back by delta h. The nearest hit of
-  // the pixel centre's ray is enough here: no supersampling.
-  vtkShaderProgram* program = passes.UseVisibility();
-  if (!program)
-  {
-    ostate->Pop();
-    return;
-  }
-  const float offset = static_cast<float>(settings.Blending ? settings.BlendDepthOffset : 1e-3);
-  program->SetUniformf("splatBlendOffset", offset);
-  ostate->vtkglEnable(GL_DEPTH_TEST);
-  ostate->vtkglDepthFunc(GL_LESS);
-  ostate->vtkglDepthMask(GL_TRUE);
-  ostate->vtkglDisable(GL_BLEND);
-  ostate->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  passes.Draw();
-
+//------------------------------------------------------------------------------
+bool vtkAlgebraicSplatBlendHelper::Blend(vtkOpenGLState* ostate,
+  int width,
+  int height,
+  int depthFormat,
+  const Settings& settings,
+  const Passes& passes)
+{
+  Targets& t = *this->T;
   // Blending: every hit in front of that depth, weighted. The shader reads
   // a copy of it, while the depth test drops fragments behind it unshaded.
   t.Framebuffer->Bind(GL_READ_FRAMEBUFFER);
@@ -259,11 +323,10 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
     GL_NEAREST);
   t.Framebuffer->Bind(GL_DRAW_FRAMEBUFFER);
   t.Framebuffer->ActivateDrawBuffers(2);
-  program = passes.UseBlending();
+  vtkShaderProgram* program = passes.UseBlending();
   if (!program)
   {
-    ostate->Pop();
-    return;
+    return false;
   }
   program->SetUniformf(
     "splatBlendSharpness", static_cast<float>(settings.Blending ? settings.BlendSharpness : 0.0));
@@ -324,10 +387,16 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   }
   glPolygonOffset(offsetFactor, offsetUnits);
   t.VisibleDepth->Deactivate();
-  ostate->Pop(); // the scene's framebuffer, viewport, blending and program
+  return true;
+}
 
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatBlendHelper::Composite(vtkOpenGLRenderWindow* renWin, vtkObject* owner)
+{
   // Normalise and composite with the true depth.
-  ostate->Push();
+  vtkOpenGLState* ostate = renWin->GetState();
+  Targets& t = *this->T;
+  const ScopedStatePush push(ostate);
   if (!t.Composite)
   {
     t.Composite.reset(new vtkOpenGLQuadHelper(renWin, nullptr, vtkAlgebraicSplatCompositeFS, ""));
@@ -338,7 +407,6 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   }
   if (!t.Composite->Program)
   {
-    ostate->Pop();
     vtkErrorWithObjectMacro(owner, << "The splat compositing shader did not compile.");
     return;
   }
@@ -356,5 +424,4 @@ void vtkAlgebraicSplatBlendHelper::Render(vtkOpenGLRenderWindow* renWin,
   t.Composite->Render();
   t.Accumulation->Deactivate();
   t.DepthCoverage->Deactivate();
-  ostate->Pop();
 }

@@ -27,6 +27,7 @@
 #include <memory>     // For the targets
 
 class vtkOpenGLRenderWindow;
+class vtkOpenGLState;
 class vtkShaderProgram;
 class vtkWindow;
 
@@ -74,6 +75,34 @@ protected:
 private:
   struct Targets;
   std::unique_ptr<Targets> T;
+
+  /**
+   * The visibility and blending passes into the targets, the scene's
+   * depth copied first; the GL state as it was afterwards. False when a
+   * pass's program failed.
+   */
+  bool Accumulate(vtkOpenGLRenderWindow* renWin,
+    const int viewport[4],
+    const Settings& settings,
+    const Passes& passes,
+    vtkObject* owner);
+  /** New targets for the viewport's size and the scene's depth format. */
+  void AllocateTargets(vtkOpenGLRenderWindow* renWin, int width, int height, int depthFormat);
+  /** The scene's depth into the targets' (cleared, with a warning, when it cannot be). */
+  void CopySceneDepth(vtkOpenGLState* ostate,
+    const int viewport[4],
+    bool multisampled,
+    int depthFormat,
+    vtkObject* owner);
+  /** The blending pass: every hit in front of the visible depth, weighted. */
+  bool Blend(vtkOpenGLState* ostate,
+    int width,
+    int height,
+    int depthFormat,
+    const Settings& settings,
+    const Passes& passes);
+  /** Normalises the sums and composites them with the true depth. */
+  void Composite(vtkOpenGLRenderWindow* renWin, vtkObject* owner);
 
   vtkAlgebraicSplatBlendHelper(const vtkAlgebraicSplatBlendHelper&) = delete;
   void operator=(const vtkAlgebraicSplatBlendHelper&) = delete;
