@@ -129,6 +129,38 @@ void Accumulate(const double* uvh,
     }
   }
 }
+// The degree-d fit by the rank-revealing QR of the weighted design matrix,
+// for a system too ill-conditioned for the normal equations (uvh: the local
+// coordinates of the n points); false when its rank is short.
+bool SolveByQR(const double* uvh, const double* w, int n, int d, NormalVector& c)
+{
+  const int m = MonomialCount(d);
+  thread_local Eigen::MatrixXd A;
+  thread_local Eigen::VectorXd h;
+  thread_local Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
+  A.resize(n, m);
+  h.resize(n);
+  double row[MaximumMonomials];
+  for (int i = 0; i < n; ++i)
+  {
+    const double wi = w ? w[i] : 1.0;
+    const double sw = wi > 0.0 ? std::sqrt(wi) : 0.0;
+    Monomials(uvh[3 * i], uvh[3 * i + 1], d, row);
+    for (int j = 0; j < m; ++j)
+    {
+      A(i, j) = sw * row[j];
+    }
+    h(i) = sw * uvh[3 * i + 2];
+  }
+  qr.compute(A);
+  qr.setThreshold(1e-10);
+  if (qr.rank() < m)
+  {
+    return false;
+  }
+  c = qr.solve(h);
+  return true;
+}
 } // namespace
 
 FitStatus FitReferencePlane(const double* points,
@@ -281,32 +313,11 @@ PolynomialFit FitPolynomial(const double* points,
     }
     if (!SolveNormal(system, rhs, c))
     {
-      // Ill-conditioned or rank-deficient: the rank-revealing QR of the
-      // weighted design matrix decides.
-      thread_local Eigen::MatrixXd A;
-      thread_local Eigen::VectorXd h;
-      thread_local Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr;
-      A.resize(n, m);
-      h.resize(n);
-      double row[MaximumMonomials];
-      for (int i = 0; i < n; ++i)
-      {
-        const double wi = w ? w[i] : 1.0;
-        const double sw = wi > 0.0 ? std::sqrt(wi) : 0.0;
-        Monomials(uvh[3 * i], uvh[3 * i + 1], d, row);
-        for (int j = 0; j < m; ++j)
-        {
-          A(i, j) = sw * row[j];
-        }
-        h(i) = sw * uvh[3 * i + 2];
-      }
-      qr.compute(A);
-      qr.setThreshold(1e-10);
-      if (qr.rank() < m)
+      // Ill-conditioned or rank-deficient: the rank-revealing QR decides.
+      if (!SolveByQR(uvh.data(), w, n, d, c))
       {
         continue; // e.g. points on a line in (u, v): no well-posed fit of this degree
       }
-      c = qr.solve(h);
     }
     if (!c.allFinite())
     {

@@ -176,6 +176,53 @@ FitStatus FitOnSheet(const double q[3],
 }
 } // namespace
 
+namespace
+{
+// The projected MLS fit: the origin moved onto the local surface and the
+// patch fitted again around it (feature size h), until g(0, 0) is below
+// the tolerance.
+void ProjectOntoSurface(const double* nbrs,
+  int m,
+  double h,
+  const SplatFitParameters& params,
+  std::vector<double>& w,
+  Splat& splat)
+{
+  for (int it = 0; it < params.MaximumIterations && splat.Fit.Degree > 0; ++it)
+  {
+    const double g0 = splat.Fit.Coefficients[0];
+    if (std::abs(g0) < params.Tolerance)
+    {
+      break;
+    }
+    // Move the origin onto the local surface and refit around it.
+    double moved[3];
+    for (int c = 0; c < 3; ++c)
+    {
+      moved[c] = splat.Frame.Origin[c] + g0 * h * splat.Frame.Normal[c];
+    }
+    // Weights around the surface point, a new reference plane, and the
+    // frame's origin at the surface point itself (not its projection onto
+    // the plane), so that g(0, 0) measures what is left to move.
+    Weigh(moved, nbrs, m, h, params.WeightScale, w.data());
+    LocalFrame next = splat.Frame;
+    if (PlaneAt(moved, nbrs, m, w.data(), splat.Frame.Normal, next) != FitStatus::Ok)
+    {
+      break;
+    }
+    std::copy(moved, moved + 3, next.Origin);
+    const PolynomialFit fit = FitPolynomial(nbrs, w.data(), m, next, params.Degree);
+    if (fit.Degree == 0)
+    {
+      break;
+    }
+    splat.Frame = next;
+    splat.Fit = fit;
+    splat.Iterations = it + 1;
+  }
+}
+} // namespace
+
 Splat FitSplat(const double q[3],
   const double* nbrs,
   int n,
@@ -246,38 +293,7 @@ Splat FitSplat(const double q[3],
   }
   if (params.Mode == FitMode::Projected)
   {
-    for (int it = 0; it < params.MaximumIterations && splat.Fit.Degree > 0; ++it)
-    {
-      const double g0 = splat.Fit.Coefficients[0];
-      if (std::abs(g0) < params.Tolerance)
-      {
-        break;
-      }
-      // Move the origin onto the local surface and refit around it.
-      double moved[3];
-      for (int c = 0; c < 3; ++c)
-      {
-        moved[c] = splat.Frame.Origin[c] + g0 * h * splat.Frame.Normal[c];
-      }
-      // Weights around the surface point, a new reference plane, and the
-      // frame's origin at the surface point itself (not its projection onto
-      // the plane), so that g(0, 0) measures what is left to move.
-      Weigh(moved, nbrs, m, h, params.WeightScale, w.data());
-      LocalFrame next = splat.Frame;
-      if (PlaneAt(moved, nbrs, m, w.data(), splat.Frame.Normal, next) != FitStatus::Ok)
-      {
-        break;
-      }
-      std::copy(moved, moved + 3, next.Origin);
-      const PolynomialFit fit = FitPolynomial(nbrs, w.data(), m, next, params.Degree);
-      if (fit.Degree == 0)
-      {
-        break;
-      }
-      splat.Frame = next;
-      splat.Fit = fit;
-      splat.Iterations = it + 1;
-    }
+    ProjectOntoSurface(nbrs, m, h, params, w, splat);
   }
   else if (params.Mode == FitMode::Robust && splat.Fit.Degree > 0)
   {
