@@ -174,6 +174,27 @@ hid_t MemoryType(SnapshotArray::Kind kind)
 // dataspace beyond it is damage.
 constexpr long long MaximumValues = 100000000000LL;
 
+// The array's type for the HDF5 type `type`; false when it is not numeric.
+bool NumericType(hid_t type, SnapshotArray& array)
+{
+  const H5T_class_t kind = type >= 0 ? H5Tget_class(type) : H5T_NO_CLASS;
+  const size_t size = type >= 0 ? H5Tget_size(type) : 0;
+  if (kind == H5T_FLOAT)
+  {
+    array.Type = size <= 4 ? SnapshotArray::Float32 : SnapshotArray::Float64;
+    return true;
+  }
+  if (kind == H5T_INTEGER)
+  {
+    const bool isSigned = H5Tget_sign(type) != H5T_SGN_NONE;
+    array.Type = size <= 2 ? SnapshotArray::Int32
+      : size <= 4          ? (isSigned ? SnapshotArray::Int32 : SnapshotArray::UInt32)
+                           : (isSigned ? SnapshotArray::Int64 : SnapshotArray::UInt64);
+    return true;
+  }
+  return false;
+}
+
 // One file's datasets of group `name`: rows in `count`, arrays in `arrays`.
 bool ReadPart(hid_t file,
   const std::string& path,
@@ -254,20 +275,7 @@ bool ReadPart(hid_t file,
     SnapshotArray array;
     array.Name = member;
     array.Components = static_cast<int>(components);
-    const H5T_class_t kind = type.Id >= 0 ? H5Tget_class(type.Id) : H5T_NO_CLASS;
-    const size_t size = type.Id >= 0 ? H5Tget_size(type.Id) : 0;
-    if (kind == H5T_FLOAT)
-    {
-      array.Type = size <= 4 ? SnapshotArray::Float32 : SnapshotArray::Float64;
-    }
-    else if (kind == H5T_INTEGER)
-    {
-      const bool isSigned = H5Tget_sign(type.Id) != H5T_SGN_NONE;
-      array.Type = size <= 2 ? SnapshotArray::Int32
-        : size <= 4          ? (isSigned ? SnapshotArray::Int32 : SnapshotArray::UInt32)
-                             : (isSigned ? SnapshotArray::Int64 : SnapshotArray::UInt64);
-    }
-    else
+    if (!NumericType(type.Id, array))
     {
       if (first)
       {
