@@ -347,9 +347,8 @@ void vtkAlgebraicSplatMapper::SetCameraShaderParameters(vtkOpenGLHelper& cellBO,
 }
 
 //------------------------------------------------------------------------------
-void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
+bool vtkAlgebraicSplatMapper::ResetForInput(vtkPolyData* poly)
 {
-  vtkPolyData* poly = this->CurrentInput;
   this->Degree = vtkSplatDataModel::GetSplatDegree(poly);
   this->ShaderFailed = false; // new input: worth another try
   vtkDataArray* oriented =
@@ -368,6 +367,17 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
     {
       vtkErrorMacro(<< "The input is not a splat set (see vtkSplatDataModel): nothing is drawn.");
     }
+    return false;
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
+{
+  vtkPolyData* poly = this->CurrentInput;
+  if (!this->ResetForInput(poly))
+  {
     this->VBOBuildTime.Modified();
     return;
   }

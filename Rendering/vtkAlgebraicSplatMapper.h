@@ -201,6 +201,11 @@ protected:
     vtkRenderer* ren,
     vtkActor* act) override;
 
+  /**
+   * The input's degree and orientation flag, the index counts cleared;
+   * false, with an error when it has points, when it is not a splat set.
+   */
+  bool ResetForInput(vtkPolyData* poly);
   void ReadOctree(vtkPolyData* poly);
   void DrawSplats(vtkRenderer* ren, vtkActor* act, bool useOctree);
   void DrawOctree(vtkRenderer* ren, vtkActor* act);
