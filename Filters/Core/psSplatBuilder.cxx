@@ -73,6 +73,39 @@ double MeanSpacing(const PointIndex& index, unsigned int seed)
   }
   return count ? sum / count : 0.0;
 }
+// LOP's kernel theta(r) = exp(-r^2 / (h / 4)^2), as a function of r^2, over
+// the support radius h.
+struct LOPKernel
+{
+  double H, H2;
+
+  double Theta(double r2) const { return std::exp(-r2 / this->H2); }
+
+  // WLOP's density weight of each of the `count` points `q` (3 values each):
+  // 1 + the sum of theta over their neighbours in `index` (themselves excluded).
+  std::vector<double> Densities(const PointIndex& index, const double* q, long long count) const
+  {
+    std::vector<double> weights(static_cast<size_t>(count), 1.0);
+    vtkSMPTools::For(0,
+      count,
+      [&](long long begin, long long end)
+      {
+        std::vector<int> ids;
+        std::vector<double> d2;
+        for (long long k = begin; k < end; ++k)
+        {
+          index.Within(q + 3 * k, this->H, ids, d2);
+          double sum = 1.0;
+          for (double e : d2)
+          {
+            sum += e > 0.0 ? this->Theta(e) : 0.0;
+          }
+          weights[k] = sum;
+        }
+      });
+    return weights;
+  }
+};
 } // namespace
 
 int LocallyOptimalProjection(const double* p,
@@ -95,56 +128,19 @@ int LocallyOptimalProjection(const double* p,
     const double spacing = MeanSpacing(data, 7u);
     h = 4.0 * std::sqrt(static_cast<double>(n) * spacing * spacing / static_cast<double>(m));
   }
-  const double h2 = (h / 4.0) * (h / 4.0);
-  auto theta = [h2](double r2) { return std::exp(-r2 / h2); };
-
-  // WLOP's density weight of a point: 1 + sum of theta over its neighbours
-  // in `index` (itself excluded).
-  auto density = [&](const PointIndex& index, const double* q)
-  {
-    thread_local std::vector<int> ids;
-    thread_local std::vector<double> d2;
-    index.Within(q, h, ids, d2);
-    double sum = 1.0;
-    for (double e : d2)
-    {
-      sum += e > 0.0 ? theta(e) : 0.0;
-    }
-    return sum;
-  };
-  // ... of the input points, once.
-  std::vector<double> v(static_cast<size_t>(n), 1.0);
-  if (weighted)
-  {
-    vtkSMPTools::For(0,
-      n,
-      [&](long long begin, long long end)
-      {
-        for (long long j = begin; j < end; ++j)
-        {
-          v[j] = density(data, data.Point(j));
-        }
-      });
-  }
+  const LOPKernel kernel{ h, (h / 4.0) * (h / 4.0) };
+  auto theta = [&kernel](double r2) { return kernel.Theta(r2); };
+  // WLOP's density weights of the input points, once.
+  const std::vector<double> v =
+    weighted ? kernel.Densities(data, p, n) : std::vector<double>(static_cast<size_t>(n), 1.0);
 
   std::vector<double> next(x.size());
   int step = 0;
   for (; step < iterations; ++step)
   {
     PointIndex samples(x.data(), m);
-    std::vector<double> w(static_cast<size_t>(m), 1.0);
-    if (weighted)
-    {
-      vtkSMPTools::For(0,
-        m,
-        [&](long long begin, long long end)
-        {
-          for (long long k = begin; k < end; ++k)
-          {
-            w[k] = density(samples, &x[3 * k]);
-          }
-        });
-    }
+    const std::vector<double> w = weighted ? kernel.Densities(samples, x.data(), m)
+                                           : std::vector<double>(static_cast<size_t>(m), 1.0);
     std::vector<double> moved(static_cast<size_t>(m), 0.0);
     vtkSMPTools::For(0,
       m,
