@@ -112,6 +112,43 @@ void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
   }
   output->GetFieldData()->AddArray(levels);
 }
+// The input's point arrays at the splats, MLS-weighted by each splat's fit
+// (VTK interpolates each type), into outPD; the input's scalars stay active.
+void CarryArrays(vtkPointData* inPD,
+  const std::vector<vtkIdType>& kept,
+  const BuildResult& built,
+  vtkPointData* outPD)
+{
+  vtkNew<vtkPointData> carried;
+  carried->InterpolateAllocate(inPD, static_cast<vtkIdType>(built.Splats.size()));
+  vtkNew<vtkIdList> ids;
+  std::vector<double> w;
+  for (vtkIdType i = 0; i < static_cast<vtkIdType>(built.Splats.size()); ++i)
+  {
+    const BuiltSplat& b = built.Splats[i];
+    ids->SetNumberOfIds(static_cast<vtkIdType>(b.Ids.size()));
+    w.resize(b.Weights.size());
+    double sum = 0.0;
+    for (size_t j = 0; j < b.Weights.size(); ++j)
+    {
+      sum += b.Weights[j];
+    }
+    for (size_t j = 0; j < b.Ids.size(); ++j)
+    {
+      ids->SetId(static_cast<vtkIdType>(j), kept[b.Ids[j]]);
+      w[j] = sum > 0.0 ? b.Weights[j] / sum : 1.0 / b.Ids.size();
+    }
+    carried->InterpolatePoint(inPD, i, ids, w.data());
+  }
+  for (int a = 0; a < carried->GetNumberOfArrays(); ++a)
+  {
+    outPD->AddArray(carried->GetAbstractArray(a));
+  }
+  if (carried->GetScalars())
+  {
+    outPD->SetActiveScalars(carried->GetScalars()->GetName());
+  }
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -122,6 +159,35 @@ int vtkAlgebraicSplatFitter::FillInputPortInformation(int, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPointSet");
   return 1;
+}
+
+//------------------------------------------------------------------------------
+pointsurfaces::BuildParameters vtkAlgebraicSplatFitter::MakeParameters(bool keepWeights) const
+{
+  BuildParameters params;
+  params.Fit.Degree = this->Degree;
+  params.Fit.NumberOfNeighbors = this->NumberOfNeighbors;
+  params.Fit.FeatureSizeNeighbors = this->FeatureSizeNeighbors;
+  params.Fit.WeightScale = this->WeightScale;
+  params.Fit.Mode = static_cast<pointsurfaces::FitMode>(this->FitMode);
+  params.Fit.Loss = static_cast<pointsurfaces::RobustLoss>(this->RobustLoss);
+  params.Fit.LossScale = this->RobustLossScale;
+  params.Fit.MaximumDeviation = this->MaximumDeviation;
+  params.Fit.ReweightingIterations = this->ReweightingIterations;
+  params.NormalAngle = this->MaximumNormalAngle;
+  params.EstimateNormals = this->EstimateNormals;
+  params.Select = static_cast<pointsurfaces::Selection>(this->SelectionMode);
+  params.Quality = this->QualityFactor;
+  params.VisitOrder = static_cast<pointsurfaces::Order>(this->SelectionOrder);
+  params.Count = this->NumberOfSplats;
+  params.Weighted = this->LOPVariant == WLOP;
+  params.LOPIterations = this->LOPIterations;
+  params.Seed = this->RandomSeed;
+  params.RadiusScale = this->RadiusScale;
+  params.KeepWeights = keepWeights;
+  params.Levels = this->SelectionMode == Quality ? this->NumberOfLevels : 1;
+  params.CoarsestQuality = this->CoarsestQualityFactor;
+  return params;
 }
 
 //------------------------------------------------------------------------------
@@ -182,29 +248,8 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
                     << " points: using all points.");
   }
 
-  BuildParameters params;
-  params.Fit.Degree = this->Degree;
-  params.Fit.NumberOfNeighbors = this->NumberOfNeighbors;
-  params.Fit.FeatureSizeNeighbors = this->FeatureSizeNeighbors;
-  params.Fit.WeightScale = this->WeightScale;
-  params.Fit.Mode = static_cast<pointsurfaces::FitMode>(this->FitMode);
-  params.Fit.Loss = static_cast<pointsurfaces::RobustLoss>(this->RobustLoss);
-  params.Fit.LossScale = this->RobustLossScale;
-  params.Fit.MaximumDeviation = this->MaximumDeviation;
-  params.Fit.ReweightingIterations = this->ReweightingIterations;
-  params.NormalAngle = this->MaximumNormalAngle;
-  params.EstimateNormals = this->EstimateNormals;
-  params.Select = static_cast<pointsurfaces::Selection>(this->SelectionMode);
-  params.Quality = this->QualityFactor;
-  params.VisitOrder = static_cast<pointsurfaces::Order>(this->SelectionOrder);
-  params.Count = this->NumberOfSplats;
-  params.Weighted = this->LOPVariant == WLOP;
-  params.LOPIterations = this->LOPIterations;
-  params.Seed = this->RandomSeed;
-  params.RadiusScale = this->RadiusScale;
-  params.KeepWeights = input->GetPointData()->GetNumberOfArrays() > 0;
-  params.Levels = this->SelectionMode == Quality ? this->NumberOfLevels : 1;
-  params.CoarsestQuality = this->CoarsestQualityFactor;
+  const BuildParameters params =
+    this->MakeParameters(input->GetPointData()->GetNumberOfArrays() > 0);
   std::atomic<bool> abort(false);
   BuildResult built = BuildSplats(
     xyz.data(),
@@ -240,37 +285,7 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   // Carry every input array over, MLS-weighted (VTK interpolates each type).
   if (params.KeepWeights)
   {
-    vtkPointData* outPD = output->GetPointData();
-    vtkNew<vtkPointData> carried;
-    carried->InterpolateAllocate(
-      input->GetPointData(), static_cast<vtkIdType>(built.Splats.size()));
-    vtkNew<vtkIdList> ids;
-    std::vector<double> w;
-    for (vtkIdType i = 0; i < static_cast<vtkIdType>(built.Splats.size()); ++i)
-    {
-      const BuiltSplat& b = built.Splats[i];
-      ids->SetNumberOfIds(static_cast<vtkIdType>(b.Ids.size()));
-      w.resize(b.Weights.size());
-      double sum = 0.0;
-      for (size_t j = 0; j < b.Weights.size(); ++j)
-      {
-        sum += b.Weights[j];
-      }
-      for (size_t j = 0; j < b.Ids.size(); ++j)
-      {
-        ids->SetId(static_cast<vtkIdType>(j), kept[b.Ids[j]]);
-        w[j] = sum > 0.0 ? b.Weights[j] / sum : 1.0 / b.Ids.size();
-      }
-      carried->InterpolatePoint(input->GetPointData(), i, ids, w.data());
-    }
-    for (int a = 0; a < carried->GetNumberOfArrays(); ++a)
-    {
-      outPD->AddArray(carried->GetAbstractArray(a));
-    }
-    if (carried->GetScalars())
-    {
-      outPD->SetActiveScalars(carried->GetScalars()->GetName());
-    }
+    CarryArrays(input->GetPointData(), kept, built, output->GetPointData());
   }
 
   this->NumberOfDegenerateSplats = built.Degenerate;

@@ -78,6 +78,7 @@
 
 namespace pointsurfaces
 {
+struct BuildParameters;
 struct BuildResult;
 }
 
@@ -349,6 +350,8 @@ protected:
   void MergeCoincident(std::vector<double>& xyz,
     std::vector<double>& normals,
     std::vector<vtkIdType>& kept);
+  /** The build's parameters from the properties; `keepWeights` to carry the arrays over. */
+  pointsurfaces::BuildParameters MakeParameters(bool keepWeights) const;
 
   int Degree = 3;
   int NumberOfNeighbors = 40;
