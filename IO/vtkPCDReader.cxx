@@ -221,6 +221,216 @@ const pcl::PCLPointField* Find(const pcl::PCLPointCloud2& cloud, const char* nam
   }
   return nullptr;
 }
+// The PCD file into `cloud`, PCL's own diagnostics silenced; what is wrong
+// with it, or empty when it was read whole.
+std::string ReadCloud(const std::string& fileName, pcl::PCLPointCloud2& cloud)
+{
+  // PCL prints its own diagnostics; ours are the ones to act on.
+  struct QuietPCL
+  {
+    pcl::console::VERBOSITY_LEVEL Saved = pcl::console::getVerbosityLevel();
+    QuietPCL() { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
+    ~QuietPCL() { pcl::console::setVerbosityLevel(this->Saved); }
+  } quiet;
+  int status = -1;
+  try
+  {
+    const std::string problem = CheckDataSize(fileName);
+    if (!problem.empty())
+    {
+      return "the file is corrupt or truncated: " + problem + ".";
+    }
+    pcl::PCDReader reader;
+    status = reader.read(fileName, cloud);
+  }
+  catch (const std::exception& e)
+  {
+    return e.what();
+  }
+  const size_t n = static_cast<size_t>(cloud.width) * cloud.height;
+  if (status < 0 || cloud.point_step == 0 || n > cloud.data.size() / cloud.point_step)
+  {
+    return "the file is corrupt or truncated (PCL status " + std::to_string(status) + ").";
+  }
+  return std::string();
+}
+
+// Why a field does not fit a point's record (found by FuzzPCDReader: a
+// damaged SIZE line put the colour's 4 bytes past the last point); empty
+// when every field fits.
+std::string FieldProblem(const pcl::PCLPointCloud2& cloud)
+{
+  for (const auto& f : cloud.fields)
+  {
+    const size_t bytes = static_cast<size_t>(TypeSize(f.datatype)) * f.count;
+    if (static_cast<size_t>(f.offset) + std::max<size_t>(bytes, 1) > cloud.point_step ||
+      ((f.name == "rgb" || f.name == "rgba") && bytes < 4))
+    {
+      std::ostringstream text;
+      text << "the field '" << f.name << "' (offset " << f.offset << ", " << bytes
+           << " bytes) does not fit a point's " << cloud.point_step
+           << " bytes: the header is corrupt.";
+      return text.str();
+    }
+  }
+  return std::string();
+}
+
+// The indices of the points with finite coordinates.
+std::vector<size_t> FinitePoints(const pcl::PCLPointCloud2& cloud,
+  const pcl::PCLPointField* fx,
+  const pcl::PCLPointField* fy,
+  const pcl::PCLPointField* fz)
+{
+  std::vector<size_t> keep;
+  const size_t n = static_cast<size_t>(cloud.width) * cloud.height;
+  keep.reserve(n);
+  for (size_t i = 0; i < n; ++i)
+  {
+    const std::uint8_t* p = cloud.data.data() + i * cloud.point_step;
+    const double x = ReadScalar(p + fx->offset, fx->datatype);
+    const double y = ReadScalar(p + fy->offset, fy->datatype);
+    const double z = ReadScalar(p + fz->offset, fz->datatype);
+    if (std::isfinite(x) && std::isfinite(y) && std::isfinite(z))
+    {
+      keep.push_back(i);
+    }
+  }
+  return keep;
+}
+
+// The kept points (in double when any coordinate is), one vertex each.
+void SetPointsAndVertices(const pcl::PCLPointCloud2& cloud,
+  const pcl::PCLPointField* fx,
+  const pcl::PCLPointField* fy,
+  const pcl::PCLPointField* fz,
+  const std::vector<size_t>& keep,
+  vtkPolyData* output)
+{
+  const vtkIdType m = static_cast<vtkIdType>(keep.size());
+  const bool useDouble = fx->datatype == pcl::PCLPointField::FLOAT64 ||
+    fy->datatype == pcl::PCLPointField::FLOAT64 || fz->datatype == pcl::PCLPointField::FLOAT64;
+  vtkNew<vtkPoints> points;
+  points->SetDataType(useDouble ? VTK_DOUBLE : VTK_FLOAT);
+  points->SetNumberOfPoints(m);
+  for (vtkIdType j = 0; j < m; ++j)
+  {
+    const std::uint8_t* p = cloud.data.data() + keep[j] * cloud.point_step;
+    points->SetPoint(j,
+      ReadScalar(p + fx->offset, fx->datatype),
+      ReadScalar(p + fy->offset, fy->datatype),
+      ReadScalar(p + fz->offset, fz->datatype));
+  }
+  output->SetPoints(points);
+
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> connectivity;
+  offsets->SetNumberOfValues(m + 1);
+  connectivity->SetNumberOfValues(m);
+  for (vtkIdType j = 0; j <= m; ++j)
+  {
+    offsets->SetValue(j, j);
+    if (j < m)
+    {
+      connectivity->SetValue(j, j);
+    }
+  }
+  vtkNew<vtkCellArray> verts;
+  verts->SetData(offsets, connectivity);
+  output->SetVerts(verts);
+}
+
+// The normal_x, _y and _z fields, when all three are there, as the normals.
+bool AddNormals(const pcl::PCLPointCloud2& cloud,
+  const std::vector<size_t>& keep,
+  vtkPolyData* output)
+{
+  const vtkIdType m = static_cast<vtkIdType>(keep.size());
+  // Normals: the three normal_* fields together.
+  const pcl::PCLPointField* fn[3] = {
+    Find(cloud, "normal_x"), Find(cloud, "normal_y"), Find(cloud, "normal_z")
+  };
+  if (!(fn[0] && fn[1] && fn[2]))
+  {
+    return false;
+  }
+  {
+    auto normals = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_FLOAT));
+    normals->SetName("Normals");
+    normals->SetNumberOfComponents(3);
+    normals->SetNumberOfTuples(m);
+    for (vtkIdType j = 0; j < m; ++j)
+    {
+      const std::uint8_t* p = cloud.data.data() + keep[j] * cloud.point_step;
+      for (int c = 0; c < 3; ++c)
+      {
+        normals->SetComponent(j, c, ReadScalar(p + fn[c]->offset, fn[c]->datatype));
+      }
+    }
+    output->GetPointData()->SetNormals(normals);
+  }
+
+  return true;
+}
+
+// The other fields as point arrays: packed rgb(a) as colours, the rest as
+// they are typed (a field of unknown type skipped, with a warning by owner).
+void AddFields(const pcl::PCLPointCloud2& cloud,
+  const std::vector<size_t>& keep,
+  bool hasNormals,
+  vtkPolyData* output,
+  vtkObject* owner)
+{
+  const vtkIdType m = static_cast<vtkIdType>(keep.size());
+  for (const auto& f : cloud.fields)
+  {
+    if (f.name == "x" || f.name == "y" || f.name == "z" || f.name == "_" ||
+      (hasNormals && f.name.rfind("normal_", 0) == 0))
+    {
+      continue;
+    }
+    if (f.name == "rgb" || f.name == "rgba")
+    {
+      // Packed 0xAARRGGBB in 4 bytes, whatever the declared type.
+      const bool alpha = f.name == "rgba";
+      vtkNew<vtkUnsignedCharArray> colors;
+      colors->SetName(alpha ? "RGBA" : "RGB");
+      colors->SetNumberOfComponents(alpha ? 4 : 3);
+      colors->SetNumberOfTuples(m);
+      for (vtkIdType j = 0; j < m; ++j)
+      {
+        std::uint32_t packed;
+        std::memcpy(&packed, cloud.data.data() + keep[j] * cloud.point_step + f.offset, 4);
+        const unsigned char rgba[4] = { static_cast<unsigned char>((packed >> 16) & 0xff),
+          static_cast<unsigned char>((packed >> 8) & 0xff),
+          static_cast<unsigned char>(packed & 0xff),
+          static_cast<unsigned char>((packed >> 24) & 0xff) };
+        colors->SetTypedTuple(j, rgba);
+      }
+      output->GetPointData()->SetScalars(colors);
+      continue;
+    }
+    const int type = VTKType(f.datatype);
+    if (type == VTK_VOID || f.count == 0)
+    {
+      vtkWarningWithObjectMacro(owner, << "Skipping field '" << f.name << "' of unknown type.");
+      continue;
+    }
+    auto array = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(type));
+    array->SetName(f.name.c_str());
+    array->SetNumberOfComponents(static_cast<int>(f.count));
+    array->SetNumberOfTuples(m);
+    const int size = TypeSize(f.datatype);
+    auto* dst = static_cast<std::uint8_t*>(array->GetVoidPointer(0));
+    for (vtkIdType j = 0; j < m; ++j)
+    {
+      std::memcpy(dst + static_cast<size_t>(j) * f.count * size,
+        cloud.data.data() + keep[j] * cloud.point_step + f.offset,
+        f.count * size);
+    }
+    output->GetPointData()->AddArray(array);
+  }
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -260,53 +470,18 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
     return 1;
   }
 
-  // PCL prints its own diagnostics; ours below are the ones to act on.
-  struct QuietPCL
-  {
-    pcl::console::VERBOSITY_LEVEL Saved = pcl::console::getVerbosityLevel();
-    QuietPCL() { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
-    ~QuietPCL() { pcl::console::setVerbosityLevel(this->Saved); }
-  } quiet;
   pcl::PCLPointCloud2 cloud;
-  int status = -1;
-  try
+  const std::string problem = ReadCloud(this->FileName, cloud);
+  if (!problem.empty())
   {
-    const std::string problem = CheckDataSize(this->FileName);
-    if (!problem.empty())
-    {
-      vtkErrorMacro(<< "Cannot read '" << this->FileName
-                    << "': the file is corrupt or truncated: " << problem << ".");
-      return 1;
-    }
-    pcl::PCDReader reader;
-    status = reader.read(this->FileName, cloud);
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< "Cannot read '" << this->FileName << "': " << e.what());
+    vtkErrorMacro(<< "Cannot read '" << this->FileName << "': " << problem);
     return 1;
   }
-  const size_t n = static_cast<size_t>(cloud.width) * cloud.height;
-  if (status < 0 || cloud.point_step == 0 || n > cloud.data.size() / cloud.point_step)
+  const std::string badField = FieldProblem(cloud);
+  if (!badField.empty())
   {
-    vtkErrorMacro(<< "Cannot read '" << this->FileName
-                  << "': the file is corrupt or truncated (PCL status " << status << ").");
+    vtkErrorMacro(<< "Cannot read '" << this->FileName << "': " << badField);
     return 1;
-  }
-  // Every field must lie inside a point's record (found by FuzzPCDReader: a
-  // damaged SIZE line put the colour's 4 bytes past the last point).
-  for (const auto& f : cloud.fields)
-  {
-    const size_t bytes = static_cast<size_t>(TypeSize(f.datatype)) * f.count;
-    if (static_cast<size_t>(f.offset) + std::max<size_t>(bytes, 1) > cloud.point_step ||
-      ((f.name == "rgb" || f.name == "rgba") && bytes < 4))
-    {
-      vtkErrorMacro(<< "Cannot read '" << this->FileName << "': the field '" << f.name
-                    << "' (offset " << f.offset << ", " << bytes
-                    << " bytes) does not fit a point's " << cloud.point_step
-                    << " bytes: the header is corrupt.");
-      return 1;
-    }
   }
   const pcl::PCLPointField* fx = Find(cloud, "x");
   const pcl::PCLPointField* fy = Find(cloud, "y");
@@ -319,19 +494,8 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
   }
 
   // Keep the points with finite coordinates.
-  std::vector<size_t> keep;
-  keep.reserve(n);
-  for (size_t i = 0; i < n; ++i)
-  {
-    const std::uint8_t* p = cloud.data.data() + i * cloud.point_step;
-    const double x = ReadScalar(p + fx->offset, fx->datatype);
-    const double y = ReadScalar(p + fy->offset, fy->datatype);
-    const double z = ReadScalar(p + fz->offset, fz->datatype);
-    if (std::isfinite(x) && std::isfinite(y) && std::isfinite(z))
-    {
-      keep.push_back(i);
-    }
-  }
+  const std::vector<size_t> keep = FinitePoints(cloud, fx, fy, fz);
+  const size_t n = static_cast<size_t>(cloud.width) * cloud.height;
   this->NumberOfDroppedPoints = static_cast<vtkIdType>(n - keep.size());
   if (this->NumberOfDroppedPoints > 0)
   {
@@ -340,59 +504,9 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
   }
   const vtkIdType m = static_cast<vtkIdType>(keep.size());
 
-  const bool useDouble = fx->datatype == pcl::PCLPointField::FLOAT64 ||
-    fy->datatype == pcl::PCLPointField::FLOAT64 || fz->datatype == pcl::PCLPointField::FLOAT64;
-  vtkNew<vtkPoints> points;
-  points->SetDataType(useDouble ? VTK_DOUBLE : VTK_FLOAT);
-  points->SetNumberOfPoints(m);
-  for (vtkIdType j = 0; j < m; ++j)
-  {
-    const std::uint8_t* p = cloud.data.data() + keep[j] * cloud.point_step;
-    points->SetPoint(j,
-      ReadScalar(p + fx->offset, fx->datatype),
-      ReadScalar(p + fy->offset, fy->datatype),
-      ReadScalar(p + fz->offset, fz->datatype));
-  }
-  output->SetPoints(points);
+  SetPointsAndVertices(cloud, fx, fy, fz, keep, output);
 
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> connectivity;
-  offsets->SetNumberOfValues(m + 1);
-  connectivity->SetNumberOfValues(m);
-  for (vtkIdType j = 0; j <= m; ++j)
-  {
-    offsets->SetValue(j, j);
-    if (j < m)
-    {
-      connectivity->SetValue(j, j);
-    }
-  }
-  vtkNew<vtkCellArray> verts;
-  verts->SetData(offsets, connectivity);
-  output->SetVerts(verts);
-
-  // Normals: the three normal_* fields together.
-  const pcl::PCLPointField* fn[3] = {
-    Find(cloud, "normal_x"), Find(cloud, "normal_y"), Find(cloud, "normal_z")
-  };
-  const bool hasNormals = fn[0] && fn[1] && fn[2];
-  if (hasNormals)
-  {
-    auto normals = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(VTK_FLOAT));
-    normals->SetName("Normals");
-    normals->SetNumberOfComponents(3);
-    normals->SetNumberOfTuples(m);
-    for (vtkIdType j = 0; j < m; ++j)
-    {
-      const std::uint8_t* p = cloud.data.data() + keep[j] * cloud.point_step;
-      for (int c = 0; c < 3; ++c)
-      {
-        normals->SetComponent(j, c, ReadScalar(p + fn[c]->offset, fn[c]->datatype));
-      }
-    }
-    output->GetPointData()->SetNormals(normals);
-  }
-
+  const bool hasNormals = AddNormals(cloud, keep, output);
   for (const auto& f : cloud.fields)
   {
     if (f.name == "x" || f.name == "y" || f.name == "z" || f.name == "_" ||
