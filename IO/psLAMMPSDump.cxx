@@ -89,6 +89,102 @@ bool ParseLong(const std::string& text, long long& value)
 
 // The header of one snapshot, up to and including its ITEM: ATOMS line.
 // `first` is its first line, already read. Returns false with `error` set.
+// The three lines after an ITEM: BOX BOUNDS line `item` into s's box
+// (orthogonal or triclinic, tilts undone) and boundary flags.
+bool ReadBoxBounds(LineReader& lines, const std::string& item, DumpSnapshot& s, std::string& error)
+{
+  const std::vector<std::string> words = Words(item.substr(16));
+  s.Triclinic = words.size() >= 3 && words[0] == "xy";
+  s.Boundary.clear();
+  for (size_t k = s.Triclinic ? 3 : 0; k < words.size(); ++k)
+  {
+    s.Boundary += (s.Boundary.empty() ? "" : " ") + words[k];
+  }
+  std::string line;
+  double bound[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    if (!lines.Next(line))
+    {
+      error = "the file ends in ITEM: BOX BOUNDS";
+      return false;
+    }
+    const char* p = line.c_str();
+    for (int k = 0; k < (s.Triclinic ? 3 : 2); ++k)
+    {
+      const char* end = nullptr;
+      if (!ParseDouble(p, &end, bound[axis][k]) || !std::isfinite(bound[axis][k]))
+      {
+        error = "a BOX BOUNDS line holds no numbers: '" + line + "'";
+        return false;
+      }
+      p = end;
+    }
+  }
+  if (s.Triclinic)
+  {
+    // The bounds of a triclinic box are those of its bounding box: undo the tilts.
+    const double xy = bound[0][2], xz = bound[1][2], yz = bound[2][2];
+    s.Tilt[0] = xy;
+    s.Tilt[1] = xz;
+    s.Tilt[2] = yz;
+    s.Box[0] = bound[0][0] - std::min({ 0.0, xy, xz, xy + xz });
+    s.Box[1] = bound[0][1] - std::max({ 0.0, xy, xz, xy + xz });
+    s.Box[2] = bound[1][0] - std::min(0.0, yz);
+    s.Box[3] = bound[1][1] - std::max(0.0, yz);
+  }
+  else
+  {
+    s.Box[0] = bound[0][0];
+    s.Box[1] = bound[0][1];
+    s.Box[2] = bound[1][0];
+    s.Box[3] = bound[1][1];
+  }
+  s.Box[4] = bound[2][0];
+  s.Box[5] = bound[2][1];
+  return true;
+}
+
+// Whether the snapshot's ITEM: ATOMS line (its columns in s) may start its
+// atoms: the timestep, count and box came before it, and the file can hold
+// that many atom lines. Sets the time to the timestep when none was given.
+bool CheckAtomsItem(const LineReader& lines,
+  bool haveStep,
+  bool haveCount,
+  bool haveBox,
+  DumpSnapshot& s,
+  std::string& error)
+{
+  if (!haveStep || !haveCount)
+  {
+    error = "ITEM: ATOMS comes before the timestep or the atom count";
+    return false;
+  }
+  if (!haveBox)
+  {
+    error = "a snapshot has no ITEM: BOX BOUNDS";
+    return false;
+  }
+  if (s.Columns.empty() && s.Info.NumberOfAtoms > 0)
+  {
+    error = "ITEM: ATOMS names no columns";
+    return false;
+  }
+  // Each atom needs a line of at least two bytes per column.
+  if (s.Info.NumberOfAtoms >
+    (lines.Size - lines.Offset) / (2 * std::max<std::int64_t>(1, s.Columns.size())) + 1)
+  {
+    error = "the file is too short for " + std::to_string(s.Info.NumberOfAtoms) + " atoms of " +
+      std::to_string(s.Columns.size()) + " columns (truncated?)";
+    return false;
+  }
+  if (!s.Info.HasTime)
+  {
+    s.Info.Time = static_cast<double>(s.Info.Timestep);
+  }
+  return true;
+}
+
 bool ReadHeader(LineReader& lines, std::string first, DumpSnapshot& s, std::string& error)
 {
   std::string line = std::move(first);
@@ -133,87 +229,16 @@ bool ReadHeader(LineReader& lines, std::string first, DumpSnapshot& s, std::stri
     }
     else if (StartsWith(line, "ITEM: BOX BOUNDS"))
     {
-      const std::vector<std::string> words = Words(line.substr(16));
-      s.Triclinic = words.size() >= 3 && words[0] == "xy";
-      s.Boundary.clear();
-      for (size_t k = s.Triclinic ? 3 : 0; k < words.size(); ++k)
+      if (!ReadBoxBounds(lines, line, s, error))
       {
-        s.Boundary += (s.Boundary.empty() ? "" : " ") + words[k];
+        return false;
       }
-      double bound[3][3] = { { 0, 0, 0 }, { 0, 0, 0 }, { 0, 0, 0 } };
-      for (int axis = 0; axis < 3; ++axis)
-      {
-        if (!lines.Next(line))
-        {
-          error = "the file ends in ITEM: BOX BOUNDS";
-          return false;
-        }
-        const char* p = line.c_str();
-        for (int k = 0; k < (s.Triclinic ? 3 : 2); ++k)
-        {
-          const char* end = nullptr;
-          if (!ParseDouble(p, &end, bound[axis][k]) || !std::isfinite(bound[axis][k]))
-          {
-            error = "a BOX BOUNDS line holds no numbers: '" + line + "'";
-            return false;
-          }
-          p = end;
-        }
-      }
-      if (s.Triclinic)
-      {
-        // The bounds of a triclinic box are those of its bounding box: undo the tilts.
-        const double xy = bound[0][2], xz = bound[1][2], yz = bound[2][2];
-        s.Tilt[0] = xy;
-        s.Tilt[1] = xz;
-        s.Tilt[2] = yz;
-        s.Box[0] = bound[0][0] - std::min({ 0.0, xy, xz, xy + xz });
-        s.Box[1] = bound[0][1] - std::max({ 0.0, xy, xz, xy + xz });
-        s.Box[2] = bound[1][0] - std::min(0.0, yz);
-        s.Box[3] = bound[1][1] - std::max(0.0, yz);
-      }
-      else
-      {
-        s.Box[0] = bound[0][0];
-        s.Box[1] = bound[0][1];
-        s.Box[2] = bound[1][0];
-        s.Box[3] = bound[1][1];
-      }
-      s.Box[4] = bound[2][0];
-      s.Box[5] = bound[2][1];
       haveBox = true;
     }
     else if (StartsWith(line, "ITEM: ATOMS"))
     {
       s.Columns = Words(line.substr(11));
-      if (!haveStep || !haveCount)
-      {
-        error = "ITEM: ATOMS comes before the timestep or the atom count";
-        return false;
-      }
-      if (!haveBox)
-      {
-        error = "a snapshot has no ITEM: BOX BOUNDS";
-        return false;
-      }
-      if (s.Columns.empty() && s.Info.NumberOfAtoms > 0)
-      {
-        error = "ITEM: ATOMS names no columns";
-        return false;
-      }
-      // Each atom needs a line of at least two bytes per column.
-      if (s.Info.NumberOfAtoms >
-        (lines.Size - lines.Offset) / (2 * std::max<std::int64_t>(1, s.Columns.size())) + 1)
-      {
-        error = "the file is too short for " + std::to_string(s.Info.NumberOfAtoms) + " atoms of " +
-          std::to_string(s.Columns.size()) + " columns (truncated?)";
-        return false;
-      }
-      if (!s.Info.HasTime)
-      {
-        s.Info.Time = static_cast<double>(s.Info.Timestep);
-      }
-      return true;
+      return CheckAtomsItem(lines, haveStep, haveCount, haveBox, s, error);
     }
     else if (StartsWith(line, "ITEM:"))
     {

@@ -70,74 +70,31 @@ int vtkLAMMPSDumpReader::RequestInformation(vtkInformation*,
   return 1;
 }
 
-//------------------------------------------------------------------------------
-int vtkLAMMPSDumpReader::RequestData(vtkInformation*,
-  vtkInformationVector**,
-  vtkInformationVector* outputVector)
+namespace
 {
-  vtkInformation* info = outputVector->GetInformationObject(0);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  const Index& index = *this->Snapshots;
-  if (index.Frames.empty() || pointsurfaces::LaterPiece(info))
-  {
-    return 1; // RequestInformation said why; or another piece than the first
-  }
-  const size_t pick = index.Pick(info);
-  std::ifstream in(this->FileName, std::ios::binary);
-  pointsurfaces::DumpSnapshot snap;
-  std::string error;
-  if (!in || !pointsurfaces::ReadSnapshot(in, index.Frames[pick].Offset, snap, error))
-  {
-    vtkErrorMacro(<< "Cannot read timestep " << index.Frames[pick].Timestep << " of "
-                  << this->FileName << ": " << (error.empty() ? "cannot open it" : error) << ".");
-    return 1;
-  }
-  std::vector<double> xyz;
-  int used[3];
-  if (!pointsurfaces::SnapshotPositions(snap, xyz, used))
-  {
-    vtkErrorMacro(<< this->FileName
-                  << " has no coordinates (x y z, xu yu zu, xs ys zs or xsu ysu "
-                     "zsu) at timestep "
-                  << snap.Info.Timestep << ".");
-    return 1;
-  }
-  const vtkIdType n = static_cast<vtkIdType>(snap.Info.NumberOfAtoms);
+// The index of the column `name` of the snapshot, -1 when it has none.
+int ColumnOf(const pointsurfaces::DumpSnapshot& snap, const std::string& name)
+{
+  const auto it = std::find(snap.Columns.begin(), snap.Columns.end(), name);
+  return it == snap.Columns.end() ? -1 : static_cast<int>(it - snap.Columns.begin());
+}
+
+// The snapshot's columns, other than the three `used` for the positions, as
+// point arrays in the atoms' `order`: Ax Ay Az grouped into one vector A,
+// id, mol and type as integers, the rest as doubles.
+void AddColumnArrays(const pointsurfaces::DumpSnapshot& snap,
+  const std::vector<vtkIdType>& order,
+  const int used[3],
+  vtkPointData* pd)
+{
+  const vtkIdType n = static_cast<vtkIdType>(order.size());
   const size_t columns = snap.Columns.size();
-  auto column = [&](const std::string& name)
-  {
-    const auto it = std::find(snap.Columns.begin(), snap.Columns.end(), name);
-    return it == snap.Columns.end() ? -1 : static_cast<int>(it - snap.Columns.begin());
-  };
-  // The order of the atoms: by id when asked and possible.
-  std::vector<vtkIdType> order(static_cast<size_t>(n));
-  std::iota(order.begin(), order.end(), vtkIdType(0));
-  const int idColumn = column("id");
-  if (this->SortById && idColumn >= 0)
-  {
-    std::stable_sort(order.begin(),
-      order.end(),
-      [&](vtkIdType a, vtkIdType b)
-      { return snap.Values[a * columns + idColumn] < snap.Values[b * columns + idColumn]; });
-  }
-
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(n);
-  for (vtkIdType k = 0; k < n; ++k)
-  {
-    points->SetPoint(k, &xyz[3 * order[k]]);
-  }
-  output->SetPoints(points);
-  vtkSplatDataModel::AddVertexCells(output);
-
-  // Columns to arrays: Ax Ay Az grouped, id/mol/type as integers.
+  auto column = [&](const std::string& name) { return ColumnOf(snap, name); };
   std::vector<bool> taken(columns, false);
-  for (int c : used)
+  for (int c : { used[0], used[1], used[2] })
   {
     taken[c] = true;
   }
-  vtkPointData* pd = output->GetPointData();
   for (size_t c = 0; c < columns; ++c)
   {
     const std::string& name = snap.Columns[c];
@@ -198,8 +155,11 @@ int vtkLAMMPSDumpReader::RequestData(vtkInformation*,
     }
     pd->AddArray(a);
   }
+}
 
-  vtkFieldData* fd = output->GetFieldData();
+// The snapshot's timestep, time, box bounds and tilt as field arrays.
+void AddSnapshotFields(const pointsurfaces::DumpSnapshot& snap, vtkFieldData* fd)
+{
   vtkNew<vtkIdTypeArray> step;
   step->SetName("Timestep");
   step->InsertNextValue(static_cast<vtkIdType>(snap.Info.Timestep));
@@ -218,6 +178,68 @@ int vtkLAMMPSDumpReader::RequestData(vtkInformation*,
   tilt->SetNumberOfComponents(3);
   tilt->InsertNextTypedTuple(snap.Tilt);
   fd->AddArray(tilt);
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+int vtkLAMMPSDumpReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* info = outputVector->GetInformationObject(0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  const Index& index = *this->Snapshots;
+  if (index.Frames.empty() || pointsurfaces::LaterPiece(info))
+  {
+    return 1; // RequestInformation said why; or another piece than the first
+  }
+  const size_t pick = index.Pick(info);
+  std::ifstream in(this->FileName, std::ios::binary);
+  pointsurfaces::DumpSnapshot snap;
+  std::string error;
+  if (!in || !pointsurfaces::ReadSnapshot(in, index.Frames[pick].Offset, snap, error))
+  {
+    vtkErrorMacro(<< "Cannot read timestep " << index.Frames[pick].Timestep << " of "
+                  << this->FileName << ": " << (error.empty() ? "cannot open it" : error) << ".");
+    return 1;
+  }
+  std::vector<double> xyz;
+  int used[3];
+  if (!pointsurfaces::SnapshotPositions(snap, xyz, used))
+  {
+    vtkErrorMacro(<< this->FileName
+                  << " has no coordinates (x y z, xu yu zu, xs ys zs or xsu ysu "
+                     "zsu) at timestep "
+                  << snap.Info.Timestep << ".");
+    return 1;
+  }
+  const vtkIdType n = static_cast<vtkIdType>(snap.Info.NumberOfAtoms);
+  const size_t columns = snap.Columns.size();
+  // The order of the atoms: by id when asked and possible.
+  std::vector<vtkIdType> order(static_cast<size_t>(n));
+  std::iota(order.begin(), order.end(), vtkIdType(0));
+  const int idColumn = ColumnOf(snap, "id");
+  if (this->SortById && idColumn >= 0)
+  {
+    std::stable_sort(order.begin(),
+      order.end(),
+      [&](vtkIdType a, vtkIdType b)
+      { return snap.Values[a * columns + idColumn] < snap.Values[b * columns + idColumn]; });
+  }
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    points->SetPoint(k, &xyz[3 * order[k]]);
+  }
+  output->SetPoints(points);
+  vtkSplatDataModel::AddVertexCells(output);
+
+  // Columns to arrays: Ax Ay Az grouped, id/mol/type as integers.
+  AddColumnArrays(snap, order, used, output->GetPointData());
+  AddSnapshotFields(snap, output->GetFieldData());
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), snap.Info.Time);
   return 1;
 }
