@@ -441,6 +441,89 @@ bool PlausibleCounts(const std::string& name, const std::string& ext, std::strin
   }
   return true;
 }
+// The mesh as polygons (with vertex cells for the vertices no face uses)
+// and, as `options` says it has them, its vertex normals, vertex colours
+// and (without vertex cells) face colours.
+void MeshToPolyData(Mesh& mesh, const OpenMesh::IO::Options& options, vtkPolyData* output)
+{
+  const vtkIdType n = static_cast<vtkIdType>(mesh.n_vertices());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  points->SetNumberOfPoints(n);
+  std::vector<char> used(n, 0);
+  for (auto v : mesh.vertices())
+  {
+    const auto& p = mesh.point(v);
+    points->SetPoint(v.idx(), p[0], p[1], p[2]);
+  }
+  vtkNew<vtkCellArray> polys;
+  for (auto f : mesh.faces())
+  {
+    std::vector<vtkIdType> ids;
+    for (auto v : mesh.fv_range(f))
+    {
+      ids.push_back(v.idx());
+      used[v.idx()] = 1;
+    }
+    polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+  }
+  output->SetPoints(points);
+  output->SetPolys(polys);
+  // Vertices that no face uses (a point cloud) are vertex cells.
+  vtkNew<vtkCellArray> verts;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    if (!used[i])
+    {
+      verts->InsertNextCell(1, &i);
+    }
+  }
+  if (verts->GetNumberOfCells() > 0)
+  {
+    output->SetVerts(verts);
+  }
+
+  if (options.check(OpenMesh::IO::Options::VertexNormal))
+  {
+    vtkNew<vtkFloatArray> normals;
+    normals->SetName("Normals");
+    normals->SetNumberOfComponents(3);
+    normals->SetNumberOfTuples(n);
+    for (auto v : mesh.vertices())
+    {
+      const auto& nv = mesh.normal(v);
+      normals->SetTuple3(v.idx(), nv[0], nv[1], nv[2]);
+    }
+    output->GetPointData()->SetNormals(normals);
+  }
+  if (options.check(OpenMesh::IO::Options::VertexColor))
+  {
+    vtkNew<vtkUnsignedCharArray> colors;
+    colors->SetName("Colors");
+    colors->SetNumberOfComponents(3);
+    colors->SetNumberOfTuples(n);
+    for (auto v : mesh.vertices())
+    {
+      const auto& c = mesh.color(v);
+      colors->SetTuple3(v.idx(), c[0], c[1], c[2]);
+    }
+    output->GetPointData()->SetScalars(colors);
+  }
+  if (options.check(OpenMesh::IO::Options::FaceColor) &&
+    output->GetVerts()->GetNumberOfCells() == 0)
+  {
+    vtkNew<vtkUnsignedCharArray> colors;
+    colors->SetName("Colors");
+    colors->SetNumberOfComponents(3);
+    colors->SetNumberOfTuples(static_cast<vtkIdType>(mesh.n_faces()));
+    for (auto f : mesh.faces())
+    {
+      const auto& c = mesh.color(f);
+      colors->SetTuple3(f.idx(), c[0], c[1], c[2]);
+    }
+    output->GetCellData()->SetScalars(colors);
+  }
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -567,82 +650,7 @@ int vtkOpenMeshReader::RequestData(vtkInformation*,
   {
     vtkWarningMacro(<< this->FileName << " holds no vertices.");
   }
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToFloat();
-  points->SetNumberOfPoints(n);
-  std::vector<char> used(n, 0);
-  for (auto v : mesh.vertices())
-  {
-    const auto& p = mesh.point(v);
-    points->SetPoint(v.idx(), p[0], p[1], p[2]);
-  }
-  vtkNew<vtkCellArray> polys;
-  for (auto f : mesh.faces())
-  {
-    std::vector<vtkIdType> ids;
-    for (auto v : mesh.fv_range(f))
-    {
-      ids.push_back(v.idx());
-      used[v.idx()] = 1;
-    }
-    polys->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
-  }
-  output->SetPoints(points);
-  output->SetPolys(polys);
-  // Vertices that no face uses (a point cloud) are vertex cells.
-  vtkNew<vtkCellArray> verts;
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    if (!used[i])
-    {
-      verts->InsertNextCell(1, &i);
-    }
-  }
-  if (verts->GetNumberOfCells() > 0)
-  {
-    output->SetVerts(verts);
-  }
-
-  if (options.check(OpenMesh::IO::Options::VertexNormal))
-  {
-    vtkNew<vtkFloatArray> normals;
-    normals->SetName("Normals");
-    normals->SetNumberOfComponents(3);
-    normals->SetNumberOfTuples(n);
-    for (auto v : mesh.vertices())
-    {
-      const auto& nv = mesh.normal(v);
-      normals->SetTuple3(v.idx(), nv[0], nv[1], nv[2]);
-    }
-    output->GetPointData()->SetNormals(normals);
-  }
-  if (options.check(OpenMesh::IO::Options::VertexColor))
-  {
-    vtkNew<vtkUnsignedCharArray> colors;
-    colors->SetName("Colors");
-    colors->SetNumberOfComponents(3);
-    colors->SetNumberOfTuples(n);
-    for (auto v : mesh.vertices())
-    {
-      const auto& c = mesh.color(v);
-      colors->SetTuple3(v.idx(), c[0], c[1], c[2]);
-    }
-    output->GetPointData()->SetScalars(colors);
-  }
-  if (options.check(OpenMesh::IO::Options::FaceColor) &&
-    output->GetVerts()->GetNumberOfCells() == 0)
-  {
-    vtkNew<vtkUnsignedCharArray> colors;
-    colors->SetName("Colors");
-    colors->SetNumberOfComponents(3);
-    colors->SetNumberOfTuples(static_cast<vtkIdType>(mesh.n_faces()));
-    for (auto f : mesh.faces())
-    {
-      const auto& c = mesh.color(f);
-      colors->SetTuple3(f.idx(), c[0], c[1], c[2]);
-    }
-    output->GetCellData()->SetScalars(colors);
-  }
+  MeshToPolyData(mesh, options, output);
   return 1;
 }
 
