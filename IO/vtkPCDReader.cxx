@@ -502,59 +502,10 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
     vtkWarningMacro(<< "Dropped " << this->NumberOfDroppedPoints << " of " << n << " points of '"
                     << this->FileName << "' with NaN or infinite coordinates.");
   }
-  const vtkIdType m = static_cast<vtkIdType>(keep.size());
-
   SetPointsAndVertices(cloud, fx, fy, fz, keep, output);
 
   const bool hasNormals = AddNormals(cloud, keep, output);
-  for (const auto& f : cloud.fields)
-  {
-    if (f.name == "x" || f.name == "y" || f.name == "z" || f.name == "_" ||
-      (hasNormals && f.name.rfind("normal_", 0) == 0))
-    {
-      continue;
-    }
-    if (f.name == "rgb" || f.name == "rgba")
-    {
-      // Packed 0xAARRGGBB in 4 bytes, whatever the declared type.
-      const bool alpha = f.name == "rgba";
-      vtkNew<vtkUnsignedCharArray> colors;
-      colors->SetName(alpha ? "RGBA" : "RGB");
-      colors->SetNumberOfComponents(alpha ? 4 : 3);
-      colors->SetNumberOfTuples(m);
-      for (vtkIdType j = 0; j < m; ++j)
-      {
-        std::uint32_t packed;
-        std::memcpy(&packed, cloud.data.data() + keep[j] * cloud.point_step + f.offset, 4);
-        const unsigned char rgba[4] = { static_cast<unsigned char>((packed >> 16) & 0xff),
-          static_cast<unsigned char>((packed >> 8) & 0xff),
-          static_cast<unsigned char>(packed & 0xff),
-          static_cast<unsigned char>((packed >> 24) & 0xff) };
-        colors->SetTypedTuple(j, rgba);
-      }
-      output->GetPointData()->SetScalars(colors);
-      continue;
-    }
-    const int type = VTKType(f.datatype);
-    if (type == VTK_VOID || f.count == 0)
-    {
-      vtkWarningMacro(<< "Skipping field '" << f.name << "' of unknown type.");
-      continue;
-    }
-    auto array = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(type));
-    array->SetName(f.name.c_str());
-    array->SetNumberOfComponents(static_cast<int>(f.count));
-    array->SetNumberOfTuples(m);
-    const int size = TypeSize(f.datatype);
-    auto* dst = static_cast<std::uint8_t*>(array->GetVoidPointer(0));
-    for (vtkIdType j = 0; j < m; ++j)
-    {
-      std::memcpy(dst + static_cast<size_t>(j) * f.count * size,
-        cloud.data.data() + keep[j] * cloud.point_step + f.offset,
-        f.count * size);
-    }
-    output->GetPointData()->AddArray(array);
-  }
+  AddFields(cloud, keep, hasNormals, output, this);
   return 1;
 }
 

@@ -12,7 +12,11 @@
 #ifndef psMetaballShaderKernel_h
 #define psMetaballShaderKernel_h
 
+#include "vtkComputeShaderProgram.h"
+#include "vtkMetaballKernel.h"
+
 #include "psMetaballKernels.h"
+#include "psShaderHooks.h"
 
 #include <locale>
 #include <sstream>
@@ -30,6 +34,44 @@ inline std::string MetaballKernelDefines(MetaballKernel kernel)
        << "\n#define KERNEL_SLOPE_BOUND "
        << VisitMetaballKernel<float>(kernel, [](auto k) { return k.SlopeBound; }) << "\n";
   return text.str();
+}
+
+/**
+ * `program` made from `source` with its //VTK::Defines::Dec hook filled by
+ * `defines` and its //VTK::Kernel::Dec hook by the kernels, and compiled;
+ * remade only when the defines differ from `current`, which remembers them.
+ * Null, with `error` set, when a hook is missing or it does not compile
+ * (the program reports its compile log).
+ */
+inline vtkComputeShaderProgram* ReadyMetaballProgram(vtkComputeShaderProgram* program,
+  vtkOpenGLRenderWindow* renWin,
+  const char* name,
+  const char* source,
+  const std::string& defines,
+  std::string& current,
+  std::string& error)
+{
+  error.clear();
+  if (defines != current)
+  {
+    std::string text = source;
+    if (!ReplaceHook(text, "//VTK::Defines::Dec", defines) ||
+      !ReplaceHook(text, "//VTK::Kernel::Dec", vtkMetaballKernel))
+    {
+      error = std::string(name) +
+        " lacks its //VTK::Defines::Dec or //VTK::Kernel::Dec hook: nothing is drawn.";
+      return nullptr;
+    }
+    program->ReleaseGraphicsResources(renWin);
+    program->SetName(name);
+    program->SetSource(text);
+    current = defines;
+  }
+  if (!program->IsCompiled() && !program->Compile(renWin))
+  {
+    return nullptr;
+  }
+  return program;
 }
 } // namespace pointsurfaces
 

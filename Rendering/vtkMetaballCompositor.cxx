@@ -153,22 +153,7 @@ bool vtkMetaballCompositor::Draw(vtkRenderer* ren,
   {
     oren->UpdateLightingUniforms(program);
   }
-  // The material.
-  const double* ambient = prop->GetAmbientColor();
-  const double* specular = prop->GetSpecularColor();
-  const float ac[3] = {
-    static_cast<float>(ambient[0]), static_cast<float>(ambient[1]), static_cast<float>(ambient[2])
-  };
-  const float sc[3] = { static_cast<float>(specular[0]),
-    static_cast<float>(specular[1]),
-    static_cast<float>(specular[2]) };
-  program->SetUniformf("ambient", static_cast<float>(prop->GetAmbient()));
-  program->SetUniformf("diffuse", static_cast<float>(prop->GetDiffuse()));
-  program->SetUniformf("specular", static_cast<float>(prop->GetSpecular()));
-  program->SetUniformf("specularPower", static_cast<float>(prop->GetSpecularPower()));
-  program->SetUniform3f("ambientColor", ac);
-  program->SetUniform3f("specularColor", sc);
-  program->SetUniformf("opacity", static_cast<float>(prop->GetOpacity()));
+  SetMaterial(program, prop);
   this->Quad->Render();
   images.Color->Deactivate();
   images.Normal->Deactivate();

@@ -6,14 +6,12 @@
 
 #include "vtkComputeShaderProgram.h"
 #include "vtkMetaballGridBuilder.h"
-#include "vtkMetaballKernel.h"
 #include "vtkMetaballRayCastCS.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkShaderStorageBuffer.h"
 
 #include "psMetaballShaderKernel.h"
-#include "psShaderHooks.h"
 
 vtkStandardNewMacro(vtkMetaballGPURayCaster);
 
@@ -35,26 +33,19 @@ vtkComputeShaderProgram* vtkMetaballGPURayCaster::Program(vtkOpenGLRenderWindow*
   const std::string defines = "#define TILE_SIZE " + std::to_string(request.TileSize) +
     "\n#define MAX_SHARED " + std::to_string(MaxShared) + "\n" +
     pointsurfaces::MetaballKernelDefines(request.Kernel);
-  if (defines != this->Defines)
+  std::string error;
+  vtkComputeShaderProgram* program = pointsurfaces::ReadyMetaballProgram(this->RayCast,
+    renWin,
+    "vtkMetaballRayCastCS",
+    vtkMetaballRayCastCS,
+    defines,
+    this->Defines,
+    error);
+  if (!error.empty())
   {
-    std::string source = vtkMetaballRayCastCS;
-    if (!pointsurfaces::ReplaceHook(source, "//VTK::Defines::Dec", defines) ||
-      !pointsurfaces::ReplaceHook(source, "//VTK::Kernel::Dec", vtkMetaballKernel))
-    {
-      vtkErrorMacro(<< "vtkMetaballRayCastCS lacks its //VTK::Defines::Dec or //VTK::Kernel::Dec "
-                       "hook: nothing is drawn.");
-      return nullptr;
-    }
-    this->RayCast->ReleaseGraphicsResources(renWin);
-    this->RayCast->SetName("vtkMetaballRayCastCS");
-    this->RayCast->SetSource(source);
-    this->Defines = defines;
+    vtkErrorMacro(<< error);
   }
-  if (!this->RayCast->IsCompiled() && !this->RayCast->Compile(renWin))
-  {
-    return nullptr;
-  }
-  return this->RayCast;
+  return program;
 }
 
 //------------------------------------------------------------------------------

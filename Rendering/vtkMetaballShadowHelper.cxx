@@ -11,7 +11,6 @@
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMetaballGridBuilder.h"
-#include "vtkMetaballKernel.h"
 #include "vtkMetaballShadowCS.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -20,7 +19,6 @@
 #include "vtkTextureObject.h"
 
 #include "psMetaballShaderKernel.h"
-#include "psShaderHooks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -87,26 +85,19 @@ vtkComputeShaderProgram* vtkMetaballShadowHelper::Program(vtkOpenGLRenderWindow*
   pointsurfaces::MetaballKernel kernel)
 {
   const std::string defines = pointsurfaces::MetaballKernelDefines(kernel);
-  if (defines != this->Defines)
+  std::string error;
+  vtkComputeShaderProgram* program = pointsurfaces::ReadyMetaballProgram(this->Shadow,
+    renWin,
+    "vtkMetaballShadowCS",
+    vtkMetaballShadowCS,
+    defines,
+    this->Defines,
+    error);
+  if (!error.empty())
   {
-    std::string source = vtkMetaballShadowCS;
-    if (!pointsurfaces::ReplaceHook(source, "//VTK::Defines::Dec", defines) ||
-      !pointsurfaces::ReplaceHook(source, "//VTK::Kernel::Dec", vtkMetaballKernel))
-    {
-      vtkErrorMacro(<< "vtkMetaballShadowCS lacks its //VTK::Defines::Dec or //VTK::Kernel::Dec "
-                       "hook: nothing is drawn.");
-      return nullptr;
-    }
-    this->Shadow->ReleaseGraphicsResources(renWin);
-    this->Shadow->SetName("vtkMetaballShadowCS");
-    this->Shadow->SetSource(source);
-    this->Defines = defines;
+    vtkErrorMacro(<< error);
   }
-  if (!this->Shadow->IsCompiled() && !this->Shadow->Compile(renWin))
-  {
-    return nullptr;
-  }
-  return this->Shadow;
+  return program;
 }
 
 //------------------------------------------------------------------------------
