@@ -18,7 +18,7 @@
  * The ray caster reads VoxelOffsets and VoxelBalls; within a voxel the order
  * of the ids is not fixed.
  *
- * pointsurfaces::BuildPerspectiveGrid (Filters/Core/psMetaball.h) is the
+ * pointsurfaces::BuildPerspectiveGrid (Filters/Core/Metaballs/psMetaball.h) is the
  * double-precision CPU reference that the tests compare with.
  *
  * Balls come as one vec4 per ball (centre, support radius R) in an SSBO, in

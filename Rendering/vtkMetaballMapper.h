@@ -59,7 +59,7 @@
  * the id passes. A process id array (UseProcessIdFromData) is not read.
  * Normal rendering does no selection work.
  *
- * pointsurfaces::CastRay and BuildPerspectiveGrid (Filters/Core/psMetaball.h)
+ * pointsurfaces::CastRay and BuildPerspectiveGrid (Filters/Core/Metaballs/psMetaball.h)
  * are the double-precision references the tests compare with.
  */
 #ifndef vtkMetaballMapper_h

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """The metaball and SPH kernels in numpy, for the benchmarks' peers.
 
-The formulas of Filters/Core/psMetaballKernels.h (the definition), as
+The formulas of Filters/Core/Metaballs/psMetaballKernels.h (the definition), as
 functions of x = r^2 / R^2 with peak 1 at x = 0 and 0 from x = 1, in the
 order of vtkMetaballField.Kernels. TestMetaballKernels checks every one
 against vtkMetaballField.EvaluateKernel and EvaluateKernelDerivative.
