@@ -40,8 +40,8 @@ inline std::string MetaballKernelDefines(MetaballKernel kernel)
  * `program` made from `source` with its //VTK::Defines::Dec hook filled by
  * `defines` and its //VTK::Kernel::Dec hook by the kernels, and compiled;
  * remade only when the defines differ from `current`, which remembers them.
- * Null, with `error` set, when a hook is missing or it does not compile
- * (the program reports its compile log).
+ * Null when a hook is missing (an error reported by `owner`) or it does not
+ * compile (the program reports its compile log).
  */
 inline vtkComputeShaderProgram* ReadyMetaballProgram(vtkComputeShaderProgram* program,
   vtkOpenGLRenderWindow* renWin,
@@ -49,17 +49,16 @@ inline vtkComputeShaderProgram* ReadyMetaballProgram(vtkComputeShaderProgram* pr
   const char* source,
   const std::string& defines,
   std::string& current,
-  std::string& error)
+  vtkObject* owner)
 {
-  error.clear();
   if (defines != current)
   {
     std::string text = source;
     if (!ReplaceHook(text, "//VTK::Defines::Dec", defines) ||
       !ReplaceHook(text, "//VTK::Kernel::Dec", vtkMetaballKernel))
     {
-      error = std::string(name) +
-        " lacks its //VTK::Defines::Dec or //VTK::Kernel::Dec hook: nothing is drawn.";
+      vtkErrorWithObjectMacro(owner,
+        << name << " lacks its //VTK::Defines::Dec or //VTK::Kernel::Dec hook: nothing is drawn.");
       return nullptr;
     }
     program->ReleaseGraphicsResources(renWin);

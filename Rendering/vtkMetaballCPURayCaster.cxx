@@ -4,6 +4,7 @@
 
 #include "vtkMetaballCPURayCaster.h"
 
+#include "vtkMetaballGPUCounters.h"
 #include "vtkObjectFactory.h"
 #include "vtkShaderStorageBuffer.h"
 
@@ -52,7 +53,7 @@ bool vtkMetaballCPURayCaster::Cast(vtkOpenGLRenderWindow*,
   }
   // The count of rays starting inside goes through the ring like the
   // shaders' counts (the shadow rays add to it).
-  const unsigned int initial[9] = { static_cast<unsigned int>(
+  const unsigned int initial[vtkMetaballGPUCounters::Count] = { static_cast<unsigned int>(
     std::min<long long>(stats.StartingInside, 0xffffffffLL)) };
   counters->Upload(initial, sizeof(initial));
   // Into the textures that the shading pass and the shadow rays read.

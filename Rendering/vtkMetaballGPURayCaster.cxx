@@ -33,19 +33,13 @@ vtkComputeShaderProgram* vtkMetaballGPURayCaster::Program(vtkOpenGLRenderWindow*
   const std::string defines = "#define TILE_SIZE " + std::to_string(request.TileSize) +
     "\n#define MAX_SHARED " + std::to_string(MaxShared) + "\n" +
     pointsurfaces::MetaballKernelDefines(request.Kernel);
-  std::string error;
-  vtkComputeShaderProgram* program = pointsurfaces::ReadyMetaballProgram(this->RayCast,
+  return pointsurfaces::ReadyMetaballProgram(this->RayCast,
     renWin,
     "vtkMetaballRayCastCS",
     vtkMetaballRayCastCS,
     defines,
     this->Defines,
-    error);
-  if (!error.empty())
-  {
-    vtkErrorMacro(<< error);
-  }
-  return program;
+    this);
 }
 
 //------------------------------------------------------------------------------

@@ -85,19 +85,8 @@ vtkComputeShaderProgram* vtkMetaballShadowHelper::Program(vtkOpenGLRenderWindow*
   pointsurfaces::MetaballKernel kernel)
 {
   const std::string defines = pointsurfaces::MetaballKernelDefines(kernel);
-  std::string error;
-  vtkComputeShaderProgram* program = pointsurfaces::ReadyMetaballProgram(this->Shadow,
-    renWin,
-    "vtkMetaballShadowCS",
-    vtkMetaballShadowCS,
-    defines,
-    this->Defines,
-    error);
-  if (!error.empty())
-  {
-    vtkErrorMacro(<< error);
-  }
-  return program;
+  return pointsurfaces::ReadyMetaballProgram(
+    this->Shadow, renWin, "vtkMetaballShadowCS", vtkMetaballShadowCS, defines, this->Defines, this);
 }
 
 //------------------------------------------------------------------------------
