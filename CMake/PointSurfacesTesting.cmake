@@ -75,3 +75,23 @@ function (pointsurfaces_add_unit_tests exe varname)
   endforeach ()
   set("${varname}" ${${varname}} ${unit_tests} PARENT_SCOPE)
 endfunction ()
+
+#[==[
+pointsurfaces_add_io_tests(<exe> <TestX.cxx>...)
+
+  Unit tests of a reader, writer or file filter, in their own executable <exe>
+  (made here): each test finds the committed inputs in $POINTSURFACES_IO_DATA
+  (IO/Testing/Data) and writes its scratch files in $POINTSURFACES_TEMP_DIR;
+  Testing/Cxx/psIOTestSupport.h has the counters they share.
+#]==]
+function (pointsurfaces_add_io_tests exe)
+  _pointsurfaces_test_names(names ${ARGN})
+  pointsurfaces_add_unit_tests("${exe}" tests ${ARGN})
+  foreach (name IN LISTS names)
+    set_property(TEST "${_vtk_build_test}Cxx-${name}" APPEND PROPERTY
+      ENVIRONMENT "POINTSURFACES_IO_DATA=${PROJECT_SOURCE_DIR}/IO/Testing/Data"
+                  "POINTSURFACES_TEMP_DIR=${PROJECT_BINARY_DIR}/Testing/Temporary")
+  endforeach ()
+  vtk_test_cxx_executable("${exe}" tests)
+  target_include_directories("${exe}" PRIVATE "${PROJECT_SOURCE_DIR}/Testing/Cxx")
+endfunction ()

@@ -49,8 +49,8 @@ packages=(
   # VTK and its Python bindings (bookworm: 9.1, trixie: 9.3, forky: 9.6)
   libvtk9-dev python3-vtk9 vtk9 python3-numpy
   # numerics and readers (PCL: kd-trees, PCD files; Ceres: robust fits;
-  # OpenMesh: OFF, OBJ, OM and STL meshes; OpenVDB: point grids and level sets)
-  libeigen3-dev libpcl-dev libceres-dev libopenmesh-dev libopenvdb-dev
+  # OpenMesh: OFF, OBJ, OM and STL meshes)
+  libeigen3-dev libpcl-dev libceres-dev libopenmesh-dev
   # HDF5's C API (Gadget and SWIFT snapshots, through VTK's VTK::hdf5)
   libhdf5-dev
   # headless GL: Mesa llvmpipe through EGL (surfaceless)
@@ -58,6 +58,9 @@ packages=(
 )
 if [ "$demo" = 0 ]; then
   packages+=(
+    # OpenVDB: point grids and level sets (PointSurfaces::IOOpenVDB and
+    # FiltersOpenVDB; the demo builds without them)
+    libopenvdb-dev
     # the format check, and the Debian roots of scripts/test-release.sh
     git clang-format debootstrap
     # benchmark peers (CGAL's WLOP; PCL's MLS comes with libpcl-dev)

@@ -8,8 +8,7 @@
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkNew.h"
-#include "vtkPCDReader.h"
-#include "vtkPLYReader.h"
+#include "vtkPLYScanReader.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointGaussianMapper.h"
 #include "vtkPolyData.h"
@@ -20,6 +19,9 @@
 #include "vtkTimerLog.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtkXMLPolyDataReader.h"
+#if POINTSURFACES_HAVE_PCD
+#include "vtkPCDReader.h" // PointSurfaces::IOPCL, when PCL was found
+#endif
 
 #include "vtkPointData.h"
 
@@ -50,15 +52,22 @@ int main(int argc, char* argv[])
   vtkSmartPointer<vtkAlgorithm> reader;
   if (EndsWith(input, ".ply"))
   {
-    auto ply = vtkSmartPointer<vtkPLYReader>::New();
+    // PointSurfaces' PLY reader: any elements, and one clear error for a damaged file.
+    auto ply = vtkSmartPointer<vtkPLYScanReader>::New();
     ply->SetFileName(input.c_str());
     reader = ply;
   }
   else if (EndsWith(input, ".pcd"))
   {
+#if POINTSURFACES_HAVE_PCD
     auto pcd = vtkSmartPointer<vtkPCDReader>::New();
     pcd->SetFileName(input.c_str());
     reader = pcd;
+#else
+    std::fprintf(
+      stderr, "RenderScan: this PointSurfaces has no PCD reader (PointSurfaces::IOPCL)\n");
+    return 1;
+#endif
   }
   else
   {

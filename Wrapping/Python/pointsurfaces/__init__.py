@@ -8,7 +8,9 @@ Import it with Debian's ``/usr/bin/python3`` next to ``vtkmodules``::
     pointsurfaces.use_egl()          # optional: render headless through EGL
 
 Every class of the PointSurfaces modules is available here, for example
-``pointsurfaces.vtkEGLHeadlessRenderWindow``. ``pointsurfaces.scanio``
+``pointsurfaces.vtkEGLHeadlessRenderWindow``; those of a third-party library
+(OpenVDB, OpenMesh, PCL, HDF5) where its module was built
+(``pointsurfaces.OPTIONAL_MODULES``). ``pointsurfaces.scanio``
 reads scans (.ply .vtp .pcd .xyz .obj .off .om .stl) into a vtkPolyData,
 with one clear error for a bad file: ``scanio.read_scan(path)``.
 
@@ -26,6 +28,20 @@ from .PointSurfacesFiltersParallel import *  # noqa: F401,F403
 from .PointSurfacesIO import *  # noqa: F401,F403
 from .PointSurfacesRendering import *  # noqa: F401,F403
 from .PointSurfacesRendering import vtkPointSurfacesRenderWindowFactory as _Factory
+
+# The modules of third-party libraries are built when the library is found
+# (OpenVDB, OpenMesh, PCL's io, VTK's HDF5): the classes of those that were
+# built are here too; OPTIONAL_MODULES says which ones.
+OPTIONAL_MODULES = {}
+for _name in ("FiltersOpenVDB", "IOOpenVDB", "IOOpenMesh", "IOPCL", "IOHDF5"):
+    try:
+        _module = __import__("pointsurfaces.PointSurfaces" + _name, fromlist=["*"])
+    except ImportError:
+        OPTIONAL_MODULES[_name] = False
+        continue
+    OPTIONAL_MODULES[_name] = True
+    globals().update({k: v for k, v in vars(_module).items() if k.startswith("vtk")})
+del _name
 
 __version__ = "0.1.0"
 

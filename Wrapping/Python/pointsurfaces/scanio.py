@@ -46,6 +46,7 @@ with fewer than three corners left out, with a warning). Other elements
 (camera, range_grid, edge, material ...) are skipped. It leaves out points
 with NaN or infinite coordinates itself, with the same warning.
 """
+import importlib
 import os
 import re
 import sys
@@ -97,11 +98,11 @@ def read_scan(path, warn=None):
         elif ext == ".vtp":
             poly = _read_vtk(vtkXMLPolyDataReader, path, warnings.append)
         elif ext == ".pcd":
-            if not hasattr(_io, "vtkPCDReader"):
-                raise ScanReadError("%s: this build has no PCD reader" % path)
-            poly = _read_vtk(_io.vtkPCDReader, path, warnings.append)
+            poly = _read_vtk(_optional_reader(path, "IOPCL", "vtkPCDReader"), path,
+                             warnings.append)
         else:
-            poly = _read_vtk(_io.vtkOpenMeshReader, path, warnings.append)
+            poly = _read_vtk(_optional_reader(path, "IOOpenMesh", "vtkOpenMeshReader"), path,
+                             warnings.append)
     except OSError as e:
         raise ScanReadError("%s: %s" % (path, e.strerror or e)) from None
     except MemoryError:
@@ -112,6 +113,15 @@ def read_scan(path, warn=None):
     for line in warnings:
         (warn or _print_warning)(line)
     return poly
+
+
+def _optional_reader(path, module, name):
+    """The reader class `name` of the optional module PointSurfaces::`module`."""
+    try:
+        return getattr(importlib.import_module("pointsurfaces.PointSurfaces" + module), name)
+    except (ImportError, AttributeError):
+        raise ScanReadError("%s: this build has no %s (PointSurfaces::%s was not built: its "
+                            "library was not found)" % (path, name, module)) from None
 
 
 def _print_warning(line):

@@ -5,8 +5,8 @@
 // lcdm_gas_z5_subset.hdf5 was made from a Gadget-4 snapshot (see
 // ../README.md). Built by hand from the repository root:
 //
-//   g++ -std=c++17 -O2 -I IO -I /usr/include/vtk-9.1 -I /usr/include/hdf5/serial \
-//     IO/Testing/Data/gadget/make_subset.cxx IO/psGadgetHDF5.cxx \
+//   g++ -std=c++17 -O2 -I IO/HDF5 -I /usr/include/vtk-9.1 -I /usr/include/hdf5/serial \
+//     IO/Testing/Data/gadget/make_subset.cxx IO/HDF5/psGadgetHDF5.cxx \
 //     -L /usr/lib/x86_64-linux-gnu/hdf5/serial -lhdf5 -o make_subset
 //   ./make_subset snapshot.hdf5 0 2000 subset.hdf5
 #include "psGadgetHDF5.h"

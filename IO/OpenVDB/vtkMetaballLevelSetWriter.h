@@ -33,14 +33,14 @@
 #ifndef vtkMetaballLevelSetWriter_h
 #define vtkMetaballLevelSetWriter_h
 
-#include "PointSurfacesIOModule.h" // For export macro
-#include "vtkMetaballField.h"      // For the field
-#include "vtkSmartPointer.h"       // For the field
+#include "PointSurfacesIOOpenVDBModule.h" // For export macro
+#include "vtkMetaballField.h"             // For the field
+#include "vtkSmartPointer.h"              // For the field
 #include "vtkWriter.h"
 
 #include <string> // For FileName
 
-class POINTSURFACESIO_EXPORT vtkMetaballLevelSetWriter : public vtkWriter
+class POINTSURFACESIOOPENVDB_EXPORT vtkMetaballLevelSetWriter : public vtkWriter
 {
 public:
   static vtkMetaballLevelSetWriter* New();

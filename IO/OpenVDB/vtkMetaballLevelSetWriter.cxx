@@ -65,11 +65,13 @@ void vtkMetaballLevelSetWriter::WriteData()
 
   vtkMetaballField* field = this->Field;
   const double threshold = field->GetThreshold();
-  pointsurfaces::BallArrays arrays = field->ExtractBalls(input);
-  pointsurfaces::BallSummary balls = pointsurfaces::SummariseBalls(arrays.Set);
+  pointsurfaces::LevelSetBalls prepared = pointsurfaces::PrepareLevelSet(field->ExtractBalls(input),
+    field->GetStrengthArrayName(),
+    this->VoxelSize,
+    this->MaximumVoxels);
+  const pointsurfaces::BallSummary& balls = prepared.Summary;
   this->NumberOfInvalidBalls = static_cast<vtkIdType>(balls.Invalid);
-  for (const std::string& warning :
-    pointsurfaces::BallWarnings(arrays, balls, field->GetStrengthArrayName()))
+  for (const std::string& warning : prepared.Warnings)
   {
     vtkWarningMacro(<< warning);
   }
@@ -79,32 +81,25 @@ void vtkMetaballLevelSetWriter::WriteData()
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
   }
-  double voxel = 0.0;
-  std::string warning, error;
-  if (!pointsurfaces::ChooseVoxel(
-        balls, this->VoxelSize, this->MaximumVoxels, voxel, warning, error))
+  if (!prepared.Error.empty())
   {
-    vtkErrorMacro(<< "Nothing is written: " << error << ".");
+    vtkErrorMacro(<< "Nothing is written: " << prepared.Error << ".");
     this->SetErrorCode(vtkErrorCode::UnknownError);
     return;
-  }
-  if (!warning.empty())
-  {
-    vtkWarningMacro(<< warning << ".");
   }
   if (balls.Valid.empty())
   {
     vtkWarningMacro(<< "No valid ball in the input: an empty level set is written.");
   }
+  const double voxel = prepared.Voxel;
   this->UsedVoxelSize = voxel;
-  balls.CentreOn(voxel);
 
   openvdb::FloatGrid::Ptr levelSet;
   try
   {
     // Sampled and meshed in a frame centred on the data (OpenVDB meshes in
     // float), then the transform moves the level set into place.
-    levelSet = pointsurfaces::MetaballLevelSet(arrays.Set, balls, voxel, this->HalfWidth);
+    levelSet = pointsurfaces::MetaballLevelSet(prepared.Arrays.Set, balls, voxel, this->HalfWidth);
     openvdb::math::Transform::Ptr xform = openvdb::math::Transform::createLinearTransform(voxel);
     xform->postTranslate(balls.Centre);
     levelSet->setTransform(xform);

@@ -31,13 +31,13 @@
 #ifndef vtkOpenVDBPointsReader_h
 #define vtkOpenVDBPointsReader_h
 
-#include "PointSurfacesIOModule.h" // For export macro
+#include "PointSurfacesIOOpenVDBModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
 #include <string> // For FileName
 #include <vector> // For grid names
 
-class POINTSURFACESIO_EXPORT vtkOpenVDBPointsReader : public vtkPolyDataAlgorithm
+class POINTSURFACESIOOPENVDB_EXPORT vtkOpenVDBPointsReader : public vtkPolyDataAlgorithm
 {
 public:
   static vtkOpenVDBPointsReader* New();

@@ -22,12 +22,12 @@
 #ifndef vtkPCDReader_h
 #define vtkPCDReader_h
 
-#include "PointSurfacesIOModule.h" // For export macro
+#include "PointSurfacesIOPCLModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
 #include <string> // For FileName
 
-class POINTSURFACESIO_EXPORT vtkPCDReader : public vtkPolyDataAlgorithm
+class POINTSURFACESIOPCL_EXPORT vtkPCDReader : public vtkPolyDataAlgorithm
 {
 public:
   static vtkPCDReader* New();

@@ -25,12 +25,12 @@
 #ifndef vtkAtomRadii_h
 #define vtkAtomRadii_h
 
-#include "PointSurfacesIOModule.h" // For export macro
+#include "PointSurfacesFiltersModule.h" // For export macro
 #include "vtkPointSetAlgorithm.h"
 
 #include <string> // For array names
 
-class POINTSURFACESIO_EXPORT vtkAtomRadii : public vtkPointSetAlgorithm
+class POINTSURFACESFILTERS_EXPORT vtkAtomRadii : public vtkPointSetAlgorithm
 {
 public:
   static vtkAtomRadii* New();

@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file psOpenVDBMetaballs.h
- * @brief Metaball and particle level sets through OpenVDB (private to PointSurfaces::IO).
+ * @brief Metaball and particle level sets through OpenVDB (PointSurfaces::FiltersOpenVDB, not wrapped).
  *
  * Shared by vtkMetaballLevelSetWriter and vtkOpenVDBParticleMesher:
  *
@@ -19,6 +19,7 @@
 #ifndef psOpenVDBMetaballs_h
 #define psOpenVDBMetaballs_h
 
+#include "PointSurfacesFiltersOpenVDBModule.h" // For export macro
 #include "psBallExtraction.h"
 #include "psMetaball.h"
 #include "vtkSmartPointer.h"
@@ -34,7 +35,7 @@ class vtkPolyData;
 namespace pointsurfaces
 {
 /** The balls usable in `set` (ValidBall), their bounds and smallest radius and sum of R^3. */
-struct BallSummary
+struct POINTSURFACESFILTERSOPENVDB_EXPORT BallSummary
 {
   std::vector<long long> Valid;
   long long Invalid = 0;
@@ -44,13 +45,13 @@ struct BallSummary
   openvdb::Vec3d Centre{ 0.0 }; ///< the bounds' centre, rounded to `voxel` by CentreOn
   void CentreOn(double voxel);
 };
-BallSummary SummariseBalls(const MetaballSet& set);
+POINTSURFACESFILTERSOPENVDB_EXPORT BallSummary SummariseBalls(const MetaballSet& set);
 
 /**
  * The warnings a filter should give about `arrays` and `balls`: a strength
  * array named (`strengthName`) but missing, and balls skipped as invalid.
  */
-std::vector<std::string> BallWarnings(const BallArrays& arrays,
+POINTSURFACESFILTERSOPENVDB_EXPORT std::vector<std::string> BallWarnings(const BallArrays& arrays,
   const BallSummary& balls,
   const std::string& strengthName);
 
@@ -61,15 +62,37 @@ std::vector<std::string> BallWarnings(const BallArrays& arrays,
  * beyond the budget or the span beyond 32-bit voxel coordinates; `warning`
  * is set when an automatic size was raised.
  */
-bool ChooseVoxel(const BallSummary& balls,
+POINTSURFACESFILTERSOPENVDB_EXPORT bool ChooseVoxel(const BallSummary& balls,
   double requested,
   double maximumVoxels,
   double& voxel,
   std::string& warning,
   std::string& error);
 
+/** What vtkMetaballLevelSetWriter and vtkOpenVDBParticleMesher sample: PrepareLevelSet. */
+struct POINTSURFACESFILTERSOPENVDB_EXPORT LevelSetBalls
+{
+  BallArrays Arrays;
+  BallSummary Summary;               ///< centred on Voxel (CentreOn) once Voxel is chosen
+  std::vector<std::string> Warnings; ///< BallWarnings, then ChooseVoxel's, each a sentence
+  double Voxel = 0.0;                ///< 0 when Error is set
+  std::string Error;                 ///< ChooseVoxel's, empty when Voxel is usable
+};
+
+/**
+ * The steps both level-set filters take before sampling: summarise the
+ * extracted balls, list the warnings to give, choose the voxel size within
+ * `maximumVoxels` (ChooseVoxel) and centre the grid's frame on it. The
+ * callers extract the balls themselves (their rules differ) and give the
+ * warnings and the error in their own words.
+ */
+POINTSURFACESFILTERSOPENVDB_EXPORT LevelSetBalls PrepareLevelSet(BallArrays arrays,
+  const std::string& strengthName,
+  double requestedVoxel,
+  double maximumVoxels);
+
 /** The metaball surface f = 0 as a level set, `halfWidth` voxels each side. */
-openvdb::FloatGrid::Ptr MetaballLevelSet(const MetaballSet& set,
+POINTSURFACESFILTERSOPENVDB_EXPORT openvdb::FloatGrid::Ptr MetaballLevelSet(const MetaballSet& set,
   const BallSummary& balls,
   double voxel,
   double halfWidth);
@@ -79,7 +102,7 @@ openvdb::FloatGrid::Ptr MetaballLevelSet(const MetaballSet& set,
  * `sphereRadius[i]` (world units) around the valid balls. `tooSmall`
  * receives the number of spheres under 1.5 voxels, which OpenVDB skips.
  */
-openvdb::FloatGrid::Ptr SphereLevelSet(const MetaballSet& set,
+POINTSURFACESFILTERSOPENVDB_EXPORT openvdb::FloatGrid::Ptr SphereLevelSet(const MetaballSet& set,
   const BallSummary& balls,
   const std::vector<double>& sphereRadius,
   double voxel,
@@ -87,7 +110,8 @@ openvdb::FloatGrid::Ptr SphereLevelSet(const MetaballSet& set,
   size_t& tooSmall);
 
 /** volumeToMesh at the zero crossing, moved back by `centre`, with point normals. */
-vtkSmartPointer<vtkPolyData> MeshLevelSet(const openvdb::FloatGrid& grid,
+POINTSURFACESFILTERSOPENVDB_EXPORT vtkSmartPointer<vtkPolyData> MeshLevelSet(
+  const openvdb::FloatGrid& grid,
   const openvdb::Vec3d& centre,
   double adaptivity);
 } // namespace pointsurfaces

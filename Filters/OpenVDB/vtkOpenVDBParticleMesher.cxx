@@ -68,10 +68,12 @@ int vtkOpenVDBParticleMesher::RequestData(vtkInformation*,
   {
     rule.StrengthArrayName.clear(); // spheres have no strengths
   }
-  pointsurfaces::BallArrays arrays = pointsurfaces::ExtractBalls(input, rule);
-  pointsurfaces::BallSummary balls = pointsurfaces::SummariseBalls(arrays.Set);
+  pointsurfaces::LevelSetBalls prepared = pointsurfaces::PrepareLevelSet(
+    pointsurfaces::ExtractBalls(input, rule), strengthName, this->VoxelSize, this->MaximumVoxels);
+  const pointsurfaces::BallArrays& arrays = prepared.Arrays;
+  const pointsurfaces::BallSummary& balls = prepared.Summary;
   this->NumberOfInvalidBalls = static_cast<vtkIdType>(balls.Invalid);
-  for (const std::string& warning : pointsurfaces::BallWarnings(arrays, balls, strengthName))
+  for (const std::string& warning : prepared.Warnings)
   {
     vtkWarningMacro(<< warning);
   }
@@ -80,20 +82,13 @@ int vtkOpenVDBParticleMesher::RequestData(vtkInformation*,
     vtkWarningMacro(<< "No valid ball: the mesh is empty.");
     return 1;
   }
-  double voxel = 0.0;
-  std::string warning, error;
-  if (!pointsurfaces::ChooseVoxel(
-        balls, this->VoxelSize, this->MaximumVoxels, voxel, warning, error))
+  if (!prepared.Error.empty())
   {
-    vtkErrorMacro(<< "No mesh: " << error << ".");
+    vtkErrorMacro(<< "No mesh: " << prepared.Error << ".");
     return 1;
   }
-  if (!warning.empty())
-  {
-    vtkWarningMacro(<< warning << ".");
-  }
+  const double voxel = prepared.Voxel;
   this->UsedVoxelSize = voxel;
-  balls.CentreOn(voxel);
 
   const double halfWidth = 3.0;
   try

@@ -31,14 +31,14 @@
 #ifndef vtkOpenVDBParticleMesher_h
 #define vtkOpenVDBParticleMesher_h
 
-#include "PointSurfacesIOModule.h" // For export macro
-#include "vtkMetaballField.h"      // For the field
+#include "PointSurfacesFiltersOpenVDBModule.h" // For export macro
+#include "vtkMetaballField.h"                  // For the field
 #include "vtkPolyDataAlgorithm.h"
 #include "vtkSmartPointer.h" // For the field
 
 #include <string> // For array names
 
-class POINTSURFACESIO_EXPORT vtkOpenVDBParticleMesher : public vtkPolyDataAlgorithm
+class POINTSURFACESFILTERSOPENVDB_EXPORT vtkOpenVDBParticleMesher : public vtkPolyDataAlgorithm
 {
 public:
   static vtkOpenVDBParticleMesher* New();

@@ -33,12 +33,12 @@
 #ifndef vtkGadgetHDF5Reader_h
 #define vtkGadgetHDF5Reader_h
 
-#include "PointSurfacesIOModule.h" // For export macro
+#include "PointSurfacesIOHDF5Module.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
 #include <string> // For FileName
 
-class POINTSURFACESIO_EXPORT vtkGadgetHDF5Reader : public vtkPolyDataAlgorithm
+class POINTSURFACESIOHDF5_EXPORT vtkGadgetHDF5Reader : public vtkPolyDataAlgorithm
 {
 public:
   static vtkGadgetHDF5Reader* New();

@@ -184,6 +184,30 @@ bool ChooseVoxel(const BallSummary& balls,
 }
 
 //------------------------------------------------------------------------------
+LevelSetBalls PrepareLevelSet(BallArrays arrays,
+  const std::string& strengthName,
+  double requestedVoxel,
+  double maximumVoxels)
+{
+  LevelSetBalls out;
+  out.Arrays = std::move(arrays);
+  out.Summary = SummariseBalls(out.Arrays.Set);
+  out.Warnings = BallWarnings(out.Arrays, out.Summary, strengthName);
+  std::string warning;
+  if (!ChooseVoxel(out.Summary, requestedVoxel, maximumVoxels, out.Voxel, warning, out.Error))
+  {
+    out.Voxel = 0.0;
+    return out;
+  }
+  if (!warning.empty())
+  {
+    out.Warnings.push_back(warning + ".");
+  }
+  out.Summary.CentreOn(out.Voxel);
+  return out;
+}
+
+//------------------------------------------------------------------------------
 void BallSummary::CentreOn(double voxel)
 {
   for (int a = 0; a < 3; ++a)

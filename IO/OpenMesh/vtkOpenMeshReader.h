@@ -21,12 +21,12 @@
 #ifndef vtkOpenMeshReader_h
 #define vtkOpenMeshReader_h
 
-#include "PointSurfacesIOModule.h" // For export macro
+#include "PointSurfacesIOOpenMeshModule.h" // For export macro
 #include "vtkPolyDataAlgorithm.h"
 
 #include <string> // For FileName
 
-class POINTSURFACESIO_EXPORT vtkOpenMeshReader : public vtkPolyDataAlgorithm
+class POINTSURFACESIOOPENMESH_EXPORT vtkOpenMeshReader : public vtkPolyDataAlgorithm
 {
 public:
   static vtkOpenMeshReader* New();

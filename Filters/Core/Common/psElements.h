@@ -11,6 +11,8 @@
 #ifndef psElements_h
 #define psElements_h
 
+#include "PointSurfacesFiltersModule.h" // For export macro
+
 #include <string> // For names
 
 namespace pointsurfaces
@@ -23,19 +25,20 @@ namespace pointsurfaces
  * CHARMM's ion names (SOD, POT, CLA, CAL, LIT) as their ions; else the
  * first letter (CA is an alpha carbon, HW1 a water hydrogen).
  */
-std::string ElementFromAtomName(const std::string& atomName, const std::string& residueName);
+POINTSURFACESFILTERS_EXPORT std::string ElementFromAtomName(const std::string& atomName,
+  const std::string& residueName);
 
 /**
  * Whether an atom name is a massless virtual site of a water or lone-pair
  * model (TIP4P's MW, OM; EP and LP): no atom, and no radius.
  */
-bool IsVirtualSite(const std::string& atomName);
+POINTSURFACESFILTERS_EXPORT bool IsVirtualSite(const std::string& atomName);
 
 /**
  * Van der Waals radius of an element in nm (Bondi 1964; Na, K, Mg, Ca from
  * Mantina et al. 2009), or 0 when the element is not in the table.
  */
-double VanDerWaalsRadius(const std::string& element);
+POINTSURFACESFILTERS_EXPORT double VanDerWaalsRadius(const std::string& element);
 } // namespace pointsurfaces
 
 #endif

@@ -48,8 +48,8 @@
 #ifndef psMetaballCast_h
 #define psMetaballCast_h
 
-#include "PointSurfacesFiltersModule.h" // For export macro
-#include "psMetaball.h"                 // For MetaballKernel
+#include "PointSurfacesRenderingModule.h" // For export macro
+#include "psMetaball.h"                   // For MetaballKernel
 
 #include <string> // For the error
 #include <vector> // For the images
@@ -117,7 +117,7 @@ struct MetaballCastStatistics
  * Casts one frame. The images are resized to the view; on no usable ball or
  * an empty view they hold misses only.
  */
-POINTSURFACESFILTERS_EXPORT void CastMetaballs(const MetaballCastInput& input,
+POINTSURFACESRENDERING_EXPORT void CastMetaballs(const MetaballCastInput& input,
   const MetaballCastSettings& settings,
   MetaballCastImages& images,
   MetaballCastStatistics* statistics = nullptr);
