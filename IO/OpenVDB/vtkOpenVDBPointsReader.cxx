@@ -28,6 +28,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <istream>
 #include <map>
 #include <numeric>
@@ -386,6 +387,252 @@ bool LeafConsistent(const ovp::PointDataTree::LeafNodeType& leaf, std::string& w
   }
   return true;
 }
+// Reads the point grids of `fileName` (those named `gridName`, or all when it
+// is empty), whole. OpenVDB's io::File reads from a stream that does not
+// report a short read, and loops for a long time over counts that a damaged
+// file announces (found by FuzzOpenVDBPointsReader); here the stream throws
+// at the first read past the end or failure instead.
+std::vector<ovp::PointDataGrid::Ptr> ReadPointGrids(const std::string& fileName,
+  const std::string& gridName,
+  std::vector<std::string>& names)
+{
+  std::vector<char> bytes;
+  {
+    std::ifstream file(fileName, std::ios::binary | std::ios::ate);
+    bytes.resize(static_cast<size_t>(file.tellg()));
+    file.seekg(0);
+    file.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  }
+  BoundedBuffer buffer(bytes);
+  std::istream in(&buffer);
+  in.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
+  CheckedArchive archive;
+  std::vector<ovp::PointDataGrid::Ptr> grids;
+  for (const openvdb::GridBase::Ptr& base : archive.Read(in))
+  {
+    ovp::PointDataGrid::Ptr grid = openvdb::gridPtrCast<ovp::PointDataGrid>(base);
+    if (grid && (gridName.empty() || grid->getName() == gridName))
+    {
+      grids.push_back(grid);
+      names.push_back(grid->getName());
+    }
+  }
+  return grids;
+}
+
+// The first output point of each grid (active points only), and the total
+// as the last entry; false with `error` when a leaf is inconsistent.
+bool FirstPointOfGrids(const std::vector<ovp::PointDataGrid::Ptr>& grids,
+  const std::vector<std::string>& names,
+  std::vector<vtkIdType>& first,
+  std::string& error)
+{
+  first.assign(grids.size() + 1, 0);
+  for (size_t g = 0; g < grids.size(); ++g)
+  {
+    vtkIdType count = 0;
+    for (auto leaf = grids[g]->tree().cbeginLeaf(); leaf; ++leaf)
+    {
+      std::string why;
+      if (!LeafConsistent(*leaf, why))
+      {
+        error = "grid \"" + names[g] + "\" is corrupt: " + why;
+        return false;
+      }
+      count += static_cast<vtkIdType>(leaf->onPointCount());
+    }
+    first[g + 1] = first[g] + count;
+  }
+  return true;
+}
+
+// The output arrays by attribute name, each made (zero-filled, `total`
+// tuples) when first seen; an attribute whose kind differs between grids
+// keeps the first grid's, with one warning.
+class OutputArrays
+{
+public:
+  OutputArrays(vtkIdType total, std::function<void(const std::string&)> warnOnce)
+    : Total(total)
+    , WarnOnce(std::move(warnOnce))
+  {
+  }
+
+  vtkAbstractArray* For(const std::string& name, const std::string& type, int components)
+  {
+    auto it = this->Arrays.find(name);
+    if (it == this->Arrays.end())
+    {
+      it = this->Arrays.emplace(name, this->Make(name, type, components)).first;
+    }
+    const bool stringOut = it->second.Type == "string";
+    if (stringOut != (type == "string") ||
+      (!stringOut && it->second.Array->GetNumberOfComponents() != components))
+    {
+      this->WarnOnce("attribute \"" + name +
+        "\" differs in type or size between grids: only the first grid's kind is read.");
+      return nullptr;
+    }
+    return it->second.Array;
+  }
+
+  const std::map<std::string, Output>& All() const { return this->Arrays; }
+
+private:
+  Output Make(const std::string& name, const std::string& type, int components) const
+  {
+    Output o;
+    o.Type = type;
+    if (type == "string")
+    {
+      auto strings = vtkSmartPointer<vtkStringArray>::New();
+      strings->SetNumberOfValues(this->Total);
+      o.Array = strings;
+    }
+    else
+    {
+      auto data = vtkSmartPointer<vtkDataArray>::Take(
+        vtkDataArray::CreateDataArray(FindValueType(type)->VTKType));
+      data->SetNumberOfComponents(components);
+      data->SetNumberOfTuples(this->Total);
+      data->Fill(0.0);
+      o.Array = data;
+    }
+    o.Array->SetName(name.c_str());
+    return o;
+  }
+
+  vtkIdType Total;
+  std::function<void(const std::string&)> WarnOnce;
+  std::map<std::string, Output> Arrays;
+};
+
+// Copies the attributes (but P) and the groups of `leaf`'s points `indices`
+// into `outputs`, from output point `next` on.
+void CopyLeafAttributes(const ovp::PointDataTree::LeafNodeType& leaf,
+  size_t positionIndex,
+  const std::vector<Index>& indices,
+  vtkIdType next,
+  OutputArrays& outputs,
+  const std::function<void(const std::string&)>& warnOnce)
+{
+  const ovp::AttributeSet::Descriptor& descriptor = leaf.attributeSet().descriptor();
+  for (const auto& entry : descriptor.map())
+  {
+    if (entry.second == positionIndex)
+    {
+      continue;
+    }
+    const ovp::AttributeArray& array = leaf.constAttributeArray(entry.second);
+    if (ovp::isGroup(array))
+    {
+      continue; // groups are read by name below
+    }
+    if (!array.hasConstantStride())
+    {
+      warnOnce("attribute \"" + entry.first + "\" has a variable length per point: skipped.");
+      continue;
+    }
+    if (ovp::isString(array))
+    {
+      auto* out = vtkStringArray::SafeDownCast(outputs.For(entry.first, "string", 1));
+      if (out)
+      {
+        ovp::StringAttributeHandle handle(array, descriptor.getMetadata());
+        for (size_t i = 0; i < indices.size(); ++i)
+        {
+          out->SetValue(next + static_cast<vtkIdType>(i), handle.get(indices[i]));
+        }
+      }
+      continue;
+    }
+    const std::string type = array.type().first;
+    const ValueType* known = FindValueType(type);
+    if (!known)
+    {
+      warnOnce("attribute \"" + entry.first + "\" has the type " + type +
+        ", which this reader does not convert: skipped.");
+      continue;
+    }
+    auto* out = vtkDataArray::SafeDownCast(
+      outputs.For(entry.first, type, known->Components * static_cast<int>(array.stride())));
+    if (out)
+    {
+      CopyTyped(type, array, indices, out, next);
+    }
+  }
+  // Groups, as 0/1 arrays.
+  for (const auto& group : descriptor.groupMap())
+  {
+    auto* out = vtkDataArray::SafeDownCast(outputs.For("group:" + group.first, "group", 1));
+    if (out)
+    {
+      const ovp::GroupHandle handle = leaf.groupHandle(group.first);
+      for (size_t i = 0; i < indices.size(); ++i)
+      {
+        out->SetComponent(next + static_cast<vtkIdType>(i), 0, handle.get(indices[i]));
+      }
+    }
+  }
+}
+
+// Reads every point of `grids` into `points` (world positions),
+// `gridIndex` and `outputs`; false with `error` for a grid without P.
+bool CopyGrids(const std::vector<ovp::PointDataGrid::Ptr>& grids,
+  const std::vector<std::string>& names,
+  const std::vector<vtkIdType>& firstOfGrid,
+  vtkPoints* points,
+  vtkIntArray* gridIndex,
+  OutputArrays& outputs,
+  const std::function<void(const std::string&)>& warnOnce,
+  std::string& error)
+{
+  std::vector<Index> indices;
+  for (size_t g = 0; g < grids.size(); ++g)
+  {
+    const openvdb::math::Transform& xform = grids[g]->transform();
+    vtkIdType next = firstOfGrid[g];
+    for (auto leaf = grids[g]->tree().cbeginLeaf(); leaf; ++leaf)
+    {
+      const size_t positionIndex = leaf->attributeSet().descriptor().find("P");
+      if (positionIndex == ovp::AttributeSet::INVALID_POS)
+      {
+        error = "grid \"" + names[g] + "\" has no position attribute P";
+        return false;
+      }
+      // Positions: voxel centre plus the decoded offset, to world space.
+      indices.clear();
+      ovp::AttributeHandle<openvdb::Vec3f> position(leaf->constAttributeArray(positionIndex));
+      for (auto index = leaf->beginIndexOn(); index; ++index)
+      {
+        const openvdb::Vec3d xyz =
+          index.getCoord().asVec3d() + openvdb::Vec3d(position.get(*index));
+        const openvdb::Vec3d world = xform.indexToWorld(xyz);
+        points->SetPoint(
+          next + static_cast<vtkIdType>(indices.size()), world[0], world[1], world[2]);
+        gridIndex->SetValue(next + static_cast<vtkIdType>(indices.size()), static_cast<int>(g));
+        indices.push_back(*index);
+      }
+      CopyLeafAttributes(*leaf, positionIndex, indices, next, outputs, warnOnce);
+      next += static_cast<vtkIdType>(indices.size());
+    }
+  }
+  return true;
+}
+
+// One vertex cell per point.
+vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType total)
+{
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(total + 1);
+  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + total + 1, vtkIdType(0));
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(total);
+  std::iota(connectivity->GetPointer(0), connectivity->GetPointer(0) + total, vtkIdType(0));
+  auto vertices = vtkSmartPointer<vtkCellArray>::New();
+  vertices->SetData(offsets, connectivity);
+  return vertices;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -440,33 +687,10 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
   }
   openvdb::initialize();
 
-  // Read the point grids, whole. OpenVDB's io::File reads from a stream that
-  // does not report a short read, and loops for a long time over counts that
-  // a damaged file announces (found by FuzzOpenVDBPointsReader); here the
-  // stream throws at the first read past the end or failure instead.
   std::vector<ovp::PointDataGrid::Ptr> grids;
   try
   {
-    std::vector<char> bytes;
-    {
-      std::ifstream file(this->FileName, std::ios::binary | std::ios::ate);
-      bytes.resize(static_cast<size_t>(file.tellg()));
-      file.seekg(0);
-      file.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    }
-    BoundedBuffer buffer(bytes);
-    std::istream in(&buffer);
-    in.exceptions(std::ios::failbit | std::ios::badbit | std::ios::eofbit);
-    CheckedArchive archive;
-    for (const openvdb::GridBase::Ptr& base : archive.Read(in))
-    {
-      ovp::PointDataGrid::Ptr grid = openvdb::gridPtrCast<ovp::PointDataGrid>(base);
-      if (grid && (this->GridName.empty() || grid->getName() == this->GridName))
-      {
-        grids.push_back(grid);
-        this->PointGridNames.push_back(grid->getName());
-      }
-    }
+    grids = ReadPointGrids(this->FileName, this->GridName, this->PointGridNames);
   }
   catch (const std::exception& e)
   {
@@ -492,23 +716,13 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
   }
 
   // Count the points (active voxels only) and check every leaf first.
-  std::vector<vtkIdType> firstOfGrid(grids.size() + 1, 0);
-  for (size_t g = 0; g < grids.size(); ++g)
+  std::vector<vtkIdType> firstOfGrid;
+  std::string error;
+  if (!FirstPointOfGrids(grids, this->PointGridNames, firstOfGrid, error))
   {
-    vtkIdType count = 0;
-    for (auto leaf = grids[g]->tree().cbeginLeaf(); leaf; ++leaf)
-    {
-      std::string why;
-      if (!LeafConsistent(*leaf, why))
-      {
-        vtkErrorMacro(<< "\"" << this->FileName << "\", grid \"" << this->PointGridNames[g]
-                      << "\" is corrupt: " << why << ".");
-        this->PointGridNames.clear();
-        return 1;
-      }
-      count += static_cast<vtkIdType>(leaf->onPointCount());
-    }
-    firstOfGrid[g + 1] = firstOfGrid[g] + count;
+    vtkErrorMacro(<< "\"" << this->FileName << "\", " << error << ".");
+    this->PointGridNames.clear();
+    return 1;
   }
   const vtkIdType total = firstOfGrid.back();
 
@@ -518,7 +732,6 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
   vtkNew<vtkIntArray> gridIndex;
   gridIndex->SetName("VDBGridIndex");
   gridIndex->SetNumberOfTuples(total);
-  std::map<std::string, Output> outputs;
   std::set<std::string> warned;
   auto warnOnce = [&](const std::string& text)
   {
@@ -527,135 +740,15 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
       vtkWarningMacro(<< "\"" << this->FileName << "\": " << text);
     }
   };
-  // The output array for `name`, created (zero-filled) when first seen.
-  auto outputFor =
-    [&](const std::string& name, const std::string& type, int components) -> vtkAbstractArray*
-  {
-    auto it = outputs.find(name);
-    if (it == outputs.end())
-    {
-      Output o;
-      o.Type = type;
-      if (type == "string")
-      {
-        auto strings = vtkSmartPointer<vtkStringArray>::New();
-        strings->SetNumberOfValues(total);
-        o.Array = strings;
-      }
-      else
-      {
-        auto data = vtkSmartPointer<vtkDataArray>::Take(
-          vtkDataArray::CreateDataArray(FindValueType(type)->VTKType));
-        data->SetNumberOfComponents(components);
-        data->SetNumberOfTuples(total);
-        data->Fill(0.0);
-        o.Array = data;
-      }
-      o.Array->SetName(name.c_str());
-      it = outputs.emplace(name, o).first;
-    }
-    const bool stringOut = it->second.Type == "string";
-    if (stringOut != (type == "string") ||
-      (!stringOut && it->second.Array->GetNumberOfComponents() != components))
-    {
-      warnOnce("attribute \"" + name +
-        "\" differs in type or size between grids: " + "only the first grid's kind is read.");
-      return nullptr;
-    }
-    return it->second.Array;
-  };
-
+  OutputArrays outputs(total, warnOnce);
   try
   {
-    std::vector<Index> indices;
-    for (size_t g = 0; g < grids.size(); ++g)
+    if (!CopyGrids(
+          grids, this->PointGridNames, firstOfGrid, points, gridIndex, outputs, warnOnce, error))
     {
-      const openvdb::math::Transform& xform = grids[g]->transform();
-      vtkIdType next = firstOfGrid[g];
-      for (auto leaf = grids[g]->tree().cbeginLeaf(); leaf; ++leaf)
-      {
-        const ovp::AttributeSet::Descriptor& descriptor = leaf->attributeSet().descriptor();
-        const size_t positionIndex = descriptor.find("P");
-        if (positionIndex == ovp::AttributeSet::INVALID_POS)
-        {
-          vtkErrorMacro(<< "\"" << this->FileName << "\", grid \"" << this->PointGridNames[g]
-                        << "\" has no position attribute P.");
-          this->PointGridNames.clear();
-          return 1;
-        }
-        // Positions: voxel centre plus the decoded offset, to world space.
-        indices.clear();
-        ovp::AttributeHandle<openvdb::Vec3f> position(leaf->constAttributeArray(positionIndex));
-        for (auto index = leaf->beginIndexOn(); index; ++index)
-        {
-          const openvdb::Vec3d xyz =
-            index.getCoord().asVec3d() + openvdb::Vec3d(position.get(*index));
-          const openvdb::Vec3d world = xform.indexToWorld(xyz);
-          points->SetPoint(
-            next + static_cast<vtkIdType>(indices.size()), world[0], world[1], world[2]);
-          gridIndex->SetValue(next + static_cast<vtkIdType>(indices.size()), static_cast<int>(g));
-          indices.push_back(*index);
-        }
-        // Attributes.
-        for (const auto& entry : descriptor.map())
-        {
-          if (entry.second == positionIndex)
-          {
-            continue;
-          }
-          const ovp::AttributeArray& array = leaf->constAttributeArray(entry.second);
-          if (ovp::isGroup(array))
-          {
-            continue; // groups are read by name below
-          }
-          if (!array.hasConstantStride())
-          {
-            warnOnce("attribute \"" + entry.first + "\" has a variable length per point: skipped.");
-            continue;
-          }
-          if (ovp::isString(array))
-          {
-            auto* out = vtkStringArray::SafeDownCast(outputFor(entry.first, "string", 1));
-            if (out)
-            {
-              ovp::StringAttributeHandle handle(array, descriptor.getMetadata());
-              for (size_t i = 0; i < indices.size(); ++i)
-              {
-                out->SetValue(next + static_cast<vtkIdType>(i), handle.get(indices[i]));
-              }
-            }
-            continue;
-          }
-          const std::string type = array.type().first;
-          const ValueType* known = FindValueType(type);
-          if (!known)
-          {
-            warnOnce("attribute \"" + entry.first + "\" has the type " + type +
-              ", which this reader does not convert: skipped.");
-            continue;
-          }
-          auto* out = vtkDataArray::SafeDownCast(
-            outputFor(entry.first, type, known->Components * static_cast<int>(array.stride())));
-          if (out)
-          {
-            CopyTyped(type, array, indices, out, next);
-          }
-        }
-        // Groups, as 0/1 arrays.
-        for (const auto& group : descriptor.groupMap())
-        {
-          auto* out = vtkDataArray::SafeDownCast(outputFor("group:" + group.first, "group", 1));
-          if (out)
-          {
-            const ovp::GroupHandle handle = leaf->groupHandle(group.first);
-            for (size_t i = 0; i < indices.size(); ++i)
-            {
-              out->SetComponent(next + static_cast<vtkIdType>(i), 0, handle.get(indices[i]));
-            }
-          }
-        }
-        next += static_cast<vtkIdType>(indices.size());
-      }
+      vtkErrorMacro(<< "\"" << this->FileName << "\", " << error << ".");
+      this->PointGridNames.clear();
+      return 1;
     }
   }
   catch (const std::exception& e)
@@ -666,17 +759,9 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
   }
 
   output->SetPoints(points);
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(total + 1);
-  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + total + 1, vtkIdType(0));
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(total);
-  std::iota(connectivity->GetPointer(0), connectivity->GetPointer(0) + total, vtkIdType(0));
-  vtkNew<vtkCellArray> vertices;
-  vertices->SetData(offsets, connectivity);
-  output->SetVerts(vertices);
+  output->SetVerts(VertexCells(total));
   output->GetPointData()->AddArray(gridIndex);
-  for (const auto& entry : outputs)
+  for (const auto& entry : outputs.All())
   {
     output->GetPointData()->AddArray(entry.second.Array);
   }
