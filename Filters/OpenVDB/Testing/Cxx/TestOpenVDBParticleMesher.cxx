@@ -23,6 +23,8 @@
 #include "vtkPolyData.h"
 
 #include "psMetaball.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartPointer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -153,6 +155,31 @@ int TestOpenVDBParticleMesher(int, char*[])
     Check(Errors == 0 && Warnings == 0 && p99 < 0.15 * 0.04 && worst < 1.0 * 0.04,
       "cluster vertices within 0.15 voxel of the metaball surface (p99), 1 voxel (all)");
     Check(OutwardFraction(mesh) > 0.999, "cluster polygons wound outward");
+
+    // The same mesh, point for point, with 1 and 2 threads (the kernels are
+    // splatted into per-thread grids and merged).
+    std::vector<vtkSmartPointer<vtkPolyData>> meshes;
+    for (int threads : { 1, 2 })
+    {
+      vtkSMPTools::Initialize(threads);
+      mesher->Modified();
+      meshes.push_back(vtkSmartPointer<vtkPolyData>::New());
+      meshes.back()->DeepCopy(run(Balls(xyz, radii, strengths)));
+    }
+    vtkSMPTools::Initialize(0);
+    bool same = meshes[0]->GetNumberOfPoints() == meshes[1]->GetNumberOfPoints() &&
+      meshes[0]->GetNumberOfPolys() == meshes[1]->GetNumberOfPolys() &&
+      meshes[0]->GetNumberOfPoints() > 1000;
+    for (vtkIdType i = 0; same && i < meshes[0]->GetNumberOfPoints(); ++i)
+    {
+      double a[3], b[3];
+      meshes[0]->GetPoint(i, a);
+      meshes[1]->GetPoint(i, b);
+      same = a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+    }
+    std::cout << "1 and 2 threads: " << meshes[0]->GetNumberOfPoints() << " and "
+              << meshes[1]->GetNumberOfPoints() << " vertices\n";
+    Check(same, "the same cluster mesh with 1 and 2 threads");
     mesher->GetField()->SetStrengthArrayName(nullptr);
   }
 

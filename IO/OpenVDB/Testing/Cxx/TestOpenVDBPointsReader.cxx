@@ -16,6 +16,7 @@
 #include "vtkOpenVDBPointsReader.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkStringArray.h"
 
 #include <openvdb/io/File.h>
@@ -136,6 +137,36 @@ int TestOpenVDBPointsReader(int, char*[])
     reader->Update();
     return reader->GetOutput();
   };
+
+  // The same points and arrays with 1 and 2 threads (OpenVDB reads on TBB,
+  // which vtkSMPTools::Initialize bounds as well).
+  {
+    std::vector<vtkSmartPointer<vtkPolyData>> reads;
+    for (int threads : { 1, 2 })
+    {
+      vtkSMPTools::Initialize(threads);
+      reads.push_back(vtkSmartPointer<vtkPolyData>::New());
+      reads.back()->DeepCopy(read(good));
+    }
+    vtkSMPTools::Initialize(0);
+    bool same = reads[0]->GetNumberOfPoints() == 5000 && reads[1]->GetNumberOfPoints() == 5000 &&
+      reads[0]->GetPointData()->GetNumberOfArrays() ==
+        reads[1]->GetPointData()->GetNumberOfArrays();
+    for (vtkIdType i = 0; same && i < 5000; ++i)
+    {
+      double p[3], q[3];
+      reads[0]->GetPoint(i, p);
+      reads[1]->GetPoint(i, q);
+      same = p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
+      for (int k = 0; same && k < reads[0]->GetPointData()->GetNumberOfArrays(); ++k)
+      {
+        vtkDataArray* x = reads[0]->GetPointData()->GetArray(k);
+        vtkDataArray* y = reads[1]->GetPointData()->GetArray(x ? x->GetName() : "");
+        same = !x || (y && x->GetComponent(i, 0) == y->GetComponent(i, 0));
+      }
+    }
+    Check(same, "the same points and arrays read with 1 and 2 threads");
+  }
 
   vtkPolyData* out = read(good);
   vtkPointData* pd = out->GetPointData();
