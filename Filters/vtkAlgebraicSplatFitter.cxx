@@ -23,7 +23,9 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSplatDataModel.h"
+#include "vtksys/SystemInformation.hxx"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <vector>
@@ -191,6 +193,36 @@ pointsurfaces::BuildParameters vtkAlgebraicSplatFitter::MakeParameters(bool keep
 }
 
 //------------------------------------------------------------------------------
+vtkIdType vtkAlgebraicSplatFitter::EstimateMemorySize(vtkIdType numberOfPoints)
+{
+  return static_cast<vtkIdType>(
+    std::ceil(640.0 * static_cast<double>(std::max<vtkIdType>(numberOfPoints, 0)) / 1024.0));
+}
+
+//------------------------------------------------------------------------------
+bool vtkAlgebraicSplatFitter::FitsInMemory(vtkIdType points)
+{
+  const vtkIdType need = EstimateMemorySize(points);
+  vtkIdType limit = this->MemoryLimit;
+  if (limit == 0)
+  {
+    vtksys::SystemInformation system;
+    limit = static_cast<vtkIdType>(system.GetAvailablePhysicalMemory()) * 1024; // MiB to KiB
+  }
+  if (limit <= 0 || need <= limit)
+  {
+    return true;
+  }
+  vtkErrorMacro(<< "Fitting " << points << " points needs about " << need / 1024
+                << " MiB, more than "
+                << (this->MemoryLimit > 0 ? "MemoryLimit" : "the free physical memory") << " ("
+                << limit / 1024 << " MiB): thin the input first (vtkMultiResolutionSplatBuilder "
+                << "fits levels of it, VTK's vtkMaskPoints or vtkVoxelGrid thin it), fit it in "
+                << "pieces, or raise MemoryLimit. The output is empty.");
+  return false;
+}
+
+//------------------------------------------------------------------------------
 int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -200,6 +232,11 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   this->NumberOfInvalidPoints = this->NumberOfDegenerateSplats = this->NumberOfMergedPoints = 0;
   this->NumberOfReducedDegreeSplats = 0;
   const vtkIdType nIn = input ? input->GetNumberOfPoints() : 0;
+  if (!this->FitsInMemory(nIn))
+  {
+    Assemble(BuildResult(), this->Degree, output);
+    return 1;
+  }
 
   // Finite points only, in double; `kept` maps back to input ids.
   std::vector<double> xyz, normals;
@@ -396,6 +433,7 @@ void vtkAlgebraicSplatFitter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LOPVariant: " << this->LOPVariant << "\n";
   os << indent << "RadiusScale: " << this->RadiusScale << "\n";
   os << indent << "RandomSeed: " << this->RandomSeed << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << " KiB\n";
   os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";
   os << indent << "CoarsestQualityFactor: " << this->CoarsestQualityFactor << "\n";
   os << indent << "BuildOctree: " << this->BuildOctree << "\n";

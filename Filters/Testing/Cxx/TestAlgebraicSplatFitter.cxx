@@ -5,6 +5,7 @@
 // fixed-count selection, and every kind of bad input (each must warn, give a
 // valid output and never NaN).
 #include "vtkAlgebraicSplatFitter.h"
+#include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
@@ -287,6 +288,45 @@ void TestFixedCount()
   Check(all->GetOutput()->GetNumberOfPoints() == 5000, "All gives a splat per point");
 }
 
+void TestMemoryLimit()
+{
+  // A limit below the estimate: one error that names it, an empty but valid
+  // output; the same filter fits once the limit is raised.
+  auto sphere = Sphere(20000);
+  vtkNew<vtkAlgebraicSplatFitter> fitter;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  fitter->AddObserver(vtkCommand::ErrorEvent, observer);
+  int errors = 0;
+  vtkNew<vtkCallbackCommand> counter;
+  counter->SetClientData(&errors);
+  counter->SetCallback(
+    [](vtkObject*, unsigned long, void* count, void*) { ++*static_cast<int*>(count); });
+  fitter->AddObserver(vtkCommand::ErrorEvent, counter);
+  fitter->SetInputData(sphere);
+  const vtkIdType need = vtkAlgebraicSplatFitter::EstimateMemorySize(20000);
+  Check(need == 12500, "20 000 points: an estimate of 12 500 KiB (640 bytes a point)");
+  fitter->SetMemoryLimit(need / 2);
+  fitter->Update();
+  const std::string message = observer->GetErrorMessage();
+  std::cout << "memory limit: " << message << "\n";
+  Check(errors == 1 && message.find("MemoryLimit") != std::string::npos &&
+      message.find("20000 points") != std::string::npos,
+    "a fit beyond MemoryLimit: one error naming the limit and the points");
+  Check(fitter->GetOutput()->GetNumberOfPoints() == 0 &&
+      fitter->GetOutput()->GetFieldData()->GetArray("SplatDegree") != nullptr,
+    "beyond MemoryLimit: an empty splat set");
+  observer->Clear();
+  fitter->SetMemoryLimit(need);
+  fitter->Update();
+  Check(!observer->GetError() && fitter->GetOutput()->GetNumberOfPoints() > 100,
+    "within MemoryLimit again: the fit runs");
+  fitter->SetMemoryLimit(0);
+  fitter->Modified();
+  fitter->Update();
+  Check(!observer->GetError() && fitter->GetOutput()->GetNumberOfPoints() > 100,
+    "MemoryLimit 0: the free memory, ample here");
+}
+
 void TestBadInput()
 {
   vtkNew<vtkPolyData> empty;
@@ -419,6 +459,7 @@ int TestAlgebraicSplatFitter(int, char*[])
   TestDataModel();
   TestLevelsAndOctree();
   TestFixedCount();
+  TestMemoryLimit();
   TestBadInput();
   if (Failures)
   {
