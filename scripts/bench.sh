@@ -89,6 +89,9 @@ render bunny_1M --points 1000000
 "${egl[@]}" /usr/bin/python3 "$bench/bench_metaballs.py" "${data_args[@]}" --out "$out"
 # Metaballs over a time series (the vortex of Examples/Python/particle_animation.py).
 "${egl[@]}" /usr/bin/python3 "$bench/bench_metaball_series.py" --out "$out"
+# A soak: 10 000 LAMMPS snapshots through the reader and the CPU metaball
+# caster, 1 000 changing point sets through the splat fitter and mapper.
+"${egl[@]}" /usr/bin/python3 "$bench/bench_soak.py" --out "$out"
 # The SPH density surface of the Gadget snapshot's gas, at four thresholds.
 "${egl[@]}" /usr/bin/python3 "$bench/bench_sph_density.py" "${data_args[@]}" --out "$out"
 # Splat image quality against the mesh, six views each.
