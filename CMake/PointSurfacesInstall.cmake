@@ -2,7 +2,9 @@
 # SPDX-License-Identifier: BSD-3-Clause
 # The installed CMake package: find_package(PointSurfaces) gives the targets
 # PointSurfaces::Filters, PointSurfaces::FiltersParallel, PointSurfaces::Rendering and
-# PointSurfaces::IO.
+# PointSurfaces::IO, and those of the optional libraries that were found
+# (PointSurfaces::IOHDF5, IOOpenMesh, IOOpenVDB, IOPCL, FiltersOpenVDB: test
+# with if (TARGET ...)).
 include(CMakePackageConfigHelpers)
 set(_ps_cmake_dest "${CMAKE_INSTALL_LIBDIR}/cmake/PointSurfaces")
 
