@@ -4,6 +4,7 @@
 
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
+#include "vtksys/SystemInformation.hxx"
 
 #include <algorithm>
 #include <array>
@@ -928,6 +929,7 @@ void BuildGrid(const MetaballCastInput& in,
   const MetaballCastSettings& S,
   int tilesX,
   int tilesY,
+  size_t maximumPairs,
   ViewBalls& balls,
   std::vector<double>& planes,
   std::vector<size_t>& offsets,
@@ -1031,7 +1033,8 @@ void BuildGrid(const MetaballCastInput& in,
     [&](long long i)
     { return balls.Range[6 * i] <= balls.Range[6 * i + 1] ? &balls.Range[6 * i] : nullptr; },
     offsets,
-    lists);
+    lists,
+    maximumPairs);
   stats.Pairs = static_cast<long long>(lists.size());
 }
 
@@ -1074,7 +1077,23 @@ void CastTiles(const MetaballCastInput& in,
     stats.KernelTerms += s.Stats.KernelTerms;
   }
 }
+
+//------------------------------------------------------------------------------
+// "12 MiB" or "340 KiB".
+std::string Bytes(double bytes)
+{
+  return bytes >= 1048576.0 ? std::to_string(static_cast<long long>(bytes / 1048576.0)) + " MiB"
+                            : std::to_string(static_cast<long long>(bytes / 1024.0)) + " KiB";
+}
 } // namespace
+
+//------------------------------------------------------------------------------
+double MetaballCastBallBytes(long long balls)
+{
+  // View-space x, y, z, R, q and colour (24), the voxel range (24), the
+  // visibility flag (1), with a margin for the vectors' slack.
+  return 64.0 * static_cast<double>(std::max(balls, 0LL));
+}
 
 //------------------------------------------------------------------------------
 void CastMetaballs(const MetaballCastInput& input,
@@ -1103,6 +1122,30 @@ void CastMetaballs(const MetaballCastInput& input,
     }
     return;
   }
+  // The memory the cast may take: its copy of the balls first, what is left
+  // for the grid's pairs (4 bytes each, and as much again while sorting).
+  double limit = settings.MemoryLimit;
+  if (limit <= 0.0)
+  {
+    vtksys::SystemInformation system;
+    limit = 1048576.0 * static_cast<double>(system.GetAvailablePhysicalMemory()); // MiB
+  }
+  const double ballBytes = MetaballCastBallBytes(input.Count);
+  if (limit > 0.0 && ballBytes > limit)
+  {
+    stats.Error = std::to_string(input.Count) + " balls need about " + Bytes(ballBytes) +
+      " of ray-caster memory, more than " +
+      (settings.MemoryLimit > 0.0 ? "its memory limit" : "the free physical memory") + " (" +
+      Bytes(limit) + "): draw fewer balls (a subset, or the GPU ray caster)";
+    if (statistics)
+    {
+      *statistics = stats;
+    }
+    return;
+  }
+  const size_t maximumPairs = limit > 0.0
+    ? static_cast<size_t>(std::min((limit - ballBytes) / 8.0, 1e18))
+    : std::numeric_limits<size_t>::max();
   const auto start = Clock::now();
   const int tilesX = (width + settings.TileSize - 1) / settings.TileSize;
   const int tilesY = (height + settings.TileSize - 1) / settings.TileSize;
@@ -1113,7 +1156,7 @@ void CastMetaballs(const MetaballCastInput& input,
   auto built = start;
   try
   {
-    BuildGrid(input, settings, tilesX, tilesY, balls, planes, offsets, lists, stats);
+    BuildGrid(input, settings, tilesX, tilesY, maximumPairs, balls, planes, offsets, lists, stats);
     built = Clock::now();
     // One instance of the march per kernel, so that the kernel inlines.
     auto cast = [&](auto kernel)
@@ -1122,6 +1165,14 @@ void CastMetaballs(const MetaballCastInput& input,
         input, settings, balls, offsets, lists, planes, tilesX, tilesY, images, stats);
     };
     VisitMetaballKernel<float>(input.Kernel, cast);
+  }
+  catch (const std::length_error& e)
+  {
+    // More (voxel, ball) pairs than the memory limit leaves room for.
+    stats.Error = std::string(e.what()) + ": use fewer slabs or larger tiles, or draw fewer balls";
+    images.Color.assign(pixels, 0u);
+    images.NormalDistance.assign(4 * pixels, 0.0f);
+    images.Depth.assign(pixels, 1.0f);
   }
   catch (const std::bad_alloc&)
   {

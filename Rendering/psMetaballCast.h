@@ -80,7 +80,16 @@ struct MetaballCastSettings
   int Slabs = 16;
   double StepScale = 0.1; ///< the base step, in units of the smallest radius in reach
   int Bisections = 10;
+  /**
+   * Bytes the cast may allocate for its balls and grid; 0: the physical
+   * memory free when it starts. Beyond it the cast draws nothing and says
+   * why in MetaballCastStatistics::Error (never the kernel's OOM killer).
+   */
+  double MemoryLimit = 0.0;
 };
+
+/** The bytes the caster's copy of `balls` balls takes (its grid comes on top: 4 a pair). */
+POINTSURFACESRENDERING_EXPORT double MetaballCastBallBytes(long long balls);
 
 /** Per pixel, row by row from the bottom-left, as the GPU pass writes them. */
 struct MetaballCastImages

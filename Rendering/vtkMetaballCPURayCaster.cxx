@@ -45,11 +45,11 @@ bool vtkMetaballCPURayCaster::Cast(vtkOpenGLRenderWindow*,
   settings.Slabs = request.Slabs;
   settings.StepScale = request.StepScale;
   settings.Bisections = request.Bisections;
+  settings.MemoryLimit = request.MemoryLimit;
   pointsurfaces::CastMetaballs(input, settings, this->Images, &stats);
   if (!stats.Error.empty())
   {
-    vtkErrorMacro(<< "The CPU ray caster cast nothing: " << stats.Error << ".");
-    return false;
+    return false; // the mapper reports stats.Error
   }
   // The count of rays starting inside goes through the ring like the
   // shaders' counts (the shadow rays add to it).

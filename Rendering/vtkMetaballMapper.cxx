@@ -417,6 +417,7 @@ void vtkMetaballMapper::MakeRequest(vtkRenderer* ren,
   request.Slabs = this->Slabs;
   request.StepScale = this->StepScale;
   request.Bisections = this->Bisections;
+  request.MemoryLimit = 1024.0 * static_cast<double>(this->MemoryLimit);
   request.Kernel = this->Field->GetKernelId();
   request.Threshold = this->Field->GetThreshold();
   request.CollectStatistics = this->CollectStatistics;
@@ -448,6 +449,13 @@ int vtkMetaballMapper::CastFrame(vtkRenderer* ren,
   vtkShaderStorageBuffer* counters = in.Counters->GetFrameBuffer();
   pointsurfaces::MetaballCastStatistics stats;
   const bool cast = caster->Cast(renWin, request, in.Balls, in.Images, counters, stats);
+  // A caster's reason for casting nothing, once while it lasts (not a frame).
+  if (!cast && !stats.Error.empty() && stats.Error != this->LastCastError)
+  {
+    vtkErrorMacro(<< "The " << (cpu ? "CPU" : "GPU") << " ray caster cast nothing: " << stats.Error
+                  << ".");
+  }
+  this->LastCastError = cast ? std::string() : stats.Error;
   this->TakeStatistics(stats, caster->CountsOnHost());
   // Shadows: secondary rays toward the lights (none for a selection).
   int shadowLights = 0;
@@ -587,5 +595,6 @@ void vtkMetaballMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Slabs: " << this->Slabs << "\n";
   os << indent << "StepScale: " << this->StepScale << "\n";
   os << indent << "Bisections: " << this->Bisections << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << " KiB\n";
   os << indent << "Shadows: " << this->Shadows << "\n";
 }

@@ -136,6 +136,18 @@ public:
   vtkGetMacro(Bisections, int);
   ///@}
 
+  ///@{
+  /**
+   * The most memory the CPU ray caster may take for its copy of the balls
+   * and its grid, in kibibytes; 0 (the default): the physical memory free
+   * when the frame starts. A frame beyond it draws no balls and gives one
+   * error naming both figures (the GPU caster is bounded by its buffers:
+   * vtkShaderStorageBuffer::SetMaximumSizeLimit and the driver).
+   */
+  vtkSetClampMacro(MemoryLimit, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(MemoryLimit, vtkIdType);
+  ///@}
+
   /** Where the rays are cast. */
   enum RayCasterType
   {
@@ -336,6 +348,8 @@ protected:
   int Slabs = 16;
   double StepScale = 0.1;
   int Bisections = 10;
+  vtkIdType MemoryLimit = 0;
+  std::string LastCastError; // reported once while it lasts
   double GridBuildTime = 0.0;
   double RayCastTime = 0.0;
   double UploadTime = 0.0;

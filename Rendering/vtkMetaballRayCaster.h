@@ -37,7 +37,8 @@ public:
    * the shaders add into. `stats` gets what was counted on the host: the
    * grid's pairs, fullest voxel and culled balls, the rays, the build and
    * cast times (0: not known yet), and, for a caster that CountsOnHost, the
-   * march's counters too. False, with an error reported, when nothing was cast.
+   * march's counters too. False when nothing was cast: with an error
+   * reported, or with the reason in stats.Error for the mapper to report.
    */
   virtual bool Cast(vtkOpenGLRenderWindow* renWin,
     const pointsurfaces::MetaballCastRequest& request,

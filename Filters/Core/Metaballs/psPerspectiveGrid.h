@@ -32,6 +32,9 @@
 #include "PointSurfacesFiltersModule.h" // For export macro
 
 #include <algorithm> // For std::max in the sort
+#include <limits>    // For the default pair limit
+#include <stdexcept> // For the pair limit's exception
+#include <string>    // For its message
 #include <vector>    // For the planes and lists
 
 namespace pointsurfaces
@@ -129,7 +132,8 @@ enum class VoxelOrder
  * order, so each voxel's list ascends: `offsets` gets voxels + 1 entries,
  * voxel v's balls being lists[offsets[v], offsets[v + 1]). `range(i)` gives
  * ball i's int[6] voxel range, or null when it is in no voxel. Returns the
- * largest list.
+ * largest list. Throws std::length_error, before the lists are allocated,
+ * when there are more pairs than `maximumPairs`.
  */
 template<typename Offset, typename RangeOf>
 long long SortIntoVoxels(long long count,
@@ -139,7 +143,8 @@ long long SortIntoVoxels(long long count,
   VoxelOrder order,
   RangeOf&& range,
   std::vector<Offset>& offsets,
-  std::vector<unsigned int>& lists)
+  std::vector<unsigned int>& lists,
+  size_t maximumPairs = std::numeric_limits<size_t>::max())
 {
   const size_t voxels = static_cast<size_t>(tilesX) * tilesY * slabs;
   auto forEachVoxel = [&](const int* r, auto&& visit)
@@ -170,6 +175,12 @@ long long SortIntoVoxels(long long count,
   {
     most = std::max(most, static_cast<long long>(offsets[v + 1]));
     offsets[v + 1] += offsets[v];
+  }
+  if (static_cast<size_t>(offsets[voxels]) > maximumPairs)
+  {
+    throw std::length_error("the grid has " + std::to_string(offsets[voxels]) +
+      " (voxel, ball) pairs, more than the " + std::to_string(maximumPairs) +
+      " that the memory limit leaves room for");
   }
   lists.resize(offsets[voxels]);
   std::vector<Offset> cursor(offsets.begin(), offsets.end() - 1);

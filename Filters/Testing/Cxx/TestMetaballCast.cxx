@@ -400,6 +400,34 @@ int TestMetaballCast(int, char*[])
     Check(framesWithSurface == 120, "every frame of a time series finds the surface");
   }
 
+  // Memory limits: below the balls' copy, nothing is cast and the error
+  // names the limit; room for the balls but not for the grid's pairs, the
+  // error names the pairs; no image is half drawn.
+  {
+    MetaballCastInput in;
+    in.Balls = scene.Balls.data();
+    in.Strengths = scene.Q.data();
+    in.Count = 60;
+    MetaballCastSettings s = MakeSettings(64, 64, false);
+    MetaballCastImages images;
+    MetaballCastStatistics stats;
+    s.MemoryLimit = MetaballCastBallBytes(60) / 2.0;
+    CastMetaballs(in, s, images, &stats);
+    std::cout << "memory limit below the balls: " << stats.Error << "\n";
+    Check(stats.Error.find("memory limit") != std::string::npos && stats.Hits == 0 &&
+        images.Depth.size() == 64 * 64 && images.Depth[2080] == 1.0f,
+      "a limit below the balls' copy: an error naming it, an image of misses");
+    s.MemoryLimit = MetaballCastBallBytes(60) + 8.0 * 10;
+    CastMetaballs(in, s, images, &stats);
+    std::cout << "memory limit below the pairs: " << stats.Error << "\n";
+    Check(stats.Error.find("pairs") != std::string::npos && stats.Hits == 0 &&
+        std::all_of(images.Color.begin(), images.Color.end(), [](unsigned c) { return c == 0; }),
+      "room for 10 pairs only: an error naming the pairs, an image of misses");
+    s.MemoryLimit = 0.0;
+    CastMetaballs(in, s, images, &stats);
+    Check(stats.Error.empty() && stats.Hits > 200, "no limit: the frame is cast");
+  }
+
   // The same images and counters with 1, 2 and 3 threads: each pixel is one
   // thread's work, the grid is sorted whatever the threads' order (the
   // crowded scene, in both projections).

@@ -232,5 +232,30 @@ int TestMetaballMapperBadInput(int, char*[])
       ++failures;
     }
   }
+  // The CPU caster over its memory limit: one error (not one a frame), no
+  // balls drawn; the limit lifted, the balls are drawn again.
+  {
+    mapper->SetRayCasterToCPU();
+    mapper->SetMemoryLimit(100); // KiB: less than 5 000 balls' copy (64 bytes each)
+    Warnings = Errors = 0;
+    const int coveredOver = render("CPU caster beyond its memory limit");
+    render("CPU caster beyond its memory limit, a second frame");
+    std::cout << "CPU caster, 5 000 balls in 100 KiB: " << Errors << " errors over 2 frames, "
+              << coveredOver << " pixels drawn\n";
+    if (Errors != 1 || coveredOver != 0)
+    {
+      ++failures;
+    }
+    mapper->SetMemoryLimit(0);
+    Warnings = Errors = 0;
+    const int coveredUnder = render("CPU caster, the limit lifted");
+    if (Errors != 0 || coveredUnder < 1000)
+    {
+      std::cerr << "CPU caster after the limit is lifted: " << Errors << " errors, " << coveredUnder
+                << " pixels\n";
+      ++failures;
+    }
+    mapper->SetRayCasterToAutomatic();
+  }
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
