@@ -10,10 +10,26 @@ from vtkmodules.vtkRenderingCore import vtkRenderWindow
 
 for name in ("vtkEGLHeadlessRenderWindow", "vtkPointSurfacesRenderWindowFactory",
              "vtkComputeShaderProgram", "vtkShaderStorageBuffer", "vtkAlgebraicSplatFitter",
-             "vtkSplatErrorMetric", "vtkPCDReader", "vtkMultiResolutionSplatBuilder",
+             "vtkSplatErrorMetric", "vtkAtomRadii", "vtkMultiResolutionSplatBuilder",
              "vtkAlgebraicSplatMapper"):
     if not hasattr(pointsurfaces, name):
         fail("pointsurfaces has no " + name)
+
+# The optional libraries' modules: each built one's classes are here, and
+# OPTIONAL_MODULES says which were built (all of them in the test build,
+# whose packages install-deps.sh installs).
+optional = {"FiltersOpenVDB": "vtkOpenVDBParticleMesher", "IOOpenVDB": "vtkOpenVDBPointsReader",
+            "IOOpenMesh": "vtkOpenMeshReader", "IOPCL": "vtkPCDReader",
+            "IOHDF5": "vtkGadgetHDF5Reader"}
+if sorted(pointsurfaces.OPTIONAL_MODULES) != sorted(optional):
+    fail("OPTIONAL_MODULES lists %s" % sorted(pointsurfaces.OPTIONAL_MODULES))
+for module, cls in optional.items():
+    if pointsurfaces.OPTIONAL_MODULES.get(module) != hasattr(pointsurfaces, cls):
+        fail("%s: OPTIONAL_MODULES says %s, the class %s is %s" % (
+            module, pointsurfaces.OPTIONAL_MODULES.get(module), cls,
+            "there" if hasattr(pointsurfaces, cls) else "missing"))
+    if not pointsurfaces.OPTIONAL_MODULES.get(module):
+        fail("the test build lacks PointSurfaces::" + module)
 
 # vtkEGLHeadlessRenderWindow up to VTK 9.3, VTK's vtkEGLRenderWindow from 9.4.
 egl_class = pointsurfaces.egl_window_class()
