@@ -121,7 +121,8 @@ def _optional_reader(path, module, name):
         return getattr(importlib.import_module("pointsurfaces.PointSurfaces" + module), name)
     except (ImportError, AttributeError):
         raise ScanReadError("%s: this build has no %s (PointSurfaces::%s was not built: its "
-                            "library was not found)" % (path, name, module)) from None
+                            "library was not found, or its POINTSURFACES_USE_ option is off)"
+                            % (path, name, module)) from None
 
 
 def _print_warning(line):
