@@ -25,6 +25,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -146,6 +147,24 @@ inline vtkSmartPointer<vtkPolyData> Balls(const std::vector<double>& xyz,
   }
   return poly;
 }
+/**
+ * `count` balls drawn from `rng`: centres in [-1.5, 1.5]^3, radii in [0.6,
+ * 1.2], strengths in [0.6, 1.4].
+ */
+struct Cluster
+{
+  std::vector<double> Centers, Radii, Strengths;
+  Cluster(std::mt19937& rng, int count)
+  {
+    std::uniform_real_distribution<double> u(-1.5, 1.5), r(0.6, 1.2), q(0.6, 1.4);
+    for (int i = 0; i < count; ++i)
+    {
+      this->Centers.insert(this->Centers.end(), { u(rng), u(rng), u(rng) });
+      this->Radii.push_back(r(rng));
+      this->Strengths.push_back(q(rng));
+    }
+  }
+};
 } // namespace pointsurfaces_test
 
 #endif

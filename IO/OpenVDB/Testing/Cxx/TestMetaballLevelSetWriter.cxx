@@ -127,14 +127,10 @@ int TestMetaballLevelSetWriter(int, char*[])
   // A cluster with strengths: zero crossings along rays vs the reference ray caster.
   {
     std::mt19937 rng(3);
-    std::uniform_real_distribution<double> u(-1.5, 1.5), r(0.6, 1.2), q(0.6, 1.4);
-    std::vector<double> xyz, radii, strengths;
-    for (int i = 0; i < 40; ++i)
-    {
-      xyz.insert(xyz.end(), { u(rng), u(rng), u(rng) });
-      radii.push_back(r(rng));
-      strengths.push_back(q(rng));
-    }
+    const Cluster cluster(rng, 40);
+    const std::vector<double>& xyz = cluster.Centers;
+    const std::vector<double>& radii = cluster.Radii;
+    const std::vector<double>& strengths = cluster.Strengths;
     writer->GetField()->SetKernel(vtkMetaballField::Wyvill);
     writer->GetField()->SetStrengthArrayName("Strength");
     writer->SetVoxelSize(0.04);
