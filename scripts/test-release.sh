@@ -102,9 +102,12 @@ if [ ! -d "$root" ]; then
 fi
 
 # The tree: tracked and untracked-but-not-ignored files, as a fresh clone plus
-# the working changes; build/ inside the root is kept between runs.
+# the working changes; build/ inside the root is kept between runs. What an
+# earlier copy left (a file since moved or deleted) goes first, or it would
+# shadow the moved file on an include path.
 src="$root/work/pointsurfaces"
 $SUDO mkdir -p "$src"
+$SUDO find "$src" -mindepth 1 -maxdepth 1 ! -name build -exec rm -rf {} +
 (cd "$here" && git ls-files -z -co --exclude-standard) \
   | (cd "$here" && $SUDO tar --null -T - -cf - 2>/dev/null) \
   | (cd "$src" && $SUDO tar -xf -)
