@@ -178,6 +178,25 @@ std::string CheckDataSize(const std::string& fileName)
   {
     return "its DATA line is not ascii, binary or binary_compressed";
   }
+  // PCL walks every value of every field (COUNT of them) for each point,
+  // whatever its TYPE: a field of no valid type with a count of 2^31 is
+  // billions of steps a point (found by scripts/fuzz-campaign.sh). Each
+  // field must have a type and fit inside a point.
+  for (const pcl::PCLPointField& field : header.fields)
+  {
+    const std::uint64_t size = pcl::getFieldSize(field.datatype);
+    if (size == 0 && field.name != "_")
+    {
+      return "its field \"" + field.name + "\" has no valid TYPE and SIZE";
+    }
+    if (static_cast<std::uint64_t>(field.offset) +
+        static_cast<std::uint64_t>(field.count) * std::max<std::uint64_t>(size, 1) >
+      header.point_step)
+    {
+      return "its field \"" + field.name + "\" (COUNT " + std::to_string(field.count) +
+        ") does not fit in a point of " + std::to_string(header.point_step) + " bytes";
+    }
+  }
   std::ifstream in(fileName, std::ios::binary | std::ios::ate);
   const std::uint64_t fileSize = static_cast<std::uint64_t>(in.tellg());
   const std::uint64_t expected =
