@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkAlgebraicSplatFitter.h"
 
+#include "psMemory.h"
 #include "psOctree.h"
 #include "psPointIndex.h"
 #include "psSplatBuilder.h"
@@ -23,7 +24,6 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSplatDataModel.h"
-#include "vtksys/SystemInformation.hxx"
 
 #include <algorithm>
 #include <atomic>
@@ -202,21 +202,17 @@ vtkIdType vtkAlgebraicSplatFitter::EstimateMemorySize(vtkIdType numberOfPoints)
 //------------------------------------------------------------------------------
 bool vtkAlgebraicSplatFitter::FitsInMemory(vtkIdType points)
 {
-  const vtkIdType need = EstimateMemorySize(points);
-  vtkIdType limit = this->MemoryLimit;
-  if (limit == 0)
-  {
-    vtksys::SystemInformation system;
-    limit = static_cast<vtkIdType>(system.GetAvailablePhysicalMemory()) * 1024; // MiB to KiB
-  }
-  if (limit <= 0 || need <= limit)
+  const double need = 1024.0 * static_cast<double>(EstimateMemorySize(points));
+  const double limit = pointsurfaces::MemoryLimitBytes(1024.0 * this->MemoryLimit);
+  if (limit <= 0.0 || need <= limit)
   {
     return true;
   }
-  vtkErrorMacro(<< "Fitting " << points << " points needs about " << need / 1024
-                << " MiB, more than "
+  vtkErrorMacro(<< "Fitting " << points << " points needs about "
+                << pointsurfaces::FormatBytes(need) << ", more than "
                 << (this->MemoryLimit > 0 ? "MemoryLimit" : "the free physical memory") << " ("
-                << limit / 1024 << " MiB): thin the input first (vtkMultiResolutionSplatBuilder "
+                << pointsurfaces::FormatBytes(limit)
+                << "): thin the input first (vtkMultiResolutionSplatBuilder "
                 << "fits levels of it, VTK's vtkMaskPoints or vtkVoxelGrid thin it), fit it in "
                 << "pieces, or raise MemoryLimit. The output is empty.");
   return false;

@@ -2,9 +2,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "psMetaballCast.h"
 
+#include "psMemory.h"
+
 #include "vtkSMPThreadLocal.h"
 #include "vtkSMPTools.h"
-#include "vtksys/SystemInformation.hxx"
 
 #include <algorithm>
 #include <array>
@@ -1078,13 +1079,6 @@ void CastTiles(const MetaballCastInput& in,
   }
 }
 
-//------------------------------------------------------------------------------
-// "12 MiB" or "340 KiB".
-std::string Bytes(double bytes)
-{
-  return bytes >= 1048576.0 ? std::to_string(static_cast<long long>(bytes / 1048576.0)) + " MiB"
-                            : std::to_string(static_cast<long long>(bytes / 1024.0)) + " KiB";
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -1106,9 +1100,14 @@ void CastMetaballs(const MetaballCastInput& input,
   const size_t pixels = static_cast<size_t>(width) * height;
   images.Width = width;
   images.Height = height;
-  images.Color.assign(pixels, 0u);
-  images.NormalDistance.assign(4 * pixels, 0.0f);
-  images.Depth.assign(pixels, 1.0f);
+  // Every pixel a miss: the start of a cast, and all a failed one leaves.
+  auto clear = [&]()
+  {
+    images.Color.assign(pixels, 0u);
+    images.NormalDistance.assign(4 * pixels, 0.0f);
+    images.Depth.assign(pixels, 1.0f);
+  };
+  clear();
   if (input.Count > static_cast<long long>(std::numeric_limits<unsigned int>::max()))
   {
     stats.Error = "more than 2^32 - 1 balls: ball ids are 32-bit, as on the GPU";
@@ -1124,19 +1123,14 @@ void CastMetaballs(const MetaballCastInput& input,
   }
   // The memory the cast may take: its copy of the balls first, what is left
   // for the grid's pairs (4 bytes each, and as much again while sorting).
-  double limit = settings.MemoryLimit;
-  if (limit <= 0.0)
-  {
-    vtksys::SystemInformation system;
-    limit = 1048576.0 * static_cast<double>(system.GetAvailablePhysicalMemory()); // MiB
-  }
+  const double limit = MemoryLimitBytes(settings.MemoryLimit);
   const double ballBytes = MetaballCastBallBytes(input.Count);
   if (limit > 0.0 && ballBytes > limit)
   {
-    stats.Error = std::to_string(input.Count) + " balls need about " + Bytes(ballBytes) +
+    stats.Error = std::to_string(input.Count) + " balls need about " + FormatBytes(ballBytes) +
       " of ray-caster memory, more than " +
       (settings.MemoryLimit > 0.0 ? "its memory limit" : "the free physical memory") + " (" +
-      Bytes(limit) + "): draw fewer balls (a subset, or the GPU ray caster)";
+      FormatBytes(limit) + "): draw fewer balls (a subset, or the GPU ray caster)";
     if (statistics)
     {
       *statistics = stats;
@@ -1170,18 +1164,14 @@ void CastMetaballs(const MetaballCastInput& input,
   {
     // More (voxel, ball) pairs than the memory limit leaves room for.
     stats.Error = std::string(e.what()) + ": use fewer slabs or larger tiles, or draw fewer balls";
-    images.Color.assign(pixels, 0u);
-    images.NormalDistance.assign(4 * pixels, 0.0f);
-    images.Depth.assign(pixels, 1.0f);
+    clear();
   }
   catch (const std::bad_alloc&)
   {
     // The grid's (voxel, ball) pairs or the scratch do not fit: no image.
     stats.Error = "not enough memory for the grid's (voxel, ball) pairs: use fewer slabs or "
                   "larger tiles";
-    images.Color.assign(pixels, 0u);
-    images.NormalDistance.assign(4 * pixels, 0.0f);
-    images.Depth.assign(pixels, 1.0f);
+    clear();
   }
   const auto done = Clock::now();
   stats.GridSeconds = std::chrono::duration<double>(built - start).count();

@@ -84,9 +84,8 @@ for t in "${targets[@]}"; do
   inputs=$(sed -E 's/^#([0-9]+):.*/\1/' <<<"$last")
   cov=$(sed -nE 's/.* cov: ([0-9]+).*/\1/p' <<<"$last")
   ft=$(sed -nE 's/.* ft: ([0-9]+).*/\1/p' <<<"$last")
-  oom=$(sed -nE 's#.*oom/timeout/crash: ([0-9]+)/([0-9]+)/([0-9]+).*#\1#p' <<<"$last")
-  timeouts=$(sed -nE 's#.*oom/timeout/crash: ([0-9]+)/([0-9]+)/([0-9]+).*#\2#p' <<<"$last")
-  crashes=$(sed -nE 's#.*oom/timeout/crash: ([0-9]+)/([0-9]+)/([0-9]+).*#\3#p' <<<"$last")
+  IFS=' ' read -r oom timeouts crashes \
+    < <(sed -nE 's#.*oom/timeout/crash: ([0-9]+)/([0-9]+)/([0-9]+).*#\1 \2 \3#p' <<<"$last") || true
   files=$(find "$dir/corpus" -type f | wc -l)
   kb=$(du -sk "$dir/corpus" | cut -f1)
   rate=$(( ${inputs:-0} / (elapsed > 0 ? elapsed : 1) ))
