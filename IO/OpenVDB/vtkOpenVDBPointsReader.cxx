@@ -2,6 +2,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkOpenVDBPointsReader.h"
 
+#include "psChildProcess.h"
+#include "psReadOutcome.h"
+
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -9,6 +12,7 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -41,6 +45,11 @@ namespace
 {
 namespace ovp = openvdb::points;
 using openvdb::Index;
+using pointsurfaces::ChildProcess;
+using pointsurfaces::DescribeSignal;
+using pointsurfaces::ParseReadOutcome;
+using pointsurfaces::ReadOutcome;
+using pointsurfaces::WriteReadOutcome;
 
 // Components of one attribute value, and its c-th component as a double.
 template<typename T>
@@ -633,6 +642,125 @@ vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType total)
   vertices->SetData(offsets, connectivity);
   return vertices;
 }
+
+// Reads the point grids of `fileName` into points and arrays. Reports only
+// through the outcome (no VTK messages): it may run in a child process.
+ReadOutcome ReadFile(const std::string& fileName, const std::string& gridName)
+{
+  ReadOutcome result;
+  std::vector<std::string> names;
+  std::vector<ovp::PointDataGrid::Ptr> grids;
+  try
+  {
+    grids = ReadPointGrids(fileName, gridName, names);
+  }
+  catch (const std::exception& e)
+  {
+    result.Error = "Cannot read \"" + fileName + "\": " + e.what() +
+      (dynamic_cast<const std::ios::failure*>(&e) ? " (the file ends early or is damaged)" : "");
+    return result;
+  }
+  if (grids.empty())
+  {
+    result.Error = "\"" + fileName + "\" holds no point data grid" +
+      (gridName.empty() ? std::string(".") : " named \"" + gridName + "\".");
+    return result;
+  }
+
+  // Count the points (active voxels only) and check every leaf first.
+  std::vector<vtkIdType> firstOfGrid;
+  std::string error;
+  if (!FirstPointOfGrids(grids, names, firstOfGrid, error))
+  {
+    result.Error = "\"" + fileName + "\", " + error + ".";
+    return result;
+  }
+  const vtkIdType total = firstOfGrid.back();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(total);
+  vtkNew<vtkIntArray> gridIndex;
+  gridIndex->SetName("VDBGridIndex");
+  gridIndex->SetNumberOfTuples(total);
+  std::set<std::string> warned;
+  auto warnOnce = [&](const std::string& text)
+  {
+    if (warned.insert(text).second)
+    {
+      result.Warnings.push_back(text);
+    }
+  };
+  OutputArrays outputs(total, warnOnce);
+  try
+  {
+    if (!CopyGrids(grids, names, firstOfGrid, points, gridIndex, outputs, warnOnce, error))
+    {
+      result.Error = "\"" + fileName + "\", " + error + ".";
+      return result;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    result.Error = "Cannot read the points of \"" + fileName + "\": " + e.what();
+    return result;
+  }
+
+  result.Output = vtkSmartPointer<vtkPolyData>::New();
+  result.Output->SetPoints(points);
+  result.Output->GetPointData()->AddArray(gridIndex);
+  for (const auto& entry : outputs.All())
+  {
+    result.Output->GetPointData()->AddArray(entry.second.Array);
+  }
+  vtkNew<vtkStringArray> gridNames;
+  gridNames->SetName("VDBGridNames");
+  for (const std::string& name : names)
+  {
+    gridNames->InsertNextValue(name);
+  }
+  result.Output->GetFieldData()->AddArray(gridNames);
+  return result;
+}
+
+// ReadFile in a child process, so that an abort or a leak of OpenVDB's on a
+// damaged file stays there; false, with `why`, when no child could start.
+bool ReadInChild(const std::string& fileName,
+  const std::string& gridName,
+  ReadOutcome& outcome,
+  std::string& why)
+{
+  ChildProcess child;
+  const bool started =
+    child.Run([&](int fd) { return WriteReadOutcome(fd, ReadFile(fileName, gridName)) ? 0 : 3; });
+  outcome = ReadOutcome();
+  if (!started)
+  {
+    why = child.Error();
+    return false;
+  }
+  const std::string file = "\"" + fileName + "\"";
+  if (child.Signal() != 0)
+  {
+    outcome.Error = "OpenVDB ended the child process that read " + file + " with " +
+      DescribeSignal(child.Signal()) +
+      ": the file is damaged in a way that OpenVDB does not check. This program goes on.";
+  }
+  else if (!child.Error().empty())
+  {
+    outcome.Error = "Cannot read " + file + " in a child process: " + child.Error();
+  }
+  else if (child.ExitStatus() != 0)
+  {
+    outcome.Error = "The child process that read " + file + " exited with status " +
+      std::to_string(child.ExitStatus()) +
+      (child.ExitStatus() == 3 ? " (it could not hand its result back)." : ".");
+  }
+  else if (!ParseReadOutcome(child.Data(), child.Size(), outcome, why))
+  {
+    outcome.Error = "Cannot take over what the child process read from " + file + ": " + why;
+  }
+  return true;
+}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -687,91 +815,41 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
   }
   openvdb::initialize();
 
-  std::vector<ovp::PointDataGrid::Ptr> grids;
-  try
+  ReadOutcome outcome;
+  bool inChild = this->ReadInChildProcess && ChildProcess::Supported();
+  if (inChild)
   {
-    grids = ReadPointGrids(this->FileName, this->GridName, this->PointGridNames);
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< "Cannot read \"" << this->FileName << "\": " << e.what()
-                  << (dynamic_cast<const std::ios::failure*>(&e)
-                         ? " (the file ends early or is damaged)"
-                         : ""));
-    this->PointGridNames.clear();
-    return 1;
-  }
-  if (grids.empty())
-  {
-    if (this->GridName.empty())
+    std::string why;
+    if (!ReadInChild(this->FileName, this->GridName, outcome, why))
     {
-      vtkErrorMacro(<< "\"" << this->FileName << "\" holds no point data grid.");
-    }
-    else
-    {
-      vtkErrorMacro(<< "\"" << this->FileName << "\" holds no point data grid named \""
-                    << this->GridName << "\".");
-    }
-    return 1;
-  }
-
-  // Count the points (active voxels only) and check every leaf first.
-  std::vector<vtkIdType> firstOfGrid;
-  std::string error;
-  if (!FirstPointOfGrids(grids, this->PointGridNames, firstOfGrid, error))
-  {
-    vtkErrorMacro(<< "\"" << this->FileName << "\", " << error << ".");
-    this->PointGridNames.clear();
-    return 1;
-  }
-  const vtkIdType total = firstOfGrid.back();
-
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(total);
-  vtkNew<vtkIntArray> gridIndex;
-  gridIndex->SetName("VDBGridIndex");
-  gridIndex->SetNumberOfTuples(total);
-  std::set<std::string> warned;
-  auto warnOnce = [&](const std::string& text)
-  {
-    if (warned.insert(text).second)
-    {
-      vtkWarningMacro(<< "\"" << this->FileName << "\": " << text);
-    }
-  };
-  OutputArrays outputs(total, warnOnce);
-  try
-  {
-    if (!CopyGrids(
-          grids, this->PointGridNames, firstOfGrid, points, gridIndex, outputs, warnOnce, error))
-    {
-      vtkErrorMacro(<< "\"" << this->FileName << "\", " << error << ".");
-      this->PointGridNames.clear();
-      return 1;
+      vtkWarningMacro(<< "Cannot start a child process to read \"" << this->FileName << "\" ("
+                      << why << "): reading it in this process.");
+      inChild = false;
     }
   }
-  catch (const std::exception& e)
+  if (!inChild)
   {
-    vtkErrorMacro(<< "Cannot read the points of \"" << this->FileName << "\": " << e.what());
-    this->PointGridNames.clear();
+    outcome = ReadFile(this->FileName, this->GridName);
+  }
+  for (const std::string& warning : outcome.Warnings)
+  {
+    vtkWarningMacro(<< "\"" << this->FileName << "\": " << warning);
+  }
+  if (!outcome.Output)
+  {
+    vtkErrorMacro(<< outcome.Error);
     return 1;
   }
-
-  output->SetPoints(points);
-  output->SetVerts(VertexCells(total));
-  output->GetPointData()->AddArray(gridIndex);
-  for (const auto& entry : outputs.All())
+  output->ShallowCopy(outcome.Output);
+  output->SetVerts(VertexCells(output->GetNumberOfPoints()));
+  if (auto* names =
+        vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("VDBGridNames")))
   {
-    output->GetPointData()->AddArray(entry.second.Array);
+    for (vtkIdType i = 0; i < names->GetNumberOfValues(); ++i)
+    {
+      this->PointGridNames.push_back(names->GetValue(i));
+    }
   }
-  vtkNew<vtkStringArray> names;
-  names->SetName("VDBGridNames");
-  for (const std::string& name : this->PointGridNames)
-  {
-    names->InsertNextValue(name);
-  }
-  output->GetFieldData()->AddArray(names);
   return 1;
 }
 
@@ -781,5 +859,6 @@ void vtkOpenVDBPointsReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "GridName: " << (this->GridName.empty() ? "(all)" : this->GridName) << "\n";
+  os << indent << "ReadInChildProcess: " << (this->ReadInChildProcess ? "on" : "off") << "\n";
   os << indent << "PointGrids: " << this->PointGridNames.size() << "\n";
 }

@@ -27,6 +27,16 @@
  * there. Grids of other types (level sets, fog volumes) are skipped. A
  * missing, truncated or corrupt file, or one with no point grid, gives an
  * error naming the file and an empty output, never a crash.
+ *
+ * OpenVDB itself cannot be trusted with every damaged file: Debian's 10.0.1
+ * (bookworm, trixie) aborts on assertions in its paged attribute streams,
+ * 13.0 (forky) reads out of bounds on one of the same inputs, and both leak
+ * what they had allocated when a damaged file makes them throw (tens to
+ * hundreds of KB a file, without bound over a long session). So the file is read in a child
+ * process (ReadInChildProcess, on by default on Linux): an abort there ends
+ * only the child and becomes this reader's error, and what OpenVDB leaked
+ * goes when the child exits. The output comes back through a memory file:
+ * one more copy of it, small beside OpenVDB's decoding.
  */
 #ifndef vtkOpenVDBPointsReader_h
 #define vtkOpenVDBPointsReader_h
@@ -62,6 +72,19 @@ public:
   const char* GetPointGridName(int i) const;
   ///@}
 
+  ///@{
+  /**
+   * Read the file in a child process (fork), so that a damaged file that
+   * makes OpenVDB abort or leak cannot take the program or its memory with
+   * it. Default: on. Ignored (always in this process) where child processes
+   * are not supported (not Linux). Turn it off in a program that must not
+   * fork (some MPI launchers warn on fork()), or to debug OpenVDB itself.
+   */
+  vtkSetMacro(ReadInChildProcess, vtkTypeBool);
+  vtkGetMacro(ReadInChildProcess, vtkTypeBool);
+  vtkBooleanMacro(ReadInChildProcess, vtkTypeBool);
+  ///@}
+
   /** True when the file starts with OpenVDB's magic number. */
   static bool CanReadFile(const char* fileName);
 
@@ -73,6 +96,7 @@ protected:
 
   std::string FileName;
   std::string GridName;
+  vtkTypeBool ReadInChildProcess = true;
   std::vector<std::string> PointGridNames;
 
 private:

@@ -10,6 +10,8 @@ as Metaballs with the defaults (pvbatch).
   `confout.gro`, `traj_comp.xtc`, `snapshot_000.hdf5`, `snap_000.0.hdf5`,
   `output_0000.hdf5`, `points.vdb` and `cloud.off` (copies of the test data
   under those names, and a lattice of points written here);
+- a .vdb on which OpenVDB aborts reads as empty (in the reader's child
+  process) and the session goes on;
 - each reader's output, shown as Metaballs with no property touched (the
   radii come from the data: the readers' `radius` or `SmoothingLength`
   arrays, else a multiple of the mean nearest-neighbour spacing), is compared
@@ -54,6 +56,8 @@ COPIES = {
     "snap_000.0.hdf5": os.path.join(io_data, "gadget", "lcdm_gas_z5_subset.hdf5"),
     "output_0000.hdf5": os.path.join(io_data, "gadget", "lcdm_gas_z5_subset.hdf5"),
     "points.vdb": os.path.join(data, "..", "Fuzz", "Corpus", "OpenVDBPoints", "points-blosc.vdb"),
+    # Found by fuzzing: Debian's OpenVDB aborts on it (an assertion).
+    "damaged.vdb": os.path.join(io_data, "openvdb", "page-without-mapped-file.vdb"),
 }
 if RANK == 0:
     for name, source in COPIES.items():
@@ -141,6 +145,18 @@ show_defaults("traj_comp.xtc", "ReaderDefaultsXTC", structure)
 show_defaults("snapshot_000.hdf5", "ReaderDefaultsGadget")
 show_defaults("points.vdb", "ReaderDefaultsOpenVDB")
 show_defaults("cloud.off", "ReaderDefaultsOpenMesh")
+
+# A .vdb on which OpenVDB aborts: the reader reads it in a child process, so
+# the error is the reader's and the session goes on.
+damaged = OpenDataFile(os.path.join(named, "damaged.vdb"))
+damaged.UpdatePipeline()
+check(damaged.GetDataInformation().GetNumberOfPoints() == 0,
+      "a .vdb on which OpenVDB aborts reads as empty, and the session goes on")
+check(damaged.ReadInChildProcess == 1, "ReadInChildProcess is on by default")
+Delete(damaged)
+opened["points.vdb"].UpdatePipeline()
+check(opened["points.vdb"].GetDataInformation().GetNumberOfPoints() > 0,
+      "a good .vdb reads after the damaged one")
 
 if RANK == 0:
     print("TestPointSurfacesReaders: %d failure(s)" % len(check.failures), flush=True)
