@@ -1130,7 +1130,8 @@ void CastMetaballs(const MetaballCastInput& input,
     stats.Error = std::to_string(input.Count) + " balls need about " + FormatBytes(ballBytes) +
       " of ray-caster memory, more than " +
       (settings.MemoryLimit > 0.0 ? "its memory limit" : "the free physical memory") + " (" +
-      FormatBytes(limit) + "): draw fewer balls (a subset, or the GPU ray caster)";
+      FormatBytes(limit) +
+      "): draw fewer balls (a subset, or the GPU ray caster), or raise MemoryLimit";
     if (statistics)
     {
       *statistics = stats;
@@ -1163,7 +1164,8 @@ void CastMetaballs(const MetaballCastInput& input,
   catch (const std::length_error& e)
   {
     // More (voxel, ball) pairs than the memory limit leaves room for.
-    stats.Error = std::string(e.what()) + ": use fewer slabs or larger tiles, or draw fewer balls";
+    stats.Error = std::string(e.what()) +
+      ": use fewer slabs or larger tiles, draw fewer balls, or raise MemoryLimit";
     clear();
   }
   catch (const std::bad_alloc&)

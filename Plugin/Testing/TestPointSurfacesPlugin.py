@@ -38,8 +38,8 @@ from paraview.simple import *  # noqa: F401,F403
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from pointsurfaces_plugin_test import (Checks, SIZE, compare_baseline, new_view,  # noqa: E402
-                                       show_protein)
+from pointsurfaces_plugin_test import (Checks, SIZE, compare_baseline, differing_pixels,  # noqa: E402
+                                       new_view, show_protein)
 
 plugin, data, baselines, out = sys.argv[1:5]
 mpi = "--mpi" in sys.argv[5:]
@@ -173,8 +173,28 @@ if not mpi:
 Hide(shown, view)
 
 # A protein chain as metaballs, with element colours, through a plane.
-show_protein(view, data, split=mpi)
+balls = show_protein(view, data, split=mpi)
 # Split metaballs blend across the cut through their ghost balls (see above).
+compare(view, "PluginMetaballs", tolerance=0.001 if mpi else 0.005)
+
+# A memory budget too small for a frame of the CPU caster: one error, no
+# balls drawn (the plane still is), and the same picture again once the
+# budget is lifted.
+caster = balls.MetaballRayCaster
+balls.MetaballRayCaster = 2
+balls.MetaballMemoryLimit = 1
+Render(view)
+limited = os.path.join(out, "PluginMetaballsLimited" + (".mpi" if mpi else "") + ".png")
+SaveScreenshot(limited, view, ImageResolution=SIZE)
+if RANK == 0:
+    full = os.path.join(out, "PluginMetaballs" + (".mpi" if mpi else "") + ".png")
+    differ, why = differing_pixels(limited, full)
+    check(why is None and differ > 0.05,
+          "MetaballMemoryLimit of 1 KiB draws no balls (%s of the pixels change)"
+          % (why or "%.1f %%" % (100 * differ)))
+balls.MetaballMemoryLimit = 0
+balls.MetaballRayCaster = caster
+Render(view)
 compare(view, "PluginMetaballs", tolerance=0.001 if mpi else 0.005)
 
 if RANK == 0:

@@ -50,7 +50,7 @@ def new_view():
 def show_protein(view, data, split):
     """A protein chain as Metaballs with element colours, through a plane; the camera set.
 
-    With `split` the atoms go through RedistributeDataSet first.
+    With `split` the atoms go through RedistributeDataSet first. Returns the balls' display.
     """
     atoms = PDBReader(FileName=os.path.join(data, "hemoglobin_chainA.pdb"))
     balls = Show(RedistributeDataSet(Input=atoms) if split else atoms, view)
@@ -72,6 +72,7 @@ def show_protein(view, data, split):
     view.CameraPosition = [centre[0] + 50, centre[1] - 75, centre[2] + 75]
     view.CameraViewUp = [0, 0, 1]
     Render(view)
+    return balls
 
 
 def pixels(path):

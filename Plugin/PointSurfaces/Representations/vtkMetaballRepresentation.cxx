@@ -127,6 +127,7 @@ PS_FORWARD(Bisections, Bisections, int)
 PS_FORWARD(TileSize, TileSize, int)
 PS_FORWARD(Slabs, Slabs, int)
 PS_FORWARD(Shadows, Shadows, bool)
+PS_FORWARD(MemoryLimit, MemoryLimit, vtkIdType)
 #undef PS_FORWARD
 #undef PS_FORWARD_TO_MAPPERS
 #undef PS_FORWARD_GHOSTS

@@ -62,6 +62,7 @@ public:
   void SetMetaballTileSize(int pixels);
   void SetMetaballSlabs(int count);
   void SetMetaballShadows(bool on);
+  void SetMetaballMemoryLimit(vtkIdType kibibytes);
   ///@}
 
   void SetSuppressLOD(bool) override { this->Superclass::SetSuppressLOD(true); }
