@@ -8,6 +8,7 @@
 # (Testing/Fuzz/README.md) is the way to see that.
 #
 # Usage: scripts/fuzz-campaign.sh [--jobs J] [--runs N] [TARGET|all] [MINUTES]
+#        scripts/fuzz-campaign.sh --minimize [TARGET|all]
 #   TARGET   a reader as the fuzz targets name it (PCD, OpenMesh,
 #            OpenVDBPoints, LAMMPSDump, GromacsGro, GromacsXtc, GadgetHDF5,
 #            PLYScan); default all, one after the other
@@ -15,6 +16,10 @@
 #   --runs N stop a target once N inputs have run (before MINUTES is up)
 #   --jobs J child processes per target (libFuzzer's -fork; default: the
 #            number of cores)
+#   --minimize  instead of a campaign: the smallest set of grown inputs that
+#            adds coverage beyond the seeds (libFuzzer's -merge=1), into
+#            Testing/Fuzz/Campaign/<target> (committed; a campaign starts
+#            from it too, the CI smoke run does not)
 #
 # Out: build/fuzz-campaign/<target>/{corpus,artifacts,log.txt} and
 # build/fuzz-campaign/summary.csv (one row per target and campaign,
@@ -27,12 +32,14 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 jobs=$(nproc)
 runs=0
+minimize=0
 args=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --jobs) jobs=$2; shift 2 ;;
     --runs) runs=$2; shift 2 ;;
-    -h | --help) sed -n '2,23p' "$0"; exit 0 ;;
+    --minimize) minimize=1; shift ;;
+    -h | --help) sed -n '2,28p' "$0"; exit 0 ;;
     *) args+=("$1"); shift ;;
   esac
 done
@@ -52,6 +59,27 @@ fi
 cmake --build --preset fuzz >&2
 
 out="$root/build/fuzz-campaign"
+if [ "$minimize" = 1 ]; then
+  for t in "${targets[@]}"; do
+    bin="$root/build/fuzz/bin/Fuzz${t}Reader"
+    [ -x "$bin" ] && [ -d "$out/$t/corpus" ] || continue
+    keep="$root/Testing/Fuzz/Campaign/$t"
+    work="$out/$t/merge"
+    rm -rf "$work" && mkdir -p "$work/out" "$work/tmp"
+    # The seeds go in first, so that only inputs adding coverage beyond
+    # them are merged; they are taken out again after.
+    cp "$root/Testing/Fuzz/Corpus/$t"/* "$work/out/"
+    seeds=$(ls "$work/out")
+    TMPDIR="$work/tmp" ASAN_OPTIONS=detect_container_overflow=0:detect_leaks=0 \
+      "$bin" -merge=1 -max_len=65536 -timeout=20 -rss_limit_mb=4096 -malloc_limit_mb=4096 \
+      "$work/out" "$out/$t/corpus" ${keep:+$( [ -d "$keep" ] && echo "$keep")} \
+      >"$work/log.txt" 2>&1 || { echo "== $t: merge failed (see $work/log.txt)" >&2; continue; }
+    (cd "$work/out" && rm -f $seeds)
+    rm -rf "$keep" && mkdir -p "$keep" && cp "$work/out"/* "$keep/" 2>/dev/null || true
+    echo "== $t: $(ls "$keep" | wc -l) inputs, $(( $(du -sb "$keep" | cut -f1) / 1024 )) KB in ${keep#$root/}" >&2
+  done
+  exit 0
+fi
 summary="$out/summary.csv"
 mkdir -p "$out"
 [ -f "$summary" ] || echo "date,target,minutes,jobs,inputs,inputs_per_s,coverage,features,corpus_files,corpus_kb,crashes,ooms,timeouts,artifacts" >"$summary"
@@ -76,7 +104,9 @@ for t in "${targets[@]}"; do
     "$bin" -fork="$jobs" -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1 \
     -max_total_time=$((minutes * 60)) "${limit[@]}" -max_len=65536 -timeout=20 \
     -rss_limit_mb=4096 -malloc_limit_mb=4096 -artifact_prefix="$dir/artifacts/" \
-    "$dir/corpus" "$root/Testing/Fuzz/Corpus/$t" >"$dir/log.txt" 2>&1 || true
+    "$dir/corpus" "$root/Testing/Fuzz/Corpus/$t" \
+    $( [ -d "$root/Testing/Fuzz/Campaign/$t" ] && echo "$root/Testing/Fuzz/Campaign/$t") \
+    >"$dir/log.txt" 2>&1 || true
   elapsed=$((SECONDS - start))
   # libFuzzer's fork mode reports "#INPUTS: cov: C ft: F corp: N exec/s E
   # oom/timeout/crash: O/T/X time: Ss job: J ...".
