@@ -69,6 +69,7 @@ void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
   auto radius = MakeArray<vtkDoubleArray>(vtkSplatDataModel::RadiusName(), 1, n);
   auto deviation = MakeArray<vtkDoubleArray>(vtkSplatDataModel::MaxDeviationName(), 1, n);
   auto nominal = MakeArray<vtkDoubleArray>(vtkSplatDataModel::NominalRadiusName(), 1, n);
+  auto tolerance = MakeArray<vtkDoubleArray>(vtkSplatDataModel::ToleranceName(), 1, n);
   auto lod = MakeArray<vtkIntArray>(vtkSplatDataModel::LODName(), 1, n);
   for (vtkIdType i = 0; i < n; ++i)
   {
@@ -86,6 +87,7 @@ void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
     radius->SetValue(i, built.Splats[i].Radius);
     deviation->SetValue(i, built.Splats[i].MaxDeviation);
     nominal->SetValue(i, built.Splats[i].NominalRadius);
+    tolerance->SetValue(i, built.Splats[i].Tolerance * s.Spacing);
     lod->SetValue(i, built.Splats[i].Level);
   }
   output->SetPoints(points);
@@ -98,6 +100,7 @@ void Assemble(const BuildResult& built, int degree, vtkPolyData* output)
          static_cast<vtkDataArray*>(radius),
          static_cast<vtkDataArray*>(deviation),
          static_cast<vtkDataArray*>(nominal),
+         static_cast<vtkDataArray*>(tolerance),
          static_cast<vtkDataArray*>(lod) })
   {
     pd->AddArray(a);
@@ -189,6 +192,9 @@ pointsurfaces::BuildParameters vtkAlgebraicSplatFitter::MakeParameters(bool keep
   params.KeepWeights = keepWeights;
   params.Levels = this->SelectionMode == Quality ? this->NumberOfLevels : 1;
   params.CoarsestQuality = this->CoarsestQualityFactor;
+  params.Tolerance = static_cast<pointsurfaces::ToleranceUnit>(this->ToleranceUnit);
+  params.NoiseFactor = this->NoiseFactor;
+  params.MaximumFeatureScale = this->MaximumFeatureScale;
   return params;
 }
 
@@ -430,6 +436,13 @@ void vtkAlgebraicSplatFitter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RadiusScale: " << this->RadiusScale << "\n";
   os << indent << "RandomSeed: " << this->RandomSeed << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " KiB\n";
+  os << indent << "ToleranceUnit: "
+     << (this->ToleranceUnit == SPACING    ? "SPACING"
+            : this->ToleranceUnit == NOISE ? "NOISE"
+                                           : "ABSOLUTE")
+     << "\n";
+  os << indent << "NoiseFactor: " << this->NoiseFactor << "\n";
+  os << indent << "MaximumFeatureScale: " << this->MaximumFeatureScale << "\n";
   os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";
   os << indent << "CoarsestQualityFactor: " << this->CoarsestQualityFactor << "\n";
   os << indent << "BuildOctree: " << this->BuildOctree << "\n";

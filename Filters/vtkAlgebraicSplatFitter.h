@@ -122,6 +122,13 @@ public:
     LOP = 0,
     WLOP = 1
   };
+  /** What MaximumDeviation is measured in (SetToleranceUnit). */
+  enum ToleranceUnits
+  {
+    SPACING = 0,
+    NOISE = 1,
+    ABSOLUTE = 2
+  };
 
   ///@{
   /** Polynomial degree, 1 (flat disc) to 4. Default 3. */
@@ -272,8 +279,43 @@ public:
    * times s_l / s (coarser levels are drawn where their splats are smaller
    * on screen). Default 0.5.
    */
-  vtkSetClampMacro(MaximumDeviation, double, 0.0, 1e3);
+  vtkSetClampMacro(MaximumDeviation, double, 0.0, 1e30);
   vtkGetMacro(MaximumDeviation, double);
+  ///@}
+  ///@{
+  /**
+   * The unit of MaximumDeviation:
+   * - SPACING (default): local point spacings, as above. The bound follows
+   *   the sampling: a denser sample of the same surface is held to a
+   *   tighter bound, and needs more splats.
+   * - NOISE: spacings, but never under NoiseFactor times the neighbourhood's
+   *   measured noise (the robust residual scale of its quadric, see
+   *   psSplatFit.h NoiseScale): on a noisy scan the splats smooth the noise
+   *   instead of chasing it.
+   * - ABSOLUTE: world units, the same bound at any sampling.
+   * Applies to every selection mode.
+   */
+  vtkSetClampMacro(ToleranceUnit, int, SPACING, ABSOLUTE);
+  vtkGetMacro(ToleranceUnit, int);
+  ///@}
+  ///@{
+  /** ToleranceUnit NOISE: the bound is at least this many noise scales. Default 3. */
+  vtkSetClampMacro(NoiseFactor, double, 0.0, 100.0);
+  vtkGetMacro(NoiseFactor, double);
+  ///@}
+  ///@{
+  /**
+   * Error-bounded Quality selection (MaximumDeviation > 0): each chosen
+   * point whose disc the bound leaves whole is fitted again on 4, 16, ...
+   * times the neighbours (h two, four, ... times as wide), up to this
+   * factor of h, and the widest disc the bound leaves whole is kept: large
+   * splats where the surface is smooth, small ones in folds and at thin
+   * parts. Each doubling costs a fit on four times the points for the
+   * splats it is tried on, and widens the parallel selection's slabs as
+   * much. Default 1: one scale, h from FeatureSizeNeighbors.
+   */
+  vtkSetClampMacro(MaximumFeatureScale, double, 1.0, 64.0);
+  vtkGetMacro(MaximumFeatureScale, double);
   ///@}
   ///@{
   /**
@@ -400,6 +442,9 @@ protected:
   int OctreeBucketSize = 64;
   bool OrientNormals = true;
   double MaximumDeviation = 0.5;
+  int ToleranceUnit = SPACING;
+  double NoiseFactor = 3.0;
+  double MaximumFeatureScale = 1.0;
   double MergeTolerance = 1e-6;
   vtkIdType NumberOfMergedPoints = 0;
 

@@ -74,6 +74,12 @@ public:
   /** Optional: largest deviation of a covered point from the patch, world units. */
   static const char* MaxDeviationName() { return "SplatMaxDeviation"; }
   /**
+   * Optional: the error bound the splat was fitted and bounded to, world
+   * units (vtkAlgebraicSplatFitter's MaximumDeviation in its ToleranceUnit,
+   * for this splat's neighbourhood).
+   */
+  static const char* ToleranceName() { return "SplatTolerance"; }
+  /**
    * Optional: the disc radius before it was bounded, world units. Level of
    * detail scales it with the finest level drawn, and never draws a disc
    * past SplatRadius.

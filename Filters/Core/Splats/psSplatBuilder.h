@@ -51,6 +51,14 @@ enum class Order
   Front = 2    ///< grow fronts at hexagonal-covering spacing: fewest splats
 };
 
+/** The unit of the error bound (SplatFitParameters::MaximumDeviation). */
+enum class ToleranceUnit
+{
+  Spacing = 0, ///< local point spacings: the bound follows the sampling
+  Noise = 1,   ///< spacings, but never under NoiseFactor local noise scales (NoiseScale)
+  Absolute = 2 ///< world units: the same bound at any sampling
+};
+
 struct BuildParameters
 {
   SplatFitParameters Fit;
@@ -77,6 +85,18 @@ struct BuildParameters
    */
   double NormalAngle = 60.0;
   bool EstimateNormals = false;
+  /**
+   * Bounded Quality selection: a chosen point's fit is tried again on 4, 16,
+   * ... times the neighbours (h twice, four times as wide), up to this factor
+   * of h, while the bound leaves the wider disc whole: wide splats where the
+   * surface is smooth, narrow ones in folds. 1: one scale (h from
+   * FeatureSizeNeighbors).
+   */
+  double MaximumFeatureScale = 1.0;
+  /** What Fit.MaximumDeviation is measured in (see ToleranceUnit). */
+  ToleranceUnit Tolerance = ToleranceUnit::Spacing;
+  /** ToleranceUnit::Noise: the tolerance is at least this many noise scales. */
+  double NoiseFactor = 3.0;
 };
 
 /** Neighbours of the PCA normals of BuildParameters::EstimateNormals. */
@@ -91,6 +111,7 @@ struct BuiltSplat
   double MaxDeviation = 0.0;  ///< largest deviation of a point in its disc from its patch (world)
   double NominalRadius = 0.0; ///< the disc's radius before it was bounded (world)
   bool Bounded = false;       ///< Radius and MaxDeviation are final
+  double Tolerance = 0.0;     ///< the error bound it was fitted with, in its local spacings
   std::vector<int> Ids;       ///< with KeepWeights: fit neighbours and their weights
   std::vector<float> Weights;
 };

@@ -43,6 +43,24 @@ double LocalSpacing(const double q[3], const double* nbrs, int n, int k)
   return count ? sum / count : 0.0;
 }
 
+double NoiseScale(const double* nbrs, int n, const LocalFrame& frame, int k)
+{
+  const int m = std::min(n, k);
+  if (m < 10 || !(frame.Scale > 0.0))
+  {
+    return 0.0;
+  }
+  std::vector<double> residuals(static_cast<size_t>(m), 0.0);
+  const PolynomialFit quadric = FitPolynomial(nbrs, nullptr, m, frame, 2, residuals.data());
+  if (quadric.Status != FitStatus::Ok)
+  {
+    return 0.0;
+  }
+  std::nth_element(residuals.begin(), residuals.begin() + m / 2, residuals.end());
+  return 1.4826 * residuals[static_cast<size_t>(m / 2)] *
+    std::sqrt(static_cast<double>(m) / (m - 6));
+}
+
 namespace
 {
 void Weigh(const double c[3], const double* nbrs, int m, double h, double scale, double* w)

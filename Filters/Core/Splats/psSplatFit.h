@@ -128,6 +128,20 @@ POINTSURFACESFILTERS_EXPORT double LocalSpacing(const double q[3],
   int k = SpacingNeighbors);
 
 /**
+ * Robust noise scale of a neighbourhood: 1.4826 times the median distance of
+ * its first `k` points to their unweighted quadric in `frame` (whose Scale,
+ * h, normalises the fit), times sqrt(k / (k - 6)) for the quadric's six
+ * coefficients: the standard deviation of Gaussian noise along the normal.
+ * On a clean, dense sample it is the quadric's own error, small beside the
+ * spacing; on a scan, the sensor's noise. 0 when fewer than 10 points or the
+ * fit fails.
+ */
+POINTSURFACESFILTERS_EXPORT double NoiseScale(const double* nbrs,
+  int n,
+  const LocalFrame& frame,
+  int k);
+
+/**
  * The robust fit of Fit Mode Robust: starting from `initial`, minimise
  * sum w_i rho((g(u_i, v_i) - h_i)^2) with Ceres. Implemented in psRobustFit.cxx.
  */

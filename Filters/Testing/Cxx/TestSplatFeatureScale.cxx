@@ -1,0 +1,214 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+// The fitter's adaptive feature size and tolerance units:
+// - NoiseScale (psSplatFit.h) on a quadric with Gaussian noise of known
+//   sigma recovers sigma, and on the clean quadric is almost 0;
+// - ToleranceUnit ABSOLUTE holds every splat to the same bound in world
+//   units at two samplings of one sphere (the bound it reports), NOISE
+//   raises the bound on a noisy sphere to about NoiseFactor sigma and leaves
+//   it at MaximumDeviation spacings on a clean one;
+// - MaximumFeatureScale 4 on a smooth sphere gives fewer, wider splats that
+//   still cover every point and lie within the bound, and the same splats
+//   with 1 and 2 threads (its wider slabs keep the parallel selection
+//   race-free).
+#include "psLocalFit.h"
+#include "psSplatFit.h"
+#include "vtkAlgebraicSplatFitter.h"
+#include "vtkDataArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSMPTools.h"
+#include "vtkSplatErrorMetric.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace
+{
+int Failures = 0;
+void Check(bool ok, const std::string& what)
+{
+  if (!ok)
+  {
+    std::cerr << "FAILED: " << what << "\n";
+    ++Failures;
+  }
+}
+
+// n points evenly on a sphere of `radius` (a Fibonacci lattice), moved
+// along the normal by Gaussian noise of `sigma`.
+vtkSmartPointer<vtkPolyData> Sphere(int n, double radius, double sigma)
+{
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, sigma > 0.0 ? sigma : 1.0);
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < n; ++i)
+  {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), t = golden * i;
+    const double along = radius + (sigma > 0.0 ? noise(rng) : 0.0);
+    pts->InsertNextPoint(along * r * std::cos(t), along * r * std::sin(t), along * z);
+  }
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(pts);
+  return pd;
+}
+
+// The fitter's "SplatTolerance" per splat (world units) as a sorted list.
+std::vector<double> Tolerances(vtkAlgebraicSplatFitter* fitter)
+{
+  std::vector<double> out;
+  vtkDataArray* t = fitter->GetOutput()->GetPointData()->GetArray("SplatTolerance");
+  for (vtkIdType i = 0; t && i < t->GetNumberOfTuples(); ++i)
+  {
+    out.push_back(t->GetComponent(i, 0));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+void TestNoiseScale()
+{
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double sigma = 0.01;
+  std::normal_distribution<double> noise(0.0, sigma);
+  std::vector<double> estimates, clean;
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    std::vector<double> noisy, exact;
+    for (int j = 0; j < 40; ++j)
+    {
+      const double x = u(rng), y = u(rng), z = 0.2 * x * x - 0.1 * x * y + 0.15 * y * y;
+      exact.insert(exact.end(), { x, y, z });
+      noisy.insert(noisy.end(), { x, y, z + noise(rng) });
+    }
+    pointsurfaces::LocalFrame frame;
+    frame.Scale = 0.7;
+    estimates.push_back(pointsurfaces::NoiseScale(noisy.data(), 40, frame, 40));
+    clean.push_back(pointsurfaces::NoiseScale(exact.data(), 40, frame, 40));
+  }
+  std::sort(estimates.begin(), estimates.end());
+  const double median = estimates[estimates.size() / 2];
+  const double cleanMax = *std::max_element(clean.begin(), clean.end());
+  std::cout << "NoiseScale: median " << median << " for sigma " << sigma << ", clean at most "
+            << cleanMax << "\n";
+  Check(median > 0.8 * sigma && median < 1.2 * sigma, "NoiseScale recovers sigma within 20 %");
+  Check(cleanMax < 1e-9, "NoiseScale of an exact quadric is 0");
+  Check(pointsurfaces::NoiseScale(estimates.data(), 3, pointsurfaces::LocalFrame(), 3) == 0.0,
+    "NoiseScale of too few points is 0");
+}
+
+void TestToleranceUnits()
+{
+  vtkNew<vtkAlgebraicSplatFitter> fitter;
+  fitter->SetDegree(3);
+  // ABSOLUTE: the same bound in world units at two samplings.
+  fitter->SetToleranceUnit(vtkAlgebraicSplatFitter::ABSOLUTE);
+  fitter->SetMaximumDeviation(0.004);
+  for (int n : { 4000, 16000 })
+  {
+    fitter->SetInputData(Sphere(n, 1.0, 0.0));
+    fitter->Update();
+    const std::vector<double> t = Tolerances(fitter);
+    Check(!t.empty() && std::abs(t.front() - 0.004) < 1e-12 && std::abs(t.back() - 0.004) < 1e-12,
+      "ABSOLUTE: every splat's bound is 0.004 at " + std::to_string(n) + " points");
+  }
+  // NOISE on a noisy sphere: about NoiseFactor sigma.
+  // sigma 0.4 spacings: 3 sigma is well above the 0.5 spacing floor.
+  const double sigma = 0.01;
+  fitter->SetToleranceUnit(vtkAlgebraicSplatFitter::NOISE);
+  fitter->SetMaximumDeviation(0.5);
+  fitter->SetInputData(Sphere(20000, 1.0, sigma));
+  fitter->Update();
+  std::vector<double> t = Tolerances(fitter);
+  const double median = t.empty() ? 0.0 : t[t.size() / 2];
+  std::cout << "NOISE: median bound " << median << " for sigma " << sigma << " ("
+            << fitter->GetOutput()->GetNumberOfPoints() << " splats)\n";
+  Check(median > 0.75 * 3.0 * sigma && median < 1.25 * 3.0 * sigma,
+    "NOISE: the bound is about 3 sigma on a noisy sphere");
+  const vtkIdType noisyNoise = fitter->GetOutput()->GetNumberOfPoints();
+  fitter->SetToleranceUnit(vtkAlgebraicSplatFitter::SPACING);
+  fitter->Update();
+  std::cout << "SPACING on the same noisy sphere: " << fitter->GetOutput()->GetNumberOfPoints()
+            << " splats\n";
+  Check(noisyNoise < 0.8 * fitter->GetOutput()->GetNumberOfPoints(),
+    "NOISE needs at least 20 % fewer splats than SPACING on a noisy sphere");
+  // NOISE on a clean sphere: the spacing bound (the quadric's error is far below it).
+  fitter->SetToleranceUnit(vtkAlgebraicSplatFitter::NOISE);
+  fitter->SetInputData(Sphere(6000, 1.0, 0.0));
+  fitter->Update();
+  vtkNew<vtkAlgebraicSplatFitter> spacing;
+  spacing->SetDegree(3);
+  spacing->SetInputData(Sphere(6000, 1.0, 0.0));
+  spacing->Update();
+  Check(fitter->GetOutput()->GetNumberOfPoints() == spacing->GetOutput()->GetNumberOfPoints(),
+    "NOISE on a clean sphere: the same splats as SPACING");
+}
+
+void TestFeatureScale()
+{
+  vtkSmartPointer<vtkPolyData> sphere = Sphere(20000, 1.0, 0.0);
+  vtkIdType counts[2] = { 0, 0 };
+  for (double scale : { 1.0, 4.0 })
+  {
+    vtkNew<vtkAlgebraicSplatFitter> fitter;
+    fitter->SetInputData(sphere);
+    fitter->SetDegree(3);
+    fitter->SetMaximumFeatureScale(scale);
+    fitter->Update();
+    vtkNew<vtkSplatErrorMetric> metric;
+    metric->SetInputData(sphere);
+    metric->SetSplatConnection(fitter->GetOutputPort());
+    metric->Update();
+    counts[scale > 1.0] = fitter->GetOutput()->GetNumberOfPoints();
+    std::cout << "MaximumFeatureScale " << scale << ": " << counts[scale > 1.0] << " splats, RMS "
+              << metric->GetRMSDistance() << ", max " << metric->GetMaximumDistance()
+              << ", uncovered " << metric->GetNumberOfUncoveredPoints() << "\n";
+    Check(metric->GetNumberOfUncoveredPoints() == 0,
+      "no holes at feature scale " + std::to_string(scale));
+    Check(metric->GetMaximumDistance() < 1e-3, "cubic splats within 1e-3 of the sphere");
+  }
+  Check(
+    counts[1] < 0.7 * counts[0], "feature scale 4: at least 30 % fewer splats on a smooth sphere");
+
+  // 1 and 2 threads: the same splats.
+  std::vector<vtkSmartPointer<vtkPolyData>> outs;
+  for (int threads : { 1, 2 })
+  {
+    vtkSMPTools::Initialize(threads);
+    vtkNew<vtkAlgebraicSplatFitter> fitter;
+    fitter->SetInputData(sphere);
+    fitter->SetMaximumFeatureScale(4.0);
+    fitter->Update();
+    outs.push_back(vtkSmartPointer<vtkPolyData>::New());
+    outs.back()->DeepCopy(fitter->GetOutput());
+  }
+  vtkSMPTools::Initialize(0);
+  bool same = outs[0]->GetNumberOfPoints() == outs[1]->GetNumberOfPoints();
+  for (vtkIdType i = 0; same && i < outs[0]->GetNumberOfPoints(); ++i)
+  {
+    double a[3], b[3];
+    outs[0]->GetPoint(i, a);
+    outs[1]->GetPoint(i, b);
+    same = a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+  }
+  Check(same, "feature scale 4: the same splats with 1 and 2 threads");
+}
+} // namespace
+
+int TestSplatFeatureScale(int, char*[])
+{
+  TestNoiseScale();
+  TestToleranceUnits();
+  TestFeatureScale();
+  return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
+}

@@ -1,0 +1,153 @@
+#!/usr/bin/env python3
+# SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+# SPDX-License-Identifier: BSD-3-Clause
+"""Splats against the sampling and the noise of one surface: the density and noise sweeps.
+
+    bench_splat_density.py [MESH] [--points N ...] [--noise F ...] [--variants NAME ...]
+                           [--size PX] [--out DIR] [--smoke]
+
+MESH (default: Testing/Data/bunny.vtp) is any triangle mesh pointsurfaces.scanio
+reads. Each sample puts N points uniformly by area on its triangles
+(surface_sampling.py; N 0: the mesh's own vertices) and moves each by
+Gaussian noise of F times the mesh's bounding-box diagonal (noise along every
+axis). Each variant of the fitter (below) fits every sample; the splats are
+drawn as bench_splat_quality.py draws them and scored against the mesh in
+three views (masked SSIM, masked RMSE, coverage IoU, as there).
+
+Variants (fitter settings on top of the defaults):
+
+- default: the defaults (bound 0.5 local spacings);
+- scale4, scale8: MaximumFeatureScale 4 or 8 (adaptive feature size);
+- noise: ToleranceUnit NOISE (the bound at least 3 noise scales);
+- noise+scale4: both.
+
+Density independence is what the issue asks of the fitter: above the
+sampling that resolves the surface, the splat count should stop growing with
+N, at the same picture. Output in --out: splat_density.csv (one row per
+sample and variant: points, noise, variant, splats, splats per point, fit
+seconds, masked SSIM, RMSE, IoU) and splat_density.png (splats and SSIM
+against the points, one line per variant and noise). Timings are wall-clock
+on whatever this runs on: compare them only within one run.
+"""
+import argparse
+import os
+import sys
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import bench_splat_quality as quality  # noqa: E402
+from bench_csv import TEST_DATA, write_rows  # noqa: E402
+from surface_sampling import sample_surface  # noqa: E402
+
+import pointsurfaces  # noqa: E402
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
+from vtkmodules.vtkCommonDataModel import vtkPolyData  # noqa: E402
+
+VARIANTS = {
+    "default": {},
+    "scale4": dict(MaximumFeatureScale=4),
+    "scale8": dict(MaximumFeatureScale=8),
+    "noise": dict(ToleranceUnit=1),
+    "noise+scale4": dict(ToleranceUnit=1, MaximumFeatureScale=4),
+}
+VIEWS = [(0, 15), (120, -10), (240, 30)]
+
+
+def sample(mesh, n, noise, diagonal):
+    """A vtkPolyData of n points on the mesh (its vertices for n = 0), with noise."""
+    if n == 0:
+        xyz = vtk_to_numpy(mesh.GetPoints().GetData()).astype(np.float64)
+    else:
+        xyz = sample_surface(mesh, n)
+    if noise > 0:
+        xyz = xyz + np.random.default_rng(2).normal(0.0, noise * diagonal, xyz.shape)
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(xyz), deep=1))
+    cloud = vtkPolyData()
+    cloud.SetPoints(points)
+    return cloud
+
+
+def fit(cloud, settings):
+    fitter = pointsurfaces.vtkAlgebraicSplatFitter()
+    fitter.SetInputData(cloud)
+    for name, value in settings.items():
+        getattr(fitter, "Set" + name)(value)
+    start = time.perf_counter()
+    fitter.Update()
+    seconds = time.perf_counter() - start
+    splats = vtkPolyData()
+    splats.ShallowCopy(fitter.GetOutput())
+    return splats, seconds
+
+
+def plot(rows, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+    for key in sorted({(r["variant"], r["noise"]) for r in rows}):
+        mine = sorted((r for r in rows if (r["variant"], r["noise"]) == key), key=lambda r: r["points"])
+        xs = [r["points"] for r in mine]
+        label = "%s, noise %g" % key
+        left.plot(xs, [r["splats"] for r in mine], marker="o", label=label)
+        right.plot(xs, [r["masked_ssim"] for r in mine], marker="o", label=label)
+    for axis, title in ((left, "splats"), (right, "masked SSIM against the mesh")):
+        axis.set_xscale("log")
+        axis.set_xlabel("points")
+        axis.set_title(title)
+    left.set_yscale("log")
+    right.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("mesh", nargs="?", default=os.path.join(TEST_DATA, "bunny.vtp"))
+    parser.add_argument("--points", type=float, nargs="+", default=[2e5, 1e6])
+    parser.add_argument("--noise", type=float, nargs="+", default=[1e-4])
+    parser.add_argument("--variants", nargs="+", default=list(VARIANTS), choices=list(VARIANTS))
+    parser.add_argument("--size", type=int, default=300, help="image side, pixels")
+    parser.add_argument("--up", choices=("x", "y", "z"), help="up axis (default: z for Lucy and the horse)")
+    parser.add_argument("--out", default="bench-results")
+    parser.add_argument("--smoke", action="store_true", help="20 000 points, two variants, 96 pixels")
+    args = parser.parse_args()
+    if args.smoke:
+        args.points, args.noise, args.variants, args.size = [2e4], [1e-4], ["default", "scale4"], 96
+    os.makedirs(args.out, exist_ok=True)
+    mesh = quality.load_mesh(args.mesh)
+    b = mesh.GetBounds()
+    diagonal = ((b[1] - b[0]) ** 2 + (b[3] - b[2]) ** 2 + (b[5] - b[4]) ** 2) ** 0.5
+    stem = os.path.basename(args.mesh).split(".")[0]
+    up = args.up or quality.UP_AXIS.get(stem.split("_")[0], "y")
+    scene = quality.Scene((args.size, args.size))
+    cameras = scene.cameras(mesh, up, VIEWS)
+    model = dict(name=stem, cameras=cameras, views=VIEWS,
+                 references=[scene.image(c) for c in cameras])
+    rows = []
+    for noise in args.noise:
+        for n in [int(p) for p in args.points]:
+            cloud = sample(mesh, n, noise, diagonal)
+            for variant in args.variants:
+                splats, seconds = fit(cloud, VARIANTS[variant])
+                scores = quality.score_actor(scene, model, quality.splat_actor(splats), 0)
+                rows.append(dict(
+                    model=stem, points=cloud.GetNumberOfPoints(), noise=noise, variant=variant,
+                    splats=splats.GetNumberOfPoints(),
+                    splats_per_point=round(splats.GetNumberOfPoints() / cloud.GetNumberOfPoints(), 4),
+                    fit_s=round(seconds, 3),
+                    masked_ssim=round(float(np.mean([s["masked_ssim"] for s in scores])), 4),
+                    masked_rmse=round(float(np.mean([s["masked_rmse"] for s in scores])), 4),
+                    coverage_iou=round(float(np.mean([s["coverage_iou"] for s in scores])), 4)))
+                print("# %s" % rows[-1], flush=True)
+    write_rows(os.path.join(args.out, "splat_density.csv"), rows)
+    plot(rows, os.path.join(args.out, "splat_density.png"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
