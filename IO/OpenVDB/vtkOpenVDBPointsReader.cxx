@@ -2,13 +2,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkOpenVDBPointsReader.h"
 
-#include "psChildProcess.h"
 #include "psReadOutcome.h"
 
-#include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
-#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
@@ -35,7 +32,6 @@
 #include <functional>
 #include <istream>
 #include <map>
-#include <numeric>
 #include <set>
 #include <streambuf>
 
@@ -45,11 +41,7 @@ namespace
 {
 namespace ovp = openvdb::points;
 using openvdb::Index;
-using pointsurfaces::ChildProcess;
-using pointsurfaces::DescribeSignal;
-using pointsurfaces::ParseReadOutcome;
 using pointsurfaces::ReadOutcome;
-using pointsurfaces::WriteReadOutcome;
 
 // Components of one attribute value, and its c-th component as a double.
 template<typename T>
@@ -629,20 +621,6 @@ bool CopyGrids(const std::vector<ovp::PointDataGrid::Ptr>& grids,
   return true;
 }
 
-// One vertex cell per point.
-vtkSmartPointer<vtkCellArray> VertexCells(vtkIdType total)
-{
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(total + 1);
-  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + total + 1, vtkIdType(0));
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(total);
-  std::iota(connectivity->GetPointer(0), connectivity->GetPointer(0) + total, vtkIdType(0));
-  auto vertices = vtkSmartPointer<vtkCellArray>::New();
-  vertices->SetData(offsets, connectivity);
-  return vertices;
-}
-
 // Reads the point grids of `fileName` into points and arrays. Reports only
 // through the outcome (no VTK messages): it may run in a child process.
 ReadOutcome ReadFile(const std::string& fileName, const std::string& gridName)
@@ -722,45 +700,6 @@ ReadOutcome ReadFile(const std::string& fileName, const std::string& gridName)
   return result;
 }
 
-// ReadFile in a child process, so that an abort or a leak of OpenVDB's on a
-// damaged file stays there; false, with `why`, when no child could start.
-bool ReadInChild(const std::string& fileName,
-  const std::string& gridName,
-  ReadOutcome& outcome,
-  std::string& why)
-{
-  ChildProcess child;
-  const bool started =
-    child.Run([&](int fd) { return WriteReadOutcome(fd, ReadFile(fileName, gridName)) ? 0 : 3; });
-  outcome = ReadOutcome();
-  if (!started)
-  {
-    why = child.Error();
-    return false;
-  }
-  const std::string file = "\"" + fileName + "\"";
-  if (child.Signal() != 0)
-  {
-    outcome.Error = "OpenVDB ended the child process that read " + file + " with " +
-      DescribeSignal(child.Signal()) +
-      ": the file is damaged in a way that OpenVDB does not check. This program goes on.";
-  }
-  else if (!child.Error().empty())
-  {
-    outcome.Error = "Cannot read " + file + " in a child process: " + child.Error();
-  }
-  else if (child.ExitStatus() != 0)
-  {
-    outcome.Error = "The child process that read " + file + " exited with status " +
-      std::to_string(child.ExitStatus()) +
-      (child.ExitStatus() == 3 ? " (it could not hand its result back)." : ".");
-  }
-  else if (!ParseReadOutcome(child.Data(), child.Size(), outcome, why))
-  {
-    outcome.Error = "Cannot take over what the child process read from " + file + ": " + why;
-  }
-  return true;
-}
 } // namespace
 
 //------------------------------------------------------------------------------
@@ -815,22 +754,12 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
   }
   openvdb::initialize();
 
-  ReadOutcome outcome;
-  bool inChild = this->ReadInChildProcess && ChildProcess::Supported();
-  if (inChild)
-  {
-    std::string why;
-    if (!ReadInChild(this->FileName, this->GridName, outcome, why))
-    {
-      vtkWarningMacro(<< "Cannot start a child process to read \"" << this->FileName << "\" ("
-                      << why << "): reading it in this process.");
-      inChild = false;
-    }
-  }
-  if (!inChild)
-  {
-    outcome = ReadFile(this->FileName, this->GridName);
-  }
+  // In a child process by default: see the class comment.
+  const ReadOutcome outcome =
+    pointsurfaces::GuardedRead([&]() { return ReadFile(this->FileName, this->GridName); },
+      this->ReadInChildProcess,
+      this->FileName,
+      "OpenVDB");
   for (const std::string& warning : outcome.Warnings)
   {
     vtkWarningMacro(<< "\"" << this->FileName << "\": " << warning);
@@ -841,7 +770,7 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
     return 1;
   }
   output->ShallowCopy(outcome.Output);
-  output->SetVerts(VertexCells(output->GetNumberOfPoints()));
+  pointsurfaces::SetVertexCells(output);
   if (auto* names =
         vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("VDBGridNames")))
   {

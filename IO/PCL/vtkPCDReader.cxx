@@ -2,9 +2,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPCDReader.h"
 
-#include "vtkCellArray.h"
+#include "psReadOutcome.h"
+
 #include "vtkDataArray.h"
-#include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
@@ -327,8 +327,8 @@ std::vector<size_t> FinitePoints(const pcl::PCLPointCloud2& cloud,
   return keep;
 }
 
-// The kept points (in double when any coordinate is), one vertex each.
-void SetPointsAndVertices(const pcl::PCLPointCloud2& cloud,
+// The kept points (in double when any coordinate is); the caller adds their vertices.
+void SetKeptPoints(const pcl::PCLPointCloud2& cloud,
   const pcl::PCLPointField* fx,
   const pcl::PCLPointField* fy,
   const pcl::PCLPointField* fz,
@@ -350,22 +350,6 @@ void SetPointsAndVertices(const pcl::PCLPointCloud2& cloud,
       ReadScalar(p + fz->offset, fz->datatype));
   }
   output->SetPoints(points);
-
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> connectivity;
-  offsets->SetNumberOfValues(m + 1);
-  connectivity->SetNumberOfValues(m);
-  for (vtkIdType j = 0; j <= m; ++j)
-  {
-    offsets->SetValue(j, j);
-    if (j < m)
-    {
-      connectivity->SetValue(j, j);
-    }
-  }
-  vtkNew<vtkCellArray> verts;
-  verts->SetData(offsets, connectivity);
-  output->SetVerts(verts);
 }
 
 // The normal_x, _y and _z fields, when all three are there, as the normals.
@@ -402,12 +386,12 @@ bool AddNormals(const pcl::PCLPointCloud2& cloud,
 }
 
 // The other fields as point arrays: packed rgb(a) as colours, the rest as
-// they are typed (a field of unknown type skipped, with a warning by owner).
+// they are typed (a field of unknown type skipped, with a warning).
 void AddFields(const pcl::PCLPointCloud2& cloud,
   const std::vector<size_t>& keep,
   bool hasNormals,
   vtkPolyData* output,
-  vtkObject* owner)
+  std::vector<std::string>& warnings)
 {
   const vtkIdType m = static_cast<vtkIdType>(keep.size());
   for (const auto& f : cloud.fields)
@@ -441,7 +425,7 @@ void AddFields(const pcl::PCLPointCloud2& cloud,
     const int type = VTKType(f.datatype);
     if (type == VTK_VOID || f.count == 0)
     {
-      vtkWarningWithObjectMacro(owner, << "Skipping field '" << f.name << "' of unknown type.");
+      warnings.push_back("Skipping field '" + f.name + "' of unknown type.");
       continue;
     }
     auto array = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(type));
@@ -458,6 +442,50 @@ void AddFields(const pcl::PCLPointCloud2& cloud,
     }
     output->GetPointData()->AddArray(array);
   }
+}
+
+// Reads `fileName` into points, vertices and arrays. Reports only through
+// the outcome (no VTK messages): it may run in a child process. Counts[0]:
+// the points dropped for NaN or infinite coordinates.
+pointsurfaces::ReadOutcome ReadFile(const std::string& fileName)
+{
+  pointsurfaces::ReadOutcome result;
+  result.Counts = { 0 };
+  pcl::PCLPointCloud2 cloud;
+  std::string problem = ReadCloud(fileName, cloud);
+  if (problem.empty())
+  {
+    problem = FieldProblem(cloud);
+  }
+  if (!problem.empty())
+  {
+    result.Error = "Cannot read '" + fileName + "': " + problem;
+    return result;
+  }
+  const pcl::PCLPointField* fx = Find(cloud, "x");
+  const pcl::PCLPointField* fy = Find(cloud, "y");
+  const pcl::PCLPointField* fz = Find(cloud, "z");
+  if (!fx || !fy || !fz ||
+    VTKType(fx->datatype) != VTK_FLOAT && VTKType(fx->datatype) != VTK_DOUBLE)
+  {
+    result.Error = "'" + fileName + "' has no floating-point x, y and z fields.";
+    return result;
+  }
+
+  // Keep the points with finite coordinates.
+  const std::vector<size_t> keep = FinitePoints(cloud, fx, fy, fz);
+  const size_t n = static_cast<size_t>(cloud.width) * cloud.height;
+  result.Counts[0] = static_cast<long long>(n - keep.size());
+  if (result.Counts[0] > 0)
+  {
+    result.Warnings.push_back("Dropped " + std::to_string(result.Counts[0]) + " of " +
+      std::to_string(n) + " points of '" + fileName + "' with NaN or infinite coordinates.");
+  }
+  result.Output = vtkSmartPointer<vtkPolyData>::New();
+  SetKeptPoints(cloud, fx, fy, fz, keep, result.Output);
+  const bool hasNormals = AddNormals(cloud, keep, result.Output);
+  AddFields(cloud, keep, hasNormals, result.Output, result.Warnings);
+  return result;
 }
 } // namespace
 
@@ -498,42 +526,21 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
     return 1;
   }
 
-  pcl::PCLPointCloud2 cloud;
-  const std::string problem = ReadCloud(this->FileName, cloud);
-  if (!problem.empty())
+  // In a child process by default: see the class comment.
+  const pointsurfaces::ReadOutcome outcome = pointsurfaces::GuardedRead(
+    [&]() { return ReadFile(this->FileName); }, this->ReadInChildProcess, this->FileName, "PCL");
+  for (const std::string& warning : outcome.Warnings)
   {
-    vtkErrorMacro(<< "Cannot read '" << this->FileName << "': " << problem);
+    vtkWarningMacro(<< warning);
+  }
+  if (!outcome.Output)
+  {
+    vtkErrorMacro(<< outcome.Error);
     return 1;
   }
-  const std::string badField = FieldProblem(cloud);
-  if (!badField.empty())
-  {
-    vtkErrorMacro(<< "Cannot read '" << this->FileName << "': " << badField);
-    return 1;
-  }
-  const pcl::PCLPointField* fx = Find(cloud, "x");
-  const pcl::PCLPointField* fy = Find(cloud, "y");
-  const pcl::PCLPointField* fz = Find(cloud, "z");
-  if (!fx || !fy || !fz ||
-    VTKType(fx->datatype) != VTK_FLOAT && VTKType(fx->datatype) != VTK_DOUBLE)
-  {
-    vtkErrorMacro(<< "'" << this->FileName << "' has no floating-point x, y and z fields.");
-    return 1;
-  }
-
-  // Keep the points with finite coordinates.
-  const std::vector<size_t> keep = FinitePoints(cloud, fx, fy, fz);
-  const size_t n = static_cast<size_t>(cloud.width) * cloud.height;
-  this->NumberOfDroppedPoints = static_cast<vtkIdType>(n - keep.size());
-  if (this->NumberOfDroppedPoints > 0)
-  {
-    vtkWarningMacro(<< "Dropped " << this->NumberOfDroppedPoints << " of " << n << " points of '"
-                    << this->FileName << "' with NaN or infinite coordinates.");
-  }
-  SetPointsAndVertices(cloud, fx, fy, fz, keep, output);
-
-  const bool hasNormals = AddNormals(cloud, keep, output);
-  AddFields(cloud, keep, hasNormals, output, this);
+  this->NumberOfDroppedPoints = outcome.Counts.empty() ? 0 : outcome.Counts[0];
+  output->ShallowCopy(outcome.Output);
+  pointsurfaces::SetVertexCells(output); // cells do not come back from a child process
   return 1;
 }
 
@@ -542,5 +549,6 @@ void vtkPCDReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "ReadInChildProcess: " << (this->ReadInChildProcess ? "on" : "off") << "\n";
   os << indent << "NumberOfDroppedPoints: " << this->NumberOfDroppedPoints << "\n";
 }

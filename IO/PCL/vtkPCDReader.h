@@ -18,6 +18,13 @@
  * are dropped, and their count is reported with a warning and kept in
  * GetNumberOfDroppedPoints(). A missing, corrupt or truncated file gives a
  * vtkErrorMacro and an empty output.
+ *
+ * PCL 1.13 itself writes past its buffers on some damaged files (found by
+ * fuzzing; those known are refused before PCL reads), and such a write
+ * corrupts the program's memory silently. So the file is read in a child
+ * process (ReadInChildProcess, on by default on Linux), as
+ * vtkOpenVDBPointsReader does: a fault there ends only the child and becomes
+ * this reader's error, and the output comes back through a memory file.
  */
 #ifndef vtkPCDReader_h
 #define vtkPCDReader_h
@@ -43,6 +50,18 @@ public:
   /** Points dropped for non-finite coordinates by the last read. */
   vtkGetMacro(NumberOfDroppedPoints, vtkIdType);
 
+  ///@{
+  /**
+   * Read the file in a child process (fork), so that a damaged file on which
+   * PCL writes out of bounds cannot corrupt this program. Default: on.
+   * Ignored where child processes are not supported (not Linux). Turn it
+   * off in a program that must not fork.
+   */
+  vtkSetMacro(ReadInChildProcess, vtkTypeBool);
+  vtkGetMacro(ReadInChildProcess, vtkTypeBool);
+  vtkBooleanMacro(ReadInChildProcess, vtkTypeBool);
+  ///@}
+
   /** True when the file starts like a PCD file (a header line or VERSION). */
   static bool CanReadFile(const char* fileName);
 
@@ -54,6 +73,7 @@ protected:
 
   std::string FileName;
   vtkIdType NumberOfDroppedPoints = 0;
+  vtkTypeBool ReadInChildProcess = true;
 
 private:
   vtkPCDReader(const vtkPCDReader&) = delete;

@@ -67,6 +67,43 @@ int TestPCDReader(int, char*[])
   vtkDataArray* curvature = a->GetPointData()->GetArray("curvature");
   Check(curvature && curvature->GetComponent(3, 0) == 2.0, "extra fields become arrays");
 
+  Check(ascii->GetReadInChildProcess(), "ReadInChildProcess is on by default");
+
+  // In this process: the same points, arrays, active attributes and count.
+  vtkNew<vtkPCDReader> here;
+  here->SetFileName((data + "/small_ascii.pcd").c_str());
+  here->ReadInChildProcessOff();
+  here->Update();
+  vtkPolyData* h = here->GetOutput();
+  bool same = h->GetNumberOfPoints() == a->GetNumberOfPoints() &&
+    h->GetNumberOfVerts() == a->GetNumberOfVerts() &&
+    h->GetPoints()->GetDataType() == a->GetPoints()->GetDataType() &&
+    here->GetNumberOfDroppedPoints() == 1 &&
+    h->GetPointData()->GetNumberOfArrays() == a->GetPointData()->GetNumberOfArrays() &&
+    h->GetPointData()->GetNormals() && h->GetPointData()->GetScalars();
+  for (int k = 0; same && k < h->GetPointData()->GetNumberOfArrays(); ++k)
+  {
+    vtkDataArray* x = h->GetPointData()->GetArray(k);
+    int index = -1;
+    vtkDataArray* y = a->GetPointData()->GetArray(x->GetName(), index);
+    same = y && x->GetDataType() == y->GetDataType() &&
+      x->GetNumberOfComponents() == y->GetNumberOfComponents() &&
+      h->GetPointData()->IsArrayAnAttribute(k) == a->GetPointData()->IsArrayAnAttribute(index);
+    for (vtkIdType v = 0; same && v < x->GetNumberOfValues(); ++v)
+    {
+      same = x->GetComponent(v / x->GetNumberOfComponents(), v % x->GetNumberOfComponents()) ==
+        y->GetComponent(v / y->GetNumberOfComponents(), v % y->GetNumberOfComponents());
+    }
+  }
+  for (vtkIdType i = 0; same && i < h->GetNumberOfPoints(); ++i)
+  {
+    double x[3], y[3];
+    h->GetPoint(i, x);
+    a->GetPoint(i, y);
+    same = x[0] == y[0] && x[1] == y[1] && x[2] == y[2];
+  }
+  Check(same, "the same output read in a child process and in this process");
+
   ExpectReadError<vtkPCDReader>(data + "/does_not_exist.pcd", "missing or is not a PCD file");
 
   // Truncate the compressed file in the middle of its data.

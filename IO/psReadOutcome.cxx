@@ -2,9 +2,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "psReadOutcome.h"
 
+#include "psChildProcess.h"
+
 #include "vtkAbstractArray.h"
+#include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -14,6 +18,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
 #if defined(__unix__) || defined(__APPLE__)
@@ -24,7 +29,12 @@ namespace pointsurfaces
 {
 namespace
 {
-const char Magic[8] = { 'P', 'S', 'R', 'O', '1', 0, 0, 0 };
+const char Magic[8] = { 'P', 'S', 'R', 'O', '2', 0, 0, 0 };
+// The point data attributes whose active array travels with the arrays.
+const int Attributes[] = { vtkDataSetAttributes::SCALARS,
+  vtkDataSetAttributes::VECTORS,
+  vtkDataSetAttributes::NORMALS,
+  vtkDataSetAttributes::TCOORDS };
 enum : uint8_t
 {
   NumericArray = 0,
@@ -231,6 +241,11 @@ bool WriteReadOutcome(int fd, const ReadOutcome& outcome)
       sink.Text(warning);
     }
     sink.Text(outcome.Error);
+    sink.Put<uint64_t>(outcome.Counts.size());
+    for (long long count : outcome.Counts)
+    {
+      sink.Put<int64_t>(count);
+    }
     vtkPolyData* output = outcome.Output;
     sink.Put<uint8_t>(output ? 1 : 0);
     if (output)
@@ -249,6 +264,15 @@ bool WriteReadOutcome(int fd, const ReadOutcome& outcome)
         {
           PutArray(sink, arrays->GetAbstractArray(a));
         }
+      }
+      for (int attribute : Attributes)
+      {
+        int active = -1;
+        for (int a = 0; a < output->GetPointData()->GetNumberOfArrays(); ++a)
+        {
+          active = output->GetPointData()->IsArrayAnAttribute(a) == attribute ? a : active;
+        }
+        sink.Put<int32_t>(active);
       }
     }
     sink.Flush();
@@ -277,6 +301,11 @@ bool ParseReadOutcome(const char* bytes, size_t size, ReadOutcome& outcome, std:
       outcome.Warnings.push_back(source.Text());
     }
     outcome.Error = source.Text();
+    const uint64_t counts = source.Get<uint64_t>();
+    for (uint64_t c = 0; c < counts; ++c)
+    {
+      outcome.Counts.push_back(source.Get<int64_t>());
+    }
     if (source.Get<uint8_t>())
     {
       auto output = vtkSmartPointer<vtkPolyData>::New();
@@ -300,6 +329,18 @@ bool ParseReadOutcome(const char* bytes, size_t size, ReadOutcome& outcome, std:
           arrays->AddArray(GetArray(source));
         }
       }
+      for (int attribute : Attributes)
+      {
+        const int32_t active = source.Get<int32_t>();
+        if (active >= output->GetPointData()->GetNumberOfArrays())
+        {
+          throw std::runtime_error("an active attribute names no array");
+        }
+        if (active >= 0)
+        {
+          output->GetPointData()->SetActiveAttribute(active, attribute);
+        }
+      }
       outcome.Output = output;
     }
     if (source.Remaining() != 0)
@@ -314,5 +355,64 @@ bool ParseReadOutcome(const char* bytes, size_t size, ReadOutcome& outcome, std:
     outcome = ReadOutcome();
     return false;
   }
+}
+//------------------------------------------------------------------------------
+void SetVertexCells(vtkPolyData* data)
+{
+  const vtkIdType n = data->GetNumberOfPoints();
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(n + 1);
+  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + n + 1, vtkIdType(0));
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(n);
+  std::iota(connectivity->GetPointer(0), connectivity->GetPointer(0) + n, vtkIdType(0));
+  vtkNew<vtkCellArray> vertices;
+  vertices->SetData(offsets, connectivity);
+  data->SetVerts(vertices);
+}
+
+//------------------------------------------------------------------------------
+ReadOutcome GuardedRead(const std::function<ReadOutcome()>& read,
+  bool inChild,
+  const std::string& fileName,
+  const std::string& library)
+{
+  if (!inChild || !ChildProcess::Supported())
+  {
+    return read();
+  }
+  ChildProcess child;
+  const bool started = child.Run([&](int fd) { return WriteReadOutcome(fd, read()) ? 0 : 3; });
+  if (!started)
+  {
+    ReadOutcome here = read();
+    here.Warnings.insert(here.Warnings.begin(),
+      "cannot start a child process to read it (" + child.Error() + "): read in this process.");
+    return here;
+  }
+  ReadOutcome outcome;
+  const std::string file = "\"" + fileName + "\"";
+  std::string why;
+  if (child.Signal() != 0)
+  {
+    outcome.Error = library + " ended the child process that read " + file + " with " +
+      DescribeSignal(child.Signal()) + ": the file is damaged in a way that " + library +
+      " does not check. This program goes on.";
+  }
+  else if (!child.Error().empty())
+  {
+    outcome.Error = "Cannot read " + file + " in a child process: " + child.Error();
+  }
+  else if (child.ExitStatus() != 0)
+  {
+    outcome.Error = "The child process that read " + file + " exited with status " +
+      std::to_string(child.ExitStatus()) +
+      (child.ExitStatus() == 3 ? " (it could not hand its result back)." : ".");
+  }
+  else if (!ParseReadOutcome(child.Data(), child.Size(), outcome, why))
+  {
+    outcome.Error = "Cannot take over what the child process read from " + file + ": " + why;
+  }
+  return outcome;
 }
 } // namespace pointsurfaces

@@ -21,13 +21,15 @@
 #ifndef psChildProcess_h
 #define psChildProcess_h
 
+#include "PointSurfacesIOModule.h" // For export macro
+
 #include <cstddef>    // For size_t
 #include <functional> // For the job
 #include <string>     // For Error
 
 namespace pointsurfaces
 {
-class ChildProcess
+class POINTSURFACESIO_EXPORT ChildProcess
 {
 public:
   ChildProcess() = default;
@@ -69,7 +71,7 @@ private:
 };
 
 /** "SIGABRT (an assertion failed or the program aborted)", and the like. */
-std::string DescribeSignal(int signal);
+POINTSURFACESIO_EXPORT std::string DescribeSignal(int signal);
 } // namespace pointsurfaces
 
 #endif
