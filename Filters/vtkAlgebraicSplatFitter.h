@@ -308,9 +308,12 @@ public:
    * Error-bounded Quality selection (MaximumDeviation > 0): each chosen
    * point whose disc the bound leaves whole is fitted again on 4, 16, ...
    * times the neighbours (h two, four, ... times as wide), up to this
-   * factor of h, and the widest disc the bound leaves whole is kept: large
-   * splats where the surface is smooth, small ones in folds and at thin
-   * parts. Each doubling costs a fit on four times the points for the
+   * factor of h, and the widest fit that draws the same surface as the
+   * narrower one (within half the bound and 5 degrees, both widened by the
+   * measured noise) is kept: large splats where the surface is smooth, small
+   * ones in folds and at thin parts. On dense, noisy scans far fewer splats
+   * and a better picture; on sparse, clean ones a lower score (see
+   * docs/results.md, "Splat density and noise"). Each doubling costs a fit on four times the points for the
    * splats it is tried on, and widens the parallel selection's slabs as
    * much. Default 1: one scale, h from FeatureSizeNeighbors.
    */

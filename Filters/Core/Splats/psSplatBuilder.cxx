@@ -31,7 +31,11 @@ constexpr double NarrowestWeight = 1.5;
 constexpr double WholeDisc = 0.9;
 // A wider fit is kept only where it draws what the narrower one drew: over
 // the narrower disc's points the two patches stay within this share of the
-// error bound of each other, and their normals within WidenAngle degrees
+// error bound of each other (or two noise scales), and their normals within
+// WidenAngle degrees (or the angle of two noise scales over the narrower h:
+// on a noisy sample the narrower fit's normals carry the noise, and Lucy
+// resampled to 4M points kept 2.9 times fewer splats with the noise term
+// than without, at a masked SSIM of 0.931 against 0.853)
 // (a bound on the points' deviation alone let wide patches flatten folds
 // shallower than the bound, which shading shows: on Lucy resampled to 200k
 // points, masked SSIM 0.898 against 0.931 at one scale; 10 degrees gave
@@ -59,14 +63,15 @@ void PatchAt(const Splat& s, const double p[3], double at[3], double normal[3])
 
 // Whether `wide` draws what `narrow` draws over the points `cover` (at most
 // 64 of them, evenly picked): patches within `distance`, normals within
-// WidenAngle.
+// `angle` degrees.
 bool SameSurface(const Splat& narrow,
   const Splat& wide,
   const PointIndex& index,
   const std::vector<int>& cover,
-  double distance)
+  double distance,
+  double angle)
 {
-  const double cosAngle = std::cos(vtkMath::RadiansFromDegrees(WidenAngle));
+  const double cosAngle = std::cos(vtkMath::RadiansFromDegrees(angle));
   const size_t step = std::max<size_t>(1, cover.size() / 64);
   for (size_t j = 0; j < cover.size(); j += step)
   {
@@ -337,7 +342,8 @@ private:
   void Widen(long long i,
     ChosenPoint& c,
     std::unique_ptr<BuiltSplat>& b,
-    const SplatFitParameters& local);
+    const SplatFitParameters& local,
+    double noise);
   // Bound a fitted splat of nominal radius `radius` and measure its deviation
   // against the points around it; returns the covered point ids with their
   // in-plane distances.
@@ -661,7 +667,14 @@ bool SplatBuild::FrameOf(long long i, LocalFrame& frame)
     {
       return false;
     }
-    this->Widen(i, *c, b, local);
+    if (params.MaximumFeatureScale >= 2.0)
+    {
+      const double noise = NoiseScale(coords.data(),
+        static_cast<int>(coords.size() / 3),
+        c->Plane,
+        std::min(fit.NumberOfNeighbors, static_cast<int>(coords.size() / 3)));
+      this->Widen(i, *c, b, local, noise);
+    }
     frame = b->Fitted.Frame;
     c->Built = std::move(b);
   }
@@ -714,7 +727,8 @@ std::unique_ptr<BuiltSplat> SplatBuild::BuildAt(long long i,
 void SplatBuild::Widen(long long i,
   ChosenPoint& c,
   std::unique_ptr<BuiltSplat>& b,
-  const SplatFitParameters& local)
+  const SplatFitParameters& local,
+  double noise)
 {
   thread_local std::vector<int> ids;
   thread_local std::vector<double> d2, coords, w;
@@ -739,7 +753,9 @@ void SplatBuild::Widen(long long i,
         candidate->Fitted,
         index,
         c.Cover,
-        WidenDistance * local.MaximumDeviation * b->Fitted.Spacing))
+        std::max(WidenDistance * local.MaximumDeviation * b->Fitted.Spacing, 2.0 * noise),
+        std::max(
+          WidenAngle, vtkMath::DegreesFromRadians(std::atan(2.0 * noise / b->Fitted.Frame.Scale)))))
     {
       return;
     }
