@@ -11,6 +11,7 @@
 //   still cover every point and lie within the bound, and the same splats
 //   with 1 and 2 threads (its wider slabs keep the parallel selection
 //   race-free).
+#include "psIOTestSupport.h"
 #include "psLocalFit.h"
 #include "psSplatFit.h"
 #include "vtkAlgebraicSplatFitter.h"
@@ -30,18 +31,11 @@
 #include <string>
 #include <vector>
 
+using pointsurfaces_test::Check;
+using pointsurfaces_test::Failures;
+
 namespace
 {
-int Failures = 0;
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
-
 // n points evenly on a sphere of `radius` (a Fibonacci lattice), moved
 // along the normal by Gaussian noise of `sigma`.
 vtkSmartPointer<vtkPolyData> Sphere(int n, double radius, double sigma)
