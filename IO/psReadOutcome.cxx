@@ -5,10 +5,8 @@
 #include "psChildProcess.h"
 
 #include "vtkAbstractArray.h"
-#include "vtkCellArray.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
-#include "vtkIdTypeArray.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -18,7 +16,6 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 
 #if defined(__unix__) || defined(__APPLE__)
@@ -356,21 +353,6 @@ bool ParseReadOutcome(const char* bytes, size_t size, ReadOutcome& outcome, std:
     return false;
   }
 }
-//------------------------------------------------------------------------------
-void SetVertexCells(vtkPolyData* data)
-{
-  const vtkIdType n = data->GetNumberOfPoints();
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(n + 1);
-  std::iota(offsets->GetPointer(0), offsets->GetPointer(0) + n + 1, vtkIdType(0));
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(n);
-  std::iota(connectivity->GetPointer(0), connectivity->GetPointer(0) + n, vtkIdType(0));
-  vtkNew<vtkCellArray> vertices;
-  vertices->SetData(offsets, connectivity);
-  data->SetVerts(vertices);
-}
-
 //------------------------------------------------------------------------------
 ReadOutcome GuardedRead(const std::function<ReadOutcome()>& read,
   bool inChild,

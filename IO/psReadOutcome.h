@@ -12,7 +12,7 @@
  * coordinates) and the field arrays with their names, types and sizes
  * (numeric arrays as they are in memory, string arrays value by value), and
  * counts the reader defines; cells are not included (a reader of points
- * rebuilds its vertex cells). The format is
+ * rebuilds its vertex cells, vtkSplatDataModel::AddVertexCells). The format is
  * private to one build: parent and child are the same program.
  */
 #ifndef psReadOutcome_h
@@ -46,9 +46,6 @@ POINTSURFACESIO_EXPORT bool ParseReadOutcome(const char* bytes,
   size_t size,
   ReadOutcome& outcome,
   std::string& why);
-/** One vertex cell per point of `data` (cells do not travel with an outcome). */
-POINTSURFACESIO_EXPORT void SetVertexCells(vtkPolyData* data);
-
 /**
  * `read()` in a child process (psChildProcess.h) when `inChild` is set and
  * the platform supports it, else in this process. When the child ends on a

@@ -3,6 +3,7 @@
 #include "vtkOpenVDBPointsReader.h"
 
 #include "psReadOutcome.h"
+#include "vtkSplatDataModel.h"
 
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
@@ -770,7 +771,7 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
     return 1;
   }
   output->ShallowCopy(outcome.Output);
-  pointsurfaces::SetVertexCells(output);
+  vtkSplatDataModel::AddVertexCells(output); // cells do not come back from a child process
   if (auto* names =
         vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("VDBGridNames")))
   {

@@ -3,6 +3,7 @@
 #include "vtkPCDReader.h"
 
 #include "psReadOutcome.h"
+#include "vtkSplatDataModel.h"
 
 #include "vtkDataArray.h"
 #include "vtkInformation.h"
@@ -540,7 +541,7 @@ int vtkPCDReader::RequestData(vtkInformation*, vtkInformationVector**, vtkInform
   }
   this->NumberOfDroppedPoints = outcome.Counts.empty() ? 0 : outcome.Counts[0];
   output->ShallowCopy(outcome.Output);
-  pointsurfaces::SetVertexCells(output); // cells do not come back from a child process
+  vtkSplatDataModel::AddVertexCells(output); // cells do not come back from a child process
   return 1;
 }
 

@@ -322,11 +322,13 @@ private:
     int scale = 1) const;
   // `base` with its MaximumDeviation in local spacings around q (from the
   // unit of BuildParameters::Tolerance): `coords` are q's nearest points,
-  // `plane` their plane with h (found here when null and needed).
+  // `plane` their plane with h (found here when null and needed). `noise`,
+  // when given, receives the NoiseScale it measured (-1 when it measured none).
   SplatFitParameters LocalFit(const double* q,
     const std::vector<double>& coords,
     const SplatFitParameters& base,
-    const LocalFrame* plane) const;
+    const LocalFrame* plane,
+    double* noise = nullptr) const;
   // Point i's splat fitted with `local` on the neighbours `ids` (planes and
   // cover in `c`), bounded, and refitted narrower where the bound cut it
   // well inside; null when the fit fails.
@@ -501,9 +503,14 @@ bool SplatBuild::PlaneOf(long long i,
 SplatFitParameters SplatBuild::LocalFit(const double* q,
   const std::vector<double>& coords,
   const SplatFitParameters& base,
-  const LocalFrame* plane) const
+  const LocalFrame* plane,
+  double* noise) const
 {
   SplatFitParameters local = base;
+  if (noise)
+  {
+    *noise = -1.0;
+  }
   if (params.Tolerance == ToleranceUnit::Spacing || !(base.MaximumDeviation > 0.0))
   {
     return local;
@@ -530,8 +537,12 @@ SplatFitParameters SplatBuild::LocalFit(const double* q,
     found.Scale = FeatureSize(q, found, coords.data(), count, fit.FeatureSizeNeighbors);
     plane = &found;
   }
-  const double noise = NoiseScale(coords.data(), count, *plane, fit.NumberOfNeighbors);
-  local.MaximumDeviation = std::max(base.MaximumDeviation, params.NoiseFactor * noise / spacing);
+  const double measured = NoiseScale(coords.data(), count, *plane, fit.NumberOfNeighbors);
+  if (noise)
+  {
+    *noise = measured;
+  }
+  local.MaximumDeviation = std::max(base.MaximumDeviation, params.NoiseFactor * measured / spacing);
   return local;
 }
 
@@ -661,7 +672,9 @@ bool SplatBuild::FrameOf(long long i, LocalFrame& frame)
   frame = c->Plane;
   if (bounded)
   {
-    const SplatFitParameters local = this->LocalFit(index.Point(i), coords, levelFit, &c->Plane);
+    double noise = -1.0;
+    const SplatFitParameters local =
+      this->LocalFit(index.Point(i), coords, levelFit, &c->Plane, &noise);
     std::unique_ptr<BuiltSplat> b = this->BuildAt(i, *c, local, ids, d2, coords, w);
     if (!b)
     {
@@ -669,10 +682,12 @@ bool SplatBuild::FrameOf(long long i, LocalFrame& frame)
     }
     if (params.MaximumFeatureScale >= 2.0)
     {
-      const double noise = NoiseScale(coords.data(),
-        static_cast<int>(coords.size() / 3),
-        c->Plane,
-        std::min(fit.NumberOfNeighbors, static_cast<int>(coords.size() / 3)));
+      // The noise LocalFit measured (ToleranceUnit Noise), or measured here.
+      if (noise < 0.0)
+      {
+        noise = NoiseScale(
+          coords.data(), static_cast<int>(coords.size() / 3), c->Plane, fit.NumberOfNeighbors);
+      }
       this->Widen(i, *c, b, local, noise);
     }
     frame = b->Fitted.Frame;
