@@ -259,6 +259,20 @@ bool vtkComputeShaderProgram::Dispatch(unsigned int x,
 }
 
 //------------------------------------------------------------------------------
+void vtkComputeShaderProgram::DispatchIndirect(unsigned int buffer,
+  size_t offset,
+  unsigned int barrierBits)
+{
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, buffer);
+  glDispatchComputeIndirect(static_cast<GLintptr>(offset));
+  glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+  if (barrierBits)
+  {
+    glMemoryBarrier(barrierBits);
+  }
+}
+
+//------------------------------------------------------------------------------
 unsigned int vtkComputeShaderProgram::GroupCount(size_t items, unsigned int groupSize)
 {
   return groupSize ? static_cast<unsigned int>((items + groupSize - 1) / groupSize) : 0;

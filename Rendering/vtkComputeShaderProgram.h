@@ -29,8 +29,9 @@
 #include "PointSurfacesRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
-#include <map>    // For uniform locations
-#include <string> // For source and name
+#include <cstddef> // For size_t
+#include <map>     // For uniform locations
+#include <string>  // For source and name
 
 class vtkOpenGLRenderWindow;
 class vtkWindow;
@@ -94,6 +95,16 @@ public:
   bool Dispatch(unsigned int x, unsigned int y = 1, unsigned int z = 1);
   bool Dispatch(unsigned int x, unsigned int y, unsigned int z, unsigned int barrierBits);
   ///@}
+
+  /**
+   * glDispatchComputeIndirect: the work group counts are three uints that
+   * an earlier pass wrote into the GL buffer `buffer` at byte `offset` (a
+   * multiple of 4), so no size is read back; the counts must respect
+   * GL_MAX_COMPUTE_WORK_GROUP_COUNT. Then glMemoryBarrier(barrierBits).
+   */
+  void DispatchIndirect(unsigned int buffer,
+    size_t offset,
+    unsigned int barrierBits = 0x2000 | 0x200 | 0x40); // storage, buffer update, command
 
   /** Number of groups needed to cover `items` with groups of `groupSize`. */
   static unsigned int GroupCount(size_t items, unsigned int groupSize);

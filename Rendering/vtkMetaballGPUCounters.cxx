@@ -16,7 +16,7 @@ vtkMetaballGPUCounters::vtkMetaballGPUCounters() = default;
 vtkMetaballGPUCounters::~vtkMetaballGPUCounters() = default;
 
 //------------------------------------------------------------------------------
-bool vtkMetaballGPUCounters::ReadSlot(int slot, bool wait, unsigned int out[Count])
+bool vtkMetaballGPUCounters::ReadSlot(int slot, bool wait, unsigned int* out)
 {
   GLsync fence = static_cast<GLsync>(this->Fences[slot]);
   if (!fence)
@@ -31,13 +31,13 @@ bool vtkMetaballGPUCounters::ReadSlot(int slot, bool wait, unsigned int out[Coun
   }
   glDeleteSync(fence);
   this->Fences[slot] = nullptr;
-  return this->Buffers[slot]->Download(out, Count * sizeof(unsigned int));
+  return this->Buffers[slot]->Download(out, this->Size * sizeof(unsigned int));
 }
 
 //------------------------------------------------------------------------------
 void vtkMetaballGPUCounters::BeginFrame(const Report& report, const unsigned int* initial)
 {
-  unsigned int counters[Count] = {};
+  unsigned int counters[MaxSize] = {};
   for (int k = 0; k < Ring; ++k)
   {
     const int slot = (this->Next + k) % Ring; // oldest first: the one to reuse
@@ -46,8 +46,8 @@ void vtkMetaballGPUCounters::BeginFrame(const Report& report, const unsigned int
       report(counters);
     }
   }
-  const unsigned int zeros[Count] = {};
-  this->Buffers[this->Next]->Upload(initial ? initial : zeros, sizeof(zeros));
+  const unsigned int zeros[MaxSize] = {};
+  this->Buffers[this->Next]->Upload(initial ? initial : zeros, this->Size * sizeof(unsigned int));
 }
 
 //------------------------------------------------------------------------------
@@ -67,7 +67,7 @@ void vtkMetaballGPUCounters::EndFrame(const Report& report, bool wait)
     glDeleteSync(static_cast<GLsync>(this->Fences[this->Next]));
   }
   this->Fences[this->Next] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-  unsigned int counters[Count] = {};
+  unsigned int counters[MaxSize] = {};
   if (wait && this->ReadSlot(this->Next, true, counters))
   {
     report(counters);

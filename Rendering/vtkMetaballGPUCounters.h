@@ -12,7 +12,9 @@
  * so the counters go round a ring of buffers: each frame adds into a fresh
  * one and fences it, and a later frame reads those whose fence the GPU has
  * passed. Read(wait = true) gives the current frame's at once, for
- * vtkMetaballMapper's CollectStatistics. Private to vtkMetaballMapper.
+ * vtkMetaballMapper's CollectStatistics. vtkMetaballGridBuilder keeps its
+ * per-build statistics (slab range, pair count, dispatch sizes) in a ring of
+ * its own, of a larger size. Private to PointSurfaces::Rendering.
  */
 #ifndef vtkMetaballGPUCounters_h
 #define vtkMetaballGPUCounters_h
@@ -33,10 +35,14 @@ public:
   vtkTypeMacro(vtkMetaballGPUCounters, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /** How many counters a frame has. */
+  /** How many counters a frame has, by default. */
   static constexpr int Count = 9;
-  /** What takes a frame's counters once they are read. */
-  using Report = std::function<void(const unsigned int counters[Count])>;
+  /** What takes a frame's counters (GetSize() of them) once they are read. */
+  using Report = std::function<void(const unsigned int* counters)>;
+
+  /** How many counters a frame has (Count unless set; at most 64). Set before the first frame. */
+  void SetSize(int size) { this->Size = size < 1 ? 1 : (size > MaxSize ? MaxSize : size); }
+  int GetSize() const { return this->Size; }
 
   /**
    * Starts a frame: reports the counters of the earlier frames that the GPU
@@ -62,7 +68,10 @@ protected:
 
 private:
   static constexpr int Ring = 3;
-  bool ReadSlot(int slot, bool wait, unsigned int out[Count]);
+  static constexpr int MaxSize = 64;
+  bool ReadSlot(int slot, bool wait, unsigned int* out);
+
+  int Size = Count;
 
   vtkNew<vtkShaderStorageBuffer> Buffers[Ring];
   void* Fences[Ring] = { nullptr, nullptr, nullptr }; // GLsync

@@ -90,8 +90,6 @@ bool vtkMetaballGPURayCaster::Cast(vtkOpenGLRenderWindow* renWin,
   program->SetUniform2i("viewport", view.Width, view.Height);
   program->SetUniform2i("tiles", this->Grid->GetTilesX(), this->Grid->GetTilesY());
   program->SetUniformi("slabs", request.Slabs);
-  program->SetUniformf("slabNear", static_cast<float>(this->Grid->GetSlabPlane(0)));
-  program->SetUniformf("slabFar", static_cast<float>(this->Grid->GetSlabPlane(request.Slabs)));
   program->SetUniformf("threshold", static_cast<float>(request.Threshold));
   program->SetUniformf("stepScale", static_cast<float>(request.StepScale));
   program->SetUniformi("bisections", request.Bisections);
@@ -102,6 +100,7 @@ bool vtkMetaballGPURayCaster::Cast(vtkOpenGLRenderWindow* renWin,
   this->Grid->GetVoxelOffsets()->BindBase(3);
   this->Grid->GetVoxelBalls()->BindBase(4);
   counters->BindBase(5);
+  this->Grid->GetGridStatistics()->BindBase(6); // the slab range
   glBindImageTexture(0, images.Color->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
   glBindImageTexture(1, images.Normal->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
   glBindImageTexture(2, images.Depth->GetHandle(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
@@ -116,6 +115,18 @@ bool vtkMetaballGPURayCaster::Cast(vtkOpenGLRenderWindow* renWin,
   // The GPU time of the last frame whose query completed.
   stats.CastSeconds = this->Timer.GetReusableElapsedSeconds();
   return cast;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMetaballGPURayCaster::GetNumberOfReadBacks()
+{
+  return this->Grid->GetNumberOfReadBacks();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMetaballGPURayCaster::GetNumberOfOverflows()
+{
+  return this->Grid->GetNumberOfOverflows();
 }
 
 //------------------------------------------------------------------------------

@@ -7,6 +7,7 @@
 #include "psShaderHooks.h"
 
 #include "vtkComputeShaderProgram.h"
+#include "vtkMetaballGPUCounters.h"
 #include "vtkMetaballGridCS.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -35,10 +36,14 @@ enum Pass
   Add = 3,
   Scatter = 4,
   Place = 5,
-  NumberOfPasses = 6
+  SlabPass = 6,
+  PairPass = 7,
+  NumberOfPasses = 8
 };
-const unsigned int BallGroup = 256;  // local_size_x of the per-item passes
-const unsigned int ScanBlock = 1024; // values per scan work group
+const unsigned int BallGroup = 256;                        // local_size_x of the per-item passes
+const unsigned int ScanBlock = 1024;                       // values per scan work group
+const int StatCount = 16;                                  // uints of the statistics buffer
+const size_t PlaceGroupsOffset = 9 * sizeof(unsigned int); // PLACE's indirect counts
 
 // Binding points of glsl/vtkMetaballGridCS.glsl.
 enum Binding
@@ -59,7 +64,9 @@ enum Binding
 bool Reserve(vtkShaderStorageBuffer* buffer, size_t bytes)
 {
   bytes = std::max<size_t>(bytes, 16);
-  return buffer->GetSize() >= bytes || buffer->Allocate(bytes + bytes / 4);
+  const size_t room =
+    std::max(bytes, std::min(bytes + bytes / 4, vtkShaderStorageBuffer::GetMaximumSize()));
+  return buffer->GetSize() >= bytes || buffer->Allocate(room);
 }
 // The uniforms that the passes share: the view in float, the frustum and the grid.
 struct PassUniforms
@@ -121,7 +128,10 @@ struct vtkMetaballGridBuilder::Internals
   vtkOpenGLRenderTimer Timer; // the build's GPU time, read a build late
   vtkNew<vtkComputeShaderProgram> Programs[NumberOfPasses];
   vtkNew<vtkShaderStorageBuffer> Ranges, Counts, PairVoxels, PairBalls, Histogram, Cursor,
-    VoxelBalls, Stats;
+    VoxelBalls;
+  vtkNew<vtkMetaballGPUCounters> StatRing; // a ring of statistics buffers, read through fences
+  vtkShaderStorageBuffer* Stats = nullptr; // the current build's
+  vtkIdType Balls = 0;                     // the current build's ball count
   std::vector<vtkSmartPointer<vtkShaderStorageBuffer>> Sums; // one per scan level
 
   vtkComputeShaderProgram* Use(vtkOpenGLRenderWindow* renWin, int pass)
@@ -209,14 +219,14 @@ struct vtkMetaballGridBuilder::Internals
     const PassUniforms& common,
     size_t n,
     size_t voxels,
-    unsigned int pairs)
+    size_t capacity)
   {
     // Scatter the pairs and count them per voxel; scan the counts into offsets.
-    bool ok = Reserve(this->PairVoxels, pairs * sizeof(unsigned int)) &&
-      Reserve(this->PairBalls, pairs * sizeof(unsigned int)) &&
+    bool ok = Reserve(this->PairVoxels, capacity * sizeof(unsigned int)) &&
+      Reserve(this->PairBalls, capacity * sizeof(unsigned int)) &&
       Reserve(this->Histogram, (voxels + 1) * sizeof(unsigned int)) &&
       Reserve(this->Cursor, voxels * sizeof(unsigned int)) &&
-      Reserve(this->VoxelBalls, pairs * sizeof(unsigned int));
+      Reserve(this->VoxelBalls, capacity * sizeof(unsigned int));
     if (ok)
     {
       this->Histogram->Fill(0, (voxels + 1) * sizeof(unsigned int));
@@ -227,6 +237,7 @@ struct vtkMetaballGridBuilder::Internals
     {
       common.Set(scatter);
       scatter->SetUniformui("count", static_cast<unsigned int>(n));
+      scatter->SetUniformui("capacity", static_cast<unsigned int>(capacity));
       this->Ranges->BindBase(RangesBinding);
       this->Counts->BindBase(CountsBinding);
       this->PairVoxels->BindBase(PairVoxelsBinding);
@@ -237,8 +248,9 @@ struct vtkMetaballGridBuilder::Internals
     }
     ok = ok && this->ExclusiveScan(renWin, this->Histogram, voxels + 1, 0, true);
 
-    // Counting sort: each pair takes the next place of its voxel.
-    if (ok && pairs > 0)
+    // Counting sort: each pair takes the next place of its voxel, in as
+    // many work groups as PAIRS wrote.
+    if (ok)
     {
       glBindBuffer(GL_COPY_READ_BUFFER, this->Histogram->GetHandle());
       glBindBuffer(GL_COPY_WRITE_BUFFER, this->Cursor->GetHandle());
@@ -250,41 +262,68 @@ struct vtkMetaballGridBuilder::Internals
       ok = place != nullptr;
       if (ok)
       {
-        place->SetUniformui("count", pairs);
         this->PairVoxels->BindBase(PairVoxelsBinding);
         this->PairBalls->BindBase(PairBallsBinding);
         this->Cursor->BindBase(CursorBinding);
         this->VoxelBalls->BindBase(VoxelBallsBinding);
-        ok = place->Dispatch(vtkComputeShaderProgram::GroupCount(pairs, BallGroup));
+        this->Stats->BindBase(StatsBinding);
+        place->DispatchIndirect(this->Stats->GetHandle(), PlaceGroupsOffset);
       }
     }
     return ok;
   }
 
-  // The nearest and farthest view distance that the balls in the frustum
-  // reach (the range pass; float max and 0 when none is in view).
-  bool DepthRange(vtkOpenGLRenderWindow* renWin,
+  // The slab range into stats[5..6]: `fixed` when its second value is the
+  // larger, else the nearest and farthest view distance that the balls in the
+  // frustum reach (the range pass).
+  bool SlabRange(vtkOpenGLRenderWindow* renWin,
     const PassUniforms& common,
     size_t n,
-    double& nearD,
-    double& farD)
+    const double fixed[2])
   {
-    vtkComputeShaderProgram* range = this->Use(renWin, Range);
-    bool ok = range != nullptr;
+    const bool follow = !(fixed[1] > fixed[0]);
+    bool ok = true;
+    if (follow)
+    {
+      vtkComputeShaderProgram* range = this->Use(renWin, Range);
+      ok = range != nullptr;
+      if (ok)
+      {
+        common.Set(range);
+        range->SetUniformui("count", static_cast<unsigned int>(n));
+        ok =
+          range->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), BallGroup));
+      }
+    }
+    vtkComputeShaderProgram* slabs = ok ? this->Use(renWin, SlabPass) : nullptr;
+    ok = slabs != nullptr;
     if (ok)
     {
-      common.Set(range);
-      range->SetUniformui("count", static_cast<unsigned int>(n));
-      ok = range->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), BallGroup));
+      common.Set(slabs);
+      slabs->SetUniform2f("fixedRange",
+        static_cast<float>(follow ? 0.0 : fixed[0]),
+        static_cast<float>(follow ? 0.0 : fixed[1]));
+      ok = slabs->Dispatch(1);
     }
-    unsigned int bits[2] = { 0, 0 };
-    ok = ok && this->Stats->Download(bits, sizeof(bits));
-    float lo = 0.0f, hi = 0.0f;
-    std::memcpy(&lo, &bits[0], sizeof(float));
-    std::memcpy(&hi, &bits[1], sizeof(float));
-    nearD = lo;
-    farD = hi;
     return ok;
+  }
+
+  // The pair count from the scanned counts, the pairs placed (at most
+  // `capacity`) and the pair pass's work groups, into stats[7..11].
+  bool PairCount(vtkOpenGLRenderWindow* renWin, size_t n, size_t capacity)
+  {
+    vtkComputeShaderProgram* pairs = this->Use(renWin, PairPass);
+    if (!pairs)
+    {
+      return false;
+    }
+    this->Counts->BindBase(CountsBinding);
+    this->Stats->BindBase(StatsBinding);
+    pairs->SetUniformui("count", static_cast<unsigned int>(n));
+    pairs->SetUniformui("capacity", static_cast<unsigned int>(capacity));
+    pairs->SetUniformui("maxGroups",
+      static_cast<unsigned int>(vtkComputeShaderProgram::GetMaxWorkGroupCount(renWin)));
+    return pairs->Dispatch(1);
   }
 };
 
@@ -322,6 +361,78 @@ vtkShaderStorageBuffer* vtkMetaballGridBuilder::GetVoxelBalls()
 }
 
 //------------------------------------------------------------------------------
+vtkShaderStorageBuffer* vtkMetaballGridBuilder::GetGridStatistics()
+{
+  return this->Impl->Stats;
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballGridBuilder::ReservePairs(vtkIdType pairs)
+{
+  const vtkIdType most =
+    static_cast<vtkIdType>(vtkShaderStorageBuffer::GetMaximumSize() / sizeof(unsigned int));
+  this->PairCapacity = std::max(this->PairCapacity, std::min(pairs, most));
+}
+
+//------------------------------------------------------------------------------
+double vtkMetaballGridBuilder::GetSlabPlane(int k)
+{
+  Internals& in = *this->Impl;
+  if (!this->SlabPlanesKnown && in.Stats)
+  {
+    unsigned int bits[2] = { 0, 0 };
+    if (in.Stats->Download(bits, sizeof(bits), 5 * sizeof(unsigned int)))
+    {
+      float range[2];
+      std::memcpy(range, bits, sizeof(range));
+      this->SetSlabPlanes(range[0], range[1]);
+      ++this->NumberOfReadBacks;
+    }
+  }
+  return k >= 0 && k < static_cast<int>(this->SlabPlanes.size()) ? this->SlabPlanes[k] : 0.0;
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballGridBuilder::SetSlabPlanes(double nearD, double farD)
+{
+  this->SlabPlanes.resize(this->Slabs + 1);
+  for (int k = 0; k <= this->Slabs; ++k)
+  {
+    this->SlabPlanes[k] = nearD + (farD - nearD) * k / this->Slabs;
+  }
+  this->SlabPlanes.back() = farD;
+  this->SlabPlanesKnown = true;
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballGridBuilder::Take(const unsigned int* stats)
+{
+  // The statistics of a finished build: its counts, and room for the next.
+  const vtkIdType needed = stats[7], placed = stats[8];
+  this->NumberOfPairs = needed;
+  this->NumberOfCulledBalls = stats[2];
+  this->NumberOfInvalidBalls = stats[3];
+  this->MaximumBallsPerVoxel = stats[4];
+  std::memcpy(this->TakenRange, stats + 5, sizeof(this->TakenRange));
+  const vtkIdType most =
+    static_cast<vtkIdType>(vtkShaderStorageBuffer::GetMaximumSize() / sizeof(unsigned int));
+  if (placed < needed)
+  {
+    ++this->NumberOfOverflows;
+    if (needed > most)
+    {
+      vtkWarningMacro(<< needed << " (voxel, ball) pairs exceed the shader storage buffer limit of "
+                      << vtkShaderStorageBuffer::GetMaximumSize() << " bytes: the grid held "
+                      << placed << " and balls were left out; use larger tiles or fewer slabs.");
+    }
+  }
+  if (4 * needed > 3 * this->PairCapacity)
+  {
+    this->ReservePairs(needed + needed / 2);
+  }
+}
+
+//------------------------------------------------------------------------------
 bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
   vtkShaderStorageBuffer* balls,
   vtkIdType count,
@@ -332,8 +443,6 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
   int height)
 {
   Internals& in = *this->Impl;
-  this->NumberOfPairs = this->MaximumBallsPerVoxel = 0;
-  this->NumberOfCulledBalls = this->NumberOfInvalidBalls = 0;
   if (!renWin || !balls || count < 0 || width <= 0 || height <= 0)
   {
     vtkErrorMacro(<< "Build needs a window, a ball buffer and a viewport.");
@@ -365,26 +474,29 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
     this->TilesY,
     this->Slabs);
 
-  // Stats: nearest, farthest (float bits), culled, invalid, max per voxel.
+  // This build's statistics buffer; the finished builds' statistics come in
+  // (never waiting unless the GPU is a whole ring behind).
+  const auto take = [this](const unsigned int* stats) { this->Take(stats); };
+  in.StatRing->SetSize(StatCount);
   const float big = std::numeric_limits<float>::max();
-  unsigned int initial[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
+  unsigned int initial[StatCount] = {};
   std::memcpy(&initial[0], &big, sizeof(float));
-  bool ok = in.Stats->GetSize() >= sizeof(initial) || in.Stats->Allocate(sizeof(initial));
-  ok = ok && in.Stats->Upload(initial, sizeof(initial));
+  in.StatRing->BeginFrame(take, initial);
+  in.Stats = in.StatRing->GetFrameBuffer();
+  this->SlabPlanesKnown = false;
+  if (in.Balls > 0 && count > 2 * in.Balls)
+  {
+    // Many more balls than the last build: room in proportion, before the
+    // counts say so.
+    this->ReservePairs(
+      static_cast<vtkIdType>(static_cast<double>(this->NumberOfPairs) / in.Balls * count) + count);
+  }
+  in.Balls = count;
   balls->BindBase(BallsBinding);
   in.Stats->BindBase(StatsBinding);
 
-  // Slab planes: fixed, or from the balls in view.
-  double slabNear = this->SlabRange[0], slabFar = this->SlabRange[1];
-  if (ok && !(slabFar > slabNear))
-  {
-    ok = in.DepthRange(renWin, common, n, slabNear, slabFar);
-  }
-  // The fallback when nothing is in view, and the planes, as the CPU builders.
-  geometry.SetSlabRange(slabNear, slabFar);
-  slabNear = geometry.GetSlabNear();
-  slabFar = geometry.GetSlabFar();
-  this->SlabPlanes = geometry.GetSlabPlanes();
+  // The slab planes: fixed, or from the balls in view, on the GPU.
+  bool ok = in.SlabRange(renWin, common, n, this->SlabRange);
 
   // Count voxels per ball, then scan into each ball's first pair.
   ok = ok && Reserve(in.Ranges, 3 * (n + 1) * 2 * sizeof(int)) &&
@@ -394,8 +506,6 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
   if (ok)
   {
     common.Set(countPass);
-    countPass->SetUniformf("slabNear", static_cast<float>(slabNear));
-    countPass->SetUniformf("slabFar", static_cast<float>(slabFar));
     countPass->SetUniformui("count", static_cast<unsigned int>(n));
     balls->BindBase(BallsBinding);
     in.Ranges->BindBase(RangesBinding);
@@ -404,33 +514,40 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
     ok = countPass->Dispatch(vtkComputeShaderProgram::GroupCount(n + 1, BallGroup));
   }
   ok = ok && in.ExclusiveScan(renWin, in.Counts, n + 1, 0, false);
-  unsigned int pairs = 0;
-  ok = ok && in.Counts->Download(&pairs, sizeof(pairs), n * sizeof(unsigned int));
-  if (ok && static_cast<size_t>(pairs) > maxBytes / sizeof(unsigned int))
+  if (ok && this->PairCapacity == 0)
   {
-    vtkErrorMacro(<< pairs << " (voxel, ball) pairs exceed the shader storage buffer limit of "
-                  << maxBytes << " bytes: use larger tiles or fewer slabs.");
-    ok = false;
+    // The first build has no earlier count to size the pair buffers: it
+    // reads its own back, once.
+    unsigned int pairs = 0;
+    ok = in.Counts->Download(&pairs, sizeof(pairs), n * sizeof(unsigned int));
+    ++this->NumberOfReadBacks;
+    this->ReservePairs(std::max<vtkIdType>(pairs + pairs / 2, 1024));
   }
-
-  ok = ok && in.SortPairs(renWin, common, n, voxels, pairs);
+  const size_t capacity = static_cast<size_t>(this->PairCapacity);
+  ok = ok && in.PairCount(renWin, n, capacity);
+  ok = ok && in.SortPairs(renWin, common, n, voxels, capacity);
   in.Programs[0]->Unbind();
-
   in.Timer.ReusableStop();
-  unsigned int stats[8] = { 0, 0, 0, 0, 0, 0, 0, 0 };
-  if (this->CollectStatistics)
-  {
-    ok = ok && in.Stats->Download(stats, sizeof(stats));
-  }
+
+  // With statistics, this build's at once, and again with room when it
+  // overflowed.
+  const vtkIdType overflows = this->NumberOfOverflows;
+  in.StatRing->EndFrame(take, this->CollectStatistics);
   if (!ok)
   {
     vtkErrorMacro(<< "The metaball grid build failed (see the messages above).");
     return false;
   }
-  this->NumberOfPairs = pairs;
-  this->NumberOfCulledBalls = stats[2];
-  this->NumberOfInvalidBalls = stats[3];
-  this->MaximumBallsPerVoxel = stats[4];
+  if (this->CollectStatistics)
+  {
+    ++this->NumberOfReadBacks;
+    this->SetSlabPlanes(this->TakenRange[0], this->TakenRange[1]);
+    if (this->NumberOfOverflows > overflows &&
+      this->NumberOfPairs <= static_cast<vtkIdType>(maxBytes / sizeof(unsigned int)))
+    {
+      return this->Build(renWin, balls, count, worldToView, viewToClip, parallel, width, height);
+    }
+  }
   return true;
 }
 
@@ -449,11 +566,15 @@ void vtkMetaballGridBuilder::ReleaseGraphicsResources(vtkWindow* win)
          in.PairBalls.GetPointer(),
          in.Histogram.GetPointer(),
          in.Cursor.GetPointer(),
-         in.VoxelBalls.GetPointer(),
-         in.Stats.GetPointer() })
+         in.VoxelBalls.GetPointer() })
   {
     b->ReleaseGraphicsResources(win);
   }
+  in.StatRing->ReleaseGraphicsResources(win);
+  in.Stats = nullptr;
+  in.Balls = 0;
+  this->PairCapacity = 0;
+  this->SlabPlanesKnown = false;
   for (auto& b : in.Sums)
   {
     b->ReleaseGraphicsResources(win);
@@ -471,5 +592,8 @@ void vtkMetaballGridBuilder::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfPairs: " << this->NumberOfPairs << "\n";
   os << indent << "MaximumBallsPerVoxel: " << this->MaximumBallsPerVoxel << "\n";
   os << indent << "CollectStatistics: " << this->CollectStatistics << "\n";
+  os << indent << "PairCapacity: " << this->PairCapacity << "\n";
+  os << indent << "NumberOfOverflows: " << this->NumberOfOverflows << "\n";
+  os << indent << "NumberOfReadBacks: " << this->NumberOfReadBacks << "\n";
   os << indent << "BuildTime: " << this->BuildTime << " ms\n";
 }

@@ -23,9 +23,23 @@
  *
  * Balls come as one vec4 per ball (centre, support radius R) in an SSBO, in
  * the coordinates that WorldToView expects; balls with NaN or infinite
- * values, or R <= 0, are skipped and counted. When the pairs would not fit
- * in one shader storage buffer, Build() fails with an error naming the
- * count.
+ * values, or R <= 0, are skipped and counted.
+ *
+ * Nothing is read back inside a build. The slab range, the pair count and
+ * the work group counts of the pair pass stay on the GPU, in the
+ * statistics buffer (GetGridStatistics(), which the ray casters bind to
+ * read the slab range), and the pair pass is dispatched indirectly. The
+ * pair buffers have a capacity that the builder sets from the pair counts
+ * of earlier builds, read through fences once the GPU has passed them
+ * (never waiting): it grows to 1.5 times the count whenever a count comes
+ * within three quarters of it. A build that needs more pairs than the
+ * capacity leaves the rest out and is counted in NumberOfOverflows when its
+ * count arrives; the next builds have room. Only the first build, which has
+ * no earlier count, reads its pair count back before it sorts, and
+ * CollectStatistics reads every build's statistics back and builds again at
+ * once after an overflow, so that a frame with statistics is always whole.
+ * Pairs beyond one shader storage buffer are left out with a warning that
+ * names the count.
  */
 #ifndef vtkMetaballGridBuilder_h
 #define vtkMetaballGridBuilder_h
@@ -83,22 +97,57 @@ public:
     int height);
 
   ///@{
-  /** The grid of the last Build(). */
+  /**
+   * The grid of the last Build(). GetSlabPlane() reads the slab range back
+   * from the GPU the first time it is called after a build without
+   * statistics (a read-back outside the frame, for tests and tools; the ray
+   * casters read the range from GetGridStatistics() instead).
+   */
   int GetTilesX() const { return this->TilesX; }
   int GetTilesY() const { return this->TilesY; }
-  int GetNumberOfSlabPlanes() const { return static_cast<int>(this->SlabPlanes.size()); }
-  double GetSlabPlane(int k) const { return this->SlabPlanes[k]; }
+  int GetNumberOfSlabPlanes() const { return this->Slabs + 1; }
+  double GetSlabPlane(int k);
   vtkShaderStorageBuffer* GetVoxelOffsets(); // voxels + 1 uints
   vtkShaderStorageBuffer* GetVoxelBalls();   // pairs uints
+  /**
+   * The last build's statistics, 16 uints (vtkMetaballGridCS.glsl lists
+   * them): [5] and [6] are the slab range as float bits.
+   */
+  vtkShaderStorageBuffer* GetGridStatistics();
   ///@}
 
   ///@{
   /**
-   * Read the grid's statistics back after each Build() (culled and invalid
-   * balls, the most balls in a voxel), which waits for the GPU to finish the
-   * build. Off (the default): they stay 0, and nothing waits but the two
-   * read-backs the build needs (the slab range when it follows the balls,
-   * and the pair count that sizes the pair buffers).
+   * The pairs that the pair buffers hold (0 before the first build); the
+   * builder sizes it as the class comment says. Set it before a build to
+   * reserve room for a view that will need more (it never shrinks but with
+   * ReleaseGraphicsResources()).
+   */
+  vtkIdType GetPairCapacity() const { return this->PairCapacity; }
+  void ReservePairs(vtkIdType pairs);
+  ///@}
+
+  /**
+   * Builds so far that needed more pairs than the capacity of their time,
+   * known once their counts arrive (with CollectStatistics at once, and
+   * built again).
+   */
+  vtkGetMacro(NumberOfOverflows, vtkIdType);
+
+  /**
+   * Read-backs that waited for the GPU since the builder was made: the
+   * first build's pair count, each build's statistics with
+   * CollectStatistics, and the slab range of GetSlabPlane(). A frame at
+   * the defaults adds none after the first.
+   */
+  vtkGetMacro(NumberOfReadBacks, vtkIdType);
+
+  ///@{
+  /**
+   * Read the grid's statistics back after each Build() (pairs, culled and
+   * invalid balls, the most balls in a voxel), which waits for the GPU to
+   * finish the build. Off (the default): nothing waits, and the statistics
+   * are those of the latest build that the GPU has finished.
    */
   vtkSetMacro(CollectStatistics, bool);
   vtkGetMacro(CollectStatistics, bool);
@@ -106,7 +155,7 @@ public:
   ///@}
 
   ///@{
-  /** Statistics of the last Build(): the pair count always, the others with CollectStatistics. */
+  /** Statistics of the last Build() with CollectStatistics, else of the latest finished one. */
   vtkGetMacro(NumberOfPairs, vtkIdType);
   vtkGetMacro(MaximumBallsPerVoxel, vtkIdType);
   vtkGetMacro(NumberOfCulledBalls, vtkIdType);
@@ -131,7 +180,12 @@ protected:
   double SlabRange[2] = { 0.0, 0.0 };
   int TilesX = 0;
   int TilesY = 0;
-  std::vector<double> SlabPlanes;
+  std::vector<double> SlabPlanes; // valid when SlabPlanesKnown
+  bool SlabPlanesKnown = false;
+  float TakenRange[2] = { 0.0f, 0.0f }; // the slab range of the latest statistics read
+  vtkIdType PairCapacity = 0;
+  vtkIdType NumberOfOverflows = 0;
+  vtkIdType NumberOfReadBacks = 0;
   vtkIdType NumberOfPairs = 0;
   vtkIdType MaximumBallsPerVoxel = 0;
   vtkIdType NumberOfCulledBalls = 0;
@@ -140,6 +194,9 @@ protected:
   double BuildTime = 0.0;
 
 private:
+  void SetSlabPlanes(double nearD, double farD);
+  void Take(const unsigned int* stats);
+
   struct Internals;
   std::unique_ptr<Internals> Impl;
 

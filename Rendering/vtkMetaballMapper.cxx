@@ -90,6 +90,7 @@ struct vtkMetaballMapper::Internals
   vtkNew<vtkMetaballShadowHelper> Shadows;
   vtkNew<vtkMetaballSelectionHelper> Selection;
   vtkNew<vtkMetaballGPUCounters> Counters;
+  vtkIdType CounterReadBacks = 0; // the counters read at once (CollectStatistics)
   bool WarnedShadow = false;
   bool WarnedInside = false;
   bool WarnedBudget = false;
@@ -476,6 +477,7 @@ int vtkMetaballMapper::CastFrame(vtkRenderer* ren,
   }
   // The frame's counters are complete: fenced, and read now only when asked to wait.
   in.Counters->EndFrame(report, this->CollectStatistics);
+  in.CounterReadBacks += this->CollectStatistics ? 1 : 0;
   if (shadowLights > 0)
   {
     const double shadowSeconds = in.Shadows->GetElapsedSeconds();
@@ -483,6 +485,21 @@ int vtkMetaballMapper::CastFrame(vtkRenderer* ren,
   }
   in.CastValid = cast;
   return cast ? shadowLights : -1;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMetaballMapper::GetNumberOfReadBacks()
+{
+  const Internals& in = *this->Impl;
+  return in.GPUCaster->GetNumberOfReadBacks() + in.Shadows->GetNumberOfReadBacks() +
+    in.CounterReadBacks;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMetaballMapper::GetNumberOfGridOverflows()
+{
+  const Internals& in = *this->Impl;
+  return in.GPUCaster->GetNumberOfOverflows() + in.Shadows->GetNumberOfOverflows();
 }
 
 //------------------------------------------------------------------------------

@@ -249,6 +249,25 @@ public:
   ///@}
 
   /**
+   * Read-backs that waited for the GPU in this mapper's frames so far: the
+   * first build of each grid (the camera's and the light's), which sizes its
+   * pair buffers, and with CollectStatistics every frame's grids and
+   * counters. A frame at the defaults adds none: the slab range, the pair
+   * count and the dispatch sizes stay on the GPU, and counters and
+   * statistics arrive through fences a frame or two late.
+   */
+  vtkIdType GetNumberOfReadBacks();
+
+  /**
+   * Grid builds whose pairs outgrew the buffers sized from earlier frames
+   * (a zoom far beyond the views so far): such a frame leaves some balls out
+   * of the grid, and the buffers have room from the next frame on (see
+   * vtkMetaballGridBuilder). With CollectStatistics a frame is built again
+   * at once instead.
+   */
+  vtkIdType GetNumberOfGridOverflows();
+
+  /**
    * Pixels whose rays start inside the surface, in the latest frame whose
    * counters were read (see CollectStatistics): the near clipping plane cuts
    * into it (the camera is inside a blob, or a ball crosses the near plane).

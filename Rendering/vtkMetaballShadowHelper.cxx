@@ -181,8 +181,6 @@ int vtkMetaballShadowHelper::Cast(vtkRenderer* ren,
     shadow->SetUniformi("tileSize", LightTile);
     shadow->SetUniform2i("tiles", this->LightGrid->GetTilesX(), this->LightGrid->GetTilesY());
     shadow->SetUniformi("slabs", LightSlabs);
-    shadow->SetUniformf("slabNear", static_cast<float>(this->LightGrid->GetSlabPlane(0)));
-    shadow->SetUniformf("slabFar", static_cast<float>(this->LightGrid->GetSlabPlane(LightSlabs)));
     shadow->SetUniformf("threshold", static_cast<float>(request.Threshold));
     shadow->SetUniformf("stepScale", static_cast<float>(request.StepScale));
     shadow->SetUniformf("selfOffset", static_cast<float>(0.05 * balls.MinRadius));
@@ -192,7 +190,8 @@ int vtkMetaballShadowHelper::Cast(vtkRenderer* ren,
     balls.Strengths->BindBase(2);
     this->LightGrid->GetVoxelOffsets()->BindBase(3);
     this->LightGrid->GetVoxelBalls()->BindBase(4);
-    counters->BindBase(5); // this frame's counters
+    counters->BindBase(5);                             // this frame's counters
+    this->LightGrid->GetGridStatistics()->BindBase(6); // the slab range
     glBindImageTexture(2, images.Depth->GetHandle(), 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
     glBindImageTexture(
       3, this->ShadowImage->GetHandle(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
@@ -209,6 +208,18 @@ int vtkMetaballShadowHelper::Cast(vtkRenderer* ren,
 vtkTextureObject* vtkMetaballShadowHelper::GetShadowImage()
 {
   return this->ShadowImage;
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMetaballShadowHelper::GetNumberOfReadBacks()
+{
+  return this->LightGrid->GetNumberOfReadBacks();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkMetaballShadowHelper::GetNumberOfOverflows()
+{
+  return this->LightGrid->GetNumberOfOverflows();
 }
 
 //------------------------------------------------------------------------------

@@ -14,8 +14,20 @@
 //            each group's total written out; optionally the largest value
 // 3 ADD      adds the scanned group totals back (multi-level scans)
 // 4 SCATTER  per ball: its (voxel, ball) pairs at its scanned offset, and a
-//            histogram of pairs per voxel
-// 5 PLACE    per pair: the ball id into its voxel's list (counting sort)
+//            histogram of pairs per voxel; pairs beyond the capacity are
+//            left out (and counted: the builder grows its buffers)
+// 5 PLACE    per pair: the ball id into its voxel's list (counting sort),
+//            dispatched indirectly with the sizes that PAIRS wrote
+// 6 SLABS    one invocation: the slab range, fixed or from RANGE's result,
+//            with the CPU geometry's fallback when no ball is in view
+// 7 PAIRS    one invocation: the pair count from the scan, the pairs placed
+//            (at most the capacity) and PLACE's indirect dispatch sizes
+//
+// Nothing is read back inside a build: the slab range, the pair count and the
+// dispatch sizes stay in `stats`, which the ray casters read too:
+// [0] [1] nearest and farthest ball distance (float bits), [2] culled,
+// [3] invalid, [4] most balls in a voxel, [5] [6] the slab range (float bits),
+// [7] pairs needed, [8] pairs placed, [9..11] PLACE's work groups.
 //
 // The arithmetic follows pointsurfaces::BallVoxels (psMetaball.cxx), in
 // float: a ball's view-space box is projected to find its tiles.
@@ -27,6 +39,8 @@
 
 #if PASS == 2
 layout(local_size_x = 512) in;
+#elif PASS >= 6
+layout(local_size_x = 1) in;
 #else
 layout(local_size_x = 256) in;
 #endif
@@ -40,7 +54,7 @@ layout(std430, binding = 5) buffer PairBalls { uint pairBalls[]; };
 layout(std430, binding = 6) buffer Histogram { uint histogram[]; };  // per voxel, + 1
 layout(std430, binding = 7) buffer Cursor { uint cursor[]; };        // per voxel
 layout(std430, binding = 8) buffer VoxelBalls { uint voxelBalls[]; };
-layout(std430, binding = 9) buffer Stats { uint stats[]; }; // near, far bits, culled, invalid, max
+layout(std430, binding = 9) buffer Stats { uint stats[]; }; // as listed above
 
 uniform mat4 worldToView;
 uniform mat4 viewToClip;
@@ -51,10 +65,11 @@ uniform ivec2 viewport;
 uniform int tileSize;
 uniform ivec2 tiles;
 uniform int slabs;
-uniform float slabNear;
-uniform float slabFar;
+uniform vec2 fixedRange;      // the slab range when fixed (SLABS), else y <= x
 uniform vec2 projectionRange; // near and far view distance of the projection
 uniform int recordMax;
+uniform uint capacity;  // pairs the buffers hold (SCATTER, PAIRS)
+uniform uint maxGroups; // work groups a dispatch dimension allows (PAIRS)
 
 bool psValid(vec4 b)
 {
@@ -73,11 +88,13 @@ bool psOutside(vec3 c, float r)
   return false;
 }
 
-int psSlabOf(float d)
+#if PASS == 1
+int psSlabOf(float d, float slabNear, float slabFar)
 {
   float s = (d - slabNear) / (slabFar - slabNear) * float(slabs);
   return clamp(int(floor(s)), 0, slabs - 1);
 }
+#endif
 
 #if PASS == 2
 shared uint scratch[1024];
@@ -126,12 +143,13 @@ void main()
   vec3 c = (worldToView * vec4(b.xyz, 1.0)).xyz;
   float r = b.w;
   float d = -c.z;
+  float slabNear = uintBitsToFloat(stats[5]), slabFar = uintBitsToFloat(stats[6]);
   if (psOutside(c, r) || d + r < slabNear || d - r > slabFar)
   {
     atomicAdd(stats[2], 1u);
     return;
   }
-  ivec2 zr = ivec2(psSlabOf(d - r), psSlabOf(d + r));
+  ivec2 zr = ivec2(psSlabOf(d - r, slabNear, slabFar), psSlabOf(d + r, slabNear, slabFar));
   vec2 lo = vec2(1e30), hi = vec2(-1e30);
   bool everywhere = parallelProjection == 0 && d - r <= 0.0;
   for (int k = 0; k < 8 && !everywhere; ++k)
@@ -250,7 +268,7 @@ void main()
   {
     for (int y = yr.x; y <= yr.y; ++y)
     {
-      for (int x = xr.x; x <= xr.y; ++x)
+      for (int x = xr.x; x <= xr.y && k < capacity; ++x)
       {
         uint voxel = uint((z * tiles.y + y) * tiles.x + x);
         pairVoxels[k] = voxel;
@@ -262,13 +280,36 @@ void main()
   }
 
 #elif PASS == 5
-  uint k = gl_GlobalInvocationID.x;
-  if (k >= count)
+  // Rows of work groups when there are more than one dimension allows.
+  uint k = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 256u +
+    gl_LocalInvocationID.x;
+  if (k >= stats[8])
   {
     return;
   }
   uint voxel = pairVoxels[k];
   uint position = atomicAdd(cursor[voxel], 1u);
   voxelBalls[position] = pairBalls[k];
+
+#elif PASS == 6
+  // As pointsurfaces::PerspectiveGridGeometry::SetSlabRange.
+  vec2 range = fixedRange.y > fixedRange.x ? fixedRange
+                                           : vec2(uintBitsToFloat(stats[0]), uintBitsToFloat(stats[1]));
+  if (!(range.y > range.x))
+  {
+    range = vec2(projectionRange.x, min(projectionRange.y, projectionRange.x + 1.0));
+  }
+  stats[5] = floatBitsToUint(range.x);
+  stats[6] = floatBitsToUint(range.y);
+
+#elif PASS == 7
+  uint needed = counts[count];
+  uint placed = min(needed, capacity);
+  stats[7] = needed;
+  stats[8] = placed;
+  uint groups = (placed + 255u) / 256u;
+  stats[9] = min(groups, maxGroups);
+  stats[10] = max(1u, (groups + maxGroups - 1u) / maxGroups);
+  stats[11] = 1u;
 #endif
 }

@@ -58,8 +58,10 @@ uniform int parallelProjection;
 uniform ivec2 viewport;
 uniform ivec2 tiles;
 uniform int slabs;
-uniform float slabNear;
-uniform float slabFar;
+// The grid builder's statistics: [5] and [6] are the slab range (float bits).
+layout(std430, binding = 6) readonly buffer GridStatistics { uint gridStatistics[]; };
+#define slabNear uintBitsToFloat(gridStatistics[5])
+#define slabFar uintBitsToFloat(gridStatistics[6])
 uniform float threshold;
 uniform float stepScale;
 uniform int bisections;

@@ -43,8 +43,10 @@ uniform ivec2 lightViewport; // the light grid's
 uniform int tileSize;
 uniform ivec2 tiles;
 uniform int slabs;
-uniform float slabNear;
-uniform float slabFar;
+// The grid builder's statistics: [5] and [6] are the slab range (float bits).
+layout(std430, binding = 6) readonly buffer GridStatistics { uint gridStatistics[]; };
+#define slabNear uintBitsToFloat(gridStatistics[5])
+#define slabFar uintBitsToFloat(gridStatistics[6])
 uniform float threshold;
 uniform float stepScale;
 uniform float selfOffset; // model units kept clear around the surface point

@@ -9,6 +9,12 @@
 // must lie between the reference lists of the balls shrunk and grown by
 // 1e-4 of their radius. The automatic slab planes, the pair count and the
 // culled and invalid counts are compared as well.
+//
+// The pair buffers' capacity: a build reads nothing back but the first;
+// a view that needs more pairs than the capacity is counted as an overflow
+// once its count arrives (statistics off) or built again at once
+// (statistics on), and the builds after it are whole; pairs beyond the
+// storage buffer limit are left out with a warning, not a crash.
 #include "vtkCamera.h"
 #include "vtkMatrix4x4.h"
 #include "vtkMetaballGridBuilder.h"
@@ -43,16 +49,8 @@ struct Lists
   }
 };
 
-int Compare(vtkOpenGLRenderWindow* win,
-  vtkCamera* camera,
-  vtkShaderStorageBuffer* buffer,
-  const std::vector<double>& centres,
-  const std::vector<double>& radii,
-  int size,
-  int tile,
-  int slabs)
+void Matrices(vtkCamera* camera, double worldToView[16], double viewToClip[16])
 {
-  double worldToView[16], viewToClip[16];
   vtkMatrix4x4* m = camera->GetViewTransformMatrix();
   vtkMatrix4x4* p = camera->GetProjectionTransformMatrix(1.0, -1, 1);
   for (int k = 0; k < 16; ++k)
@@ -60,8 +58,24 @@ int Compare(vtkOpenGLRenderWindow* win,
     worldToView[k] = m->GetElement(k / 4, k % 4);
     viewToClip[k] = p->GetElement(k / 4, k % 4);
   }
+}
+
+// The grid of `builder` (a fresh one when null) against the reference.
+int Compare(vtkOpenGLRenderWindow* win,
+  vtkCamera* camera,
+  vtkShaderStorageBuffer* buffer,
+  const std::vector<double>& centres,
+  const std::vector<double>& radii,
+  int size,
+  int tile,
+  int slabs,
+  vtkMetaballGridBuilder* given = nullptr)
+{
+  double worldToView[16], viewToClip[16];
+  Matrices(camera, worldToView, viewToClip);
   const long long n = static_cast<long long>(radii.size());
-  vtkNew<vtkMetaballGridBuilder> builder;
+  vtkNew<vtkMetaballGridBuilder> fresh;
+  vtkMetaballGridBuilder* builder = given ? given : fresh.Get();
   builder->CollectStatisticsOn(); // the culled and per-voxel counts are checked
   builder->SetTileSize(tile);
   builder->SetSlabs(slabs);
@@ -139,7 +153,10 @@ int Compare(vtkOpenGLRenderWindow* win,
             << builder->GetNumberOfCulledBalls() << " culled, "
             << builder->GetNumberOfInvalidBalls() << " invalid, " << builder->GetBuildTime()
             << " ms to build; " << missing << " missing, " << extra << " extra\n";
-  builder->ReleaseGraphicsResources(win);
+  if (!given)
+  {
+    builder->ReleaseGraphicsResources(win);
+  }
   if (missing || extra || builder->GetNumberOfInvalidBalls() != grids[0].Invalid ||
     builder->GetNumberOfCulledBalls() < grids[1].Culled ||
     builder->GetNumberOfCulledBalls() > grids[0].Culled ||
@@ -147,6 +164,87 @@ int Compare(vtkOpenGLRenderWindow* win,
   {
     std::cerr << "the GPU grid differs from the reference\n";
     ++failures;
+  }
+  return failures;
+}
+// The capacity of the pair buffers, from a far view (few pairs) to a near
+// one (many).
+int Capacity(vtkOpenGLRenderWindow* win,
+  vtkCamera* camera,
+  vtkShaderStorageBuffer* buffer,
+  const std::vector<double>& centres,
+  const std::vector<double>& radii)
+{
+  int failures = 0;
+  const long long n = static_cast<long long>(radii.size());
+  double far[16], farClip[16], near[16], clip[16];
+  camera->SetPosition(2.5, 4.0, 30.0);
+  camera->SetClippingRange(5.0, 60.0);
+  Matrices(camera, far, farClip);
+  camera->SetPosition(0.5, 0.8, 6.0);
+  camera->SetClippingRange(0.5, 20.0);
+  Matrices(camera, near, clip);
+  const auto build = [&](vtkMetaballGridBuilder* builder, const double* view)
+  { return builder->Build(win, buffer, n, view, view == far ? farClip : clip, false, 256, 256); };
+
+  // Statistics off: one read-back in all, the overflow found later.
+  vtkNew<vtkMetaballGridBuilder> quiet;
+  bool ok = true;
+  for (int frame = 0; frame < 6; ++frame)
+  {
+    ok = build(quiet, far) && ok;
+  }
+  const vtkIdType farCapacity = quiet->GetPairCapacity();
+  const vtkIdType readBacks = quiet->GetNumberOfReadBacks();
+  for (int frame = 0; frame < 6; ++frame)
+  {
+    ok = build(quiet, near) && ok;
+  }
+  std::cout << "capacity " << farCapacity << " pairs from the far view, "
+            << quiet->GetPairCapacity() << " after the near one (" << quiet->GetNumberOfPairs()
+            << " pairs); " << quiet->GetNumberOfOverflows() << " overflow(s), "
+            << quiet->GetNumberOfReadBacks() << " read-back(s) in 12 builds\n";
+  if (!ok || readBacks != 1 || quiet->GetNumberOfReadBacks() != 1 ||
+    quiet->GetNumberOfOverflows() != 1 || quiet->GetPairCapacity() < quiet->GetNumberOfPairs() ||
+    farCapacity >= quiet->GetNumberOfPairs())
+  {
+    std::cerr << "the capacity did not follow the pair counts without read-backs\n";
+    ++failures;
+  }
+  // The builds after the overflow are whole.
+  failures += Compare(win, camera, buffer, centres, radii, 256, 16, 16, quiet);
+
+  // Statistics on: the overflowing build is made again at once, whole.
+  vtkNew<vtkMetaballGridBuilder> counted;
+  counted->CollectStatisticsOn();
+  ok = build(counted, far);
+  failures += Compare(win, camera, buffer, centres, radii, 256, 16, 16, counted);
+  if (!ok || counted->GetNumberOfOverflows() != 1)
+  {
+    std::cerr << "the near view after the far one did not overflow once with statistics ("
+              << counted->GetNumberOfOverflows() << ")\n";
+    ++failures;
+  }
+
+  // Beyond the storage buffer limit: the grid holds what fits, with a warning.
+  vtkShaderStorageBuffer::SetMaximumSizeLimit(64 * 1024 * 1024);
+  vtkNew<vtkMetaballGridBuilder> small;
+  small->CollectStatisticsOn();
+  small->SetTileSize(1);
+  small->SetSlabs(64);
+  std::cout << "expect a warning: pairs beyond a 64 MiB storage buffer\n";
+  ok = small->Build(win, buffer, n, near, clip, false, 256, 256);
+  vtkShaderStorageBuffer::SetMaximumSizeLimit(0);
+  std::cout << small->GetNumberOfPairs() << " pairs needed, capacity " << small->GetPairCapacity()
+            << "\n";
+  if (!ok || small->GetNumberOfPairs() <= small->GetPairCapacity())
+  {
+    std::cerr << "the grid beyond the buffer limit was not partial\n";
+    ++failures;
+  }
+  for (vtkMetaballGridBuilder* b : { quiet.Get(), counted.Get(), small.Get() })
+  {
+    b->ReleaseGraphicsResources(win);
   }
   return failures;
 }
@@ -212,6 +310,7 @@ int TestMetaballGridBuild(int, char*[])
   vtkNew<vtkShaderStorageBuffer> few;
   few->Upload(fewPacked.data(), fewPacked.size() * sizeof(float));
   failures += Compare(win, camera, few, fewCentres, fewRadii, 256, 1, 32);
+  failures += Capacity(win, camera, buffer, centres, radii);
   buffer->ReleaseGraphicsResources(win);
   few->ReleaseGraphicsResources(win);
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;

@@ -12,7 +12,9 @@
 // holds freed memory; the asan preset runs only the unit tests, and
 // TestMetaballCast's time series is the CPU caster's check there. The
 // per-frame upload, grid and ray-cast times are printed;
-// bench_metaball_series.py measures them at full size.
+// bench_metaball_series.py measures them at full size. Last, 12 GPU frames
+// without statistics: none of them waits on a read-back, and the counters
+// that arrive late still show the surface.
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkDoubleArray.h"
@@ -140,6 +142,31 @@ int TestMetaballMapperTimeSeries(int, char*[])
             << " ms; resident memory " << residentAfterWarmUp << " MB at frame 20, "
             << residentMiddle << " MB at frame " << cpuFrames - 100 << ", " << residentEnd
             << " MB at frame " << cpuFrames << "; then " << gpuFrames << " GPU frames\n";
+  // Without statistics: no read-back in any frame.
+  mapper->SetCollectStatistics(false);
+  const vtkIdType readBacks = mapper->GetNumberOfReadBacks();
+  for (int frame = 0; frame < 12; ++frame)
+  {
+    vortex.Step();
+    vtkNew<vtkPoints> points;
+    points->SetNumberOfPoints(n);
+    for (int i = 0; i < n; ++i)
+    {
+      points->SetPoint(i, vortex.Position(i));
+    }
+    poly->SetPoints(points);
+    window->Render();
+  }
+  std::cout << "12 GPU frames without statistics: " << mapper->GetNumberOfReadBacks() - readBacks
+            << " read-backs (" << readBacks << " before, with statistics), "
+            << mapper->GetNumberOfGridOverflows() << " grid overflows, "
+            << mapper->GetNumberOfHits() << " hits in a late frame\n";
+  if (mapper->GetNumberOfReadBacks() != readBacks || mapper->GetNumberOfHits() < 500 ||
+    mapper->GetNumberOfGridOverflows() != 0)
+  {
+    std::cerr << "a frame without statistics read back, overflowed or lost its counters\n";
+    ++failures;
+  }
 #ifndef PS_ASAN
   if (residentEnd - residentMiddle > 4.0)
   {
