@@ -75,16 +75,22 @@ vtkIdType MetaballBalls::Convert(const MetaballSet& set)
 }
 
 //------------------------------------------------------------------------------
+unsigned int PlainColor(vtkProperty* prop)
+{
+  double* diffuse = prop->GetDiffuseColor();
+  return static_cast<unsigned int>(vtkMath::Round(255 * diffuse[0])) |
+    (static_cast<unsigned int>(vtkMath::Round(255 * diffuse[1])) << 8) |
+    (static_cast<unsigned int>(vtkMath::Round(255 * diffuse[2])) << 16) | (255u << 24);
+}
+
+//------------------------------------------------------------------------------
 void MetaballBalls::ConvertColors(vtkUnsignedCharArray* mapped, vtkProperty* prop, vtkIdType n)
 {
   std::vector<unsigned int>& colors = this->HostColors;
   colors.resize(std::max<vtkIdType>(n, 1));
   const unsigned char* rgba =
     mapped && mapped->GetNumberOfComponents() == 4 ? mapped->GetPointer(0) : nullptr;
-  double* diffuse = prop->GetDiffuseColor();
-  const unsigned int plain = static_cast<unsigned int>(vtkMath::Round(255 * diffuse[0])) |
-    (static_cast<unsigned int>(vtkMath::Round(255 * diffuse[1])) << 8) |
-    (static_cast<unsigned int>(vtkMath::Round(255 * diffuse[2])) << 16) | (255u << 24);
+  const unsigned int plain = PlainColor(prop);
   vtkSMPTools::For(0,
     n,
     [&](vtkIdType begin, vtkIdType end)

@@ -35,7 +35,11 @@ class vtkWindow;
 
 namespace pointsurfaces
 {
-/** The input's balls: in double as extracted, in float on the GPU and the host. */
+/**
+ * The input's balls: in float on the GPU; in double as extracted and in
+ * float on the host only when HostValid (the CPU ray caster and a selection
+ * read those; vtkMetaballUploader sends the GPU's without them).
+ */
 struct MetaballBalls
 {
   /** xyz relative to Shift and radius (0: unusable), per ball; colour (rgba8); strength. */
@@ -48,7 +52,9 @@ struct MetaballBalls
   double Shift[3] = { 0.0, 0.0, 0.0 }; ///< subtracted from the centres before float
   vtkIdType Count = 0;                 ///< balls uploaded; 0 when the upload failed
   bool HasStrengths = false;
-  double MinRadius = 1.0; ///< the smallest usable radius
+  bool ColorPerBall = true; ///< else Colors holds one colour for all
+  bool HostValid = false;   ///< Extracted and the host arrays hold the uploaded balls
+  double MinRadius = 1.0;   ///< the smallest usable radius
 
   /**
    * The balls of `set` in float, relative to Shift, into the host arrays;
@@ -67,6 +73,7 @@ struct MetaballBalls
     this->Colors->ReleaseGraphicsResources(win);
     this->Strengths->ReleaseGraphicsResources(win);
     this->Count = 0;
+    this->HostValid = false;
   }
 };
 
@@ -198,6 +205,9 @@ inline bool ReadTexture(vtkTextureObject* texture, GLenum format, GLenum type, v
   texture->Deactivate();
   return glGetError() == GL_NO_ERROR;
 }
+
+/** The rgba8 colour (as a little-endian uint) of `prop`'s diffuse colour, opaque. */
+unsigned int PlainColor(vtkProperty* prop);
 
 /** A row-major 4x4 matrix in float, for a uniform. */
 inline void ToFloat(const double m[16], float out[16])

@@ -40,9 +40,11 @@ public:
   /** What takes a frame's counters (GetSize() of them) once they are read. */
   using Report = std::function<void(const unsigned int* counters)>;
 
+  ///@{
   /** How many counters a frame has (Count unless set; at most 64). Set before the first frame. */
   void SetSize(int size) { this->Size = size < 1 ? 1 : (size > MaxSize ? MaxSize : size); }
   int GetSize() const { return this->Size; }
+  ///@}
 
   /**
    * Starts a frame: reports the counters of the earlier frames that the GPU

@@ -94,6 +94,7 @@ bool vtkMetaballGPURayCaster::Cast(vtkOpenGLRenderWindow* renWin,
   program->SetUniformf("stepScale", static_cast<float>(request.StepScale));
   program->SetUniformi("bisections", request.Bisections);
   program->SetUniformi("useStrengths", balls.HasStrengths ? 1 : 0);
+  program->SetUniformi("colorPerBall", balls.ColorPerBall ? 1 : 0);
   balls.Balls->BindBase(0);
   balls.Colors->BindBase(1);
   balls.Strengths->BindBase(2);

@@ -38,9 +38,11 @@ public:
     vtkShaderStorageBuffer* counters,
     pointsurfaces::MetaballCastStatistics& stats) override;
   bool CountsOnHost() const override { return false; }
+  ///@{
   /** The grid's read-backs and overflows (vtkMetaballGridBuilder's counts). */
   vtkIdType GetNumberOfReadBacks();
   vtkIdType GetNumberOfOverflows();
+  ///@}
   void ReleaseGraphicsResources(vtkWindow* win) override;
 
 protected:

@@ -21,6 +21,7 @@
 #include "vtkMetaballGPURayCaster.h"
 #include "vtkMetaballSelectionHelper.h"
 #include "vtkMetaballShadowHelper.h"
+#include "vtkMetaballUploader.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -91,6 +92,7 @@ struct vtkMetaballMapper::Internals
   vtkNew<vtkMetaballSelectionHelper> Selection;
   vtkNew<vtkMetaballGPUCounters> Counters;
   vtkIdType CounterReadBacks = 0; // the counters read at once (CollectStatistics)
+  vtkNew<vtkMetaballUploader> Uploader;
   bool WarnedShadow = false;
   bool WarnedInside = false;
   bool WarnedBudget = false;
@@ -235,7 +237,7 @@ void vtkMetaballMapper::ComputeBounds()
 }
 
 //------------------------------------------------------------------------------
-bool vtkMetaballMapper::Upload(vtkRenderer*, vtkActor* act, vtkPointSet* input)
+bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* input)
 {
   Internals& in = *this->Impl;
   pointsurfaces::MetaballBalls& balls = in.Balls;
@@ -271,6 +273,85 @@ bool vtkMetaballMapper::Upload(vtkRenderer*, vtkActor* act, vtkPointSet* input)
     balls.Count = 0;
     return false;
   }
+  // Float, relative to the centre of the points' bounds, rounded to float so
+  // that float positions shifted on the GPU land where the host puts them.
+  double bounds[6];
+  input->GetPoints()->GetBounds(bounds);
+  for (int k = 0; k < 3; ++k)
+  {
+    const float c = static_cast<float>(0.5 * (bounds[2 * k] + bounds[2 * k + 1]));
+    balls.Shift[k] = std::isfinite(c) ? c : 0.0;
+  }
+  const double scale = ActorScale(act);
+  vtkUnsignedCharArray* mapped = this->MapScalars(input, 1.0);
+  bool ok = false;
+  if (this->UsesCPUCaster())
+  {
+    // The CPU ray caster reads the host's float balls: made, then sent.
+    this->HostCopy(act, input);
+    const std::vector<float>& hostBalls = balls.HostBalls;
+    ok =
+      balls.Balls->Upload(hostBalls.data(), std::max<size_t>(hostBalls.size(), 4) * sizeof(float));
+    ok = ok &&
+      balls.Colors->Upload(balls.HostColors.data(), balls.HostColors.size() * sizeof(unsigned int));
+    ok = ok &&
+      balls.Strengths->Upload(
+        balls.HostStrengths.data(), balls.HostStrengths.size() * sizeof(float));
+    balls.ColorPerBall = true;
+    balls.Count = ok ? n : 0;
+    this->UploadCopyTime = 0.0;
+    this->UploadedBytes = static_cast<double>(n) * (4 + 1 + (balls.HasStrengths ? 1 : 0)) * 4.0;
+  }
+  else
+  {
+    // The GPU's balls straight from the input's arrays; no host copy.
+    const pointsurfaces::RadiusSource source = this->Field->ChooseRadii(input);
+    const pointsurfaces::BallRule rule = this->Field->GetRule();
+    pointsurfaces::BallArrays missing;
+    missing.MissingStrengths =
+      !rule.StrengthArrayName.empty() && !pointsurfaces::StrengthArray(input, rule);
+    if (!rule.DensityArrayName.empty() &&
+      !input->GetPointData()->GetArray(rule.DensityArrayName.c_str()))
+    {
+      missing.MissingDensityName = rule.DensityArrayName;
+    }
+    const std::string strengthWarning =
+      pointsurfaces::MissingStrengthsWarning(missing, this->Field->GetStrengthArrayName());
+    if (!strengthWarning.empty())
+    {
+      vtkWarningMacro(<< strengthWarning);
+    }
+    const auto report = [this, n](vtkIdType invalid)
+    {
+      this->NumberOfInvalidBalls = invalid;
+      if (invalid > 0)
+      {
+        vtkWarningMacro(<< pointsurfaces::InvalidBallsWarning(invalid, n));
+      }
+    };
+    balls.HostValid = false;
+    ok = in.Uploader->Upload(static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow()),
+      input,
+      rule,
+      source,
+      scale,
+      mapped,
+      pointsurfaces::PlainColor(act->GetProperty()),
+      this->CollectStatistics,
+      report,
+      balls);
+    in.CounterReadBacks += this->CollectStatistics ? 1 : 0;
+    this->UploadedBytes = in.Uploader->GetUploadedBytes();
+    this->UploadCopyTime = in.Uploader->GetCopyTime();
+  }
+  ++this->NumberOfUploads;
+  in.UploadTime.Modified();
+  return ok;
+}
+
+//------------------------------------------------------------------------------
+double vtkMetaballMapper::ActorScale(vtkActor* act)
+{
   // Radii grow with the actor's largest axis scale.
   double scale = 1.0;
   if (!act->GetIsIdentity())
@@ -284,41 +365,39 @@ bool vtkMetaballMapper::Upload(vtkRenderer*, vtkActor* act, vtkPointSet* input)
           m->GetElement(1, a) * m->GetElement(1, a) + m->GetElement(2, a) * m->GetElement(2, a)));
     }
   }
-  this->Field->ExtractBalls(input, scale, balls.Extracted);
+  return scale;
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballMapper::HostCopy(vtkActor* act, vtkPointSet* input)
+{
+  // The balls in double (Extracted), and in float relative to Shift with
+  // their colours (the host arrays), as the CPU ray caster and a selection
+  // read them.
+  pointsurfaces::MetaballBalls& balls = this->Impl->Balls;
+  const vtkIdType n = input->GetNumberOfPoints();
+  this->Field->ExtractBalls(input, ActorScale(act), balls.Extracted);
   const std::string strengthWarning =
     pointsurfaces::MissingStrengthsWarning(balls.Extracted, this->Field->GetStrengthArrayName());
   if (!strengthWarning.empty())
   {
     vtkWarningMacro(<< strengthWarning);
   }
-  // Float, relative to the centre of the points' bounds.
-  double bounds[6];
-  input->GetPoints()->GetBounds(bounds);
-  for (int k = 0; k < 3; ++k)
-  {
-    const double c = 0.5 * (bounds[2 * k] + bounds[2 * k + 1]);
-    balls.Shift[k] = std::isfinite(c) ? c : 0.0;
-  }
   const vtkIdType invalid = balls.Convert(balls.Extracted.Set);
   if (invalid > 0)
   {
     vtkWarningMacro(<< pointsurfaces::InvalidBallsWarning(invalid, n));
   }
-  // Colours: the usual scalar colouring, or the actor's colour.
-  balls.ConvertColors(this->MapScalars(input, 1.0), act->GetProperty(), n);
-  const std::vector<float>& hostBalls = balls.HostBalls;
-  bool ok =
-    balls.Balls->Upload(hostBalls.data(), std::max<size_t>(hostBalls.size(), 4) * sizeof(float));
-  ok = ok &&
-    balls.Colors->Upload(balls.HostColors.data(), balls.HostColors.size() * sizeof(unsigned int));
-  ok = ok &&
-    balls.Strengths->Upload(balls.HostStrengths.data(), balls.HostStrengths.size() * sizeof(float));
-  balls.HasStrengths = balls.Extracted.Set.Strengths != nullptr;
-  balls.Count = ok ? n : 0;
   this->NumberOfInvalidBalls = invalid;
-  ++this->NumberOfUploads;
-  in.UploadTime.Modified();
-  return ok;
+  balls.ConvertColors(this->MapScalars(input, 1.0), act->GetProperty(), n);
+  balls.HasStrengths = balls.Extracted.Set.Strengths != nullptr;
+  balls.HostValid = true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMetaballMapper::UsesCPUCaster()
+{
+  return this->RayCaster == CPU || (this->RayCaster == AUTOMATIC && IsSoftwareRenderer());
 }
 
 //------------------------------------------------------------------------------
@@ -377,7 +456,7 @@ void vtkMetaballMapper::Render(vtkRenderer* ren, vtkActor* act)
       return;
     }
   }
-  this->DrawSelection(ren, selector, x0, y0);
+  this->DrawSelection(ren, act, selector, x0, y0);
   this->InvokeEvent(vtkCommand::EndEvent, nullptr);
 }
 
@@ -439,7 +518,7 @@ int vtkMetaballMapper::CastFrame(vtkRenderer* ren,
   in.Selection->Invalidate();
   // [Bolla 2010] Algorithms 2 and 3: the perspective grid, and coherent ray
   // casting into colour, normal and depth images, on the GPU or the CPU.
-  const bool cpu = this->RayCaster == CPU || (this->RayCaster == AUTOMATIC && IsSoftwareRenderer());
+  const bool cpu = this->UsesCPUCaster();
   this->RayCasterInUse = cpu ? CPU : GPU;
   vtkMetaballRayCaster* caster = cpu ? static_cast<vtkMetaballRayCaster*>(in.CPUCaster)
                                      : static_cast<vtkMetaballRayCaster*>(in.GPUCaster);
@@ -528,6 +607,7 @@ void vtkMetaballMapper::TakeStatistics(const pointsurfaces::MetaballCastStatisti
 
 //------------------------------------------------------------------------------
 void vtkMetaballMapper::DrawSelection(vtkRenderer* ren,
+  vtkActor* act,
   vtkHardwareSelector* selector,
   int x0,
   int y0)
@@ -535,6 +615,11 @@ void vtkMetaballMapper::DrawSelection(vtkRenderer* ren,
   Internals& in = *this->Impl;
   // Ids through the input's id array when it has one (ParaView's original ids).
   vtkPointSet* input = this->GetInput();
+  if (!in.Balls.HostValid && input)
+  {
+    // The GPU's balls came straight from the arrays: the selection reads the host's.
+    this->HostCopy(act, input);
+  }
   vtkDataArray* ids = input && !this->PointIdArrayName.empty()
     ? input->GetPointData()->GetArray(this->PointIdArrayName.c_str())
     : nullptr;
@@ -577,6 +662,7 @@ void vtkMetaballMapper::ReleaseGraphicsResources(vtkWindow* win)
   in.Shadows->ReleaseGraphicsResources(win);
   in.Selection->ReleaseGraphicsResources(win);
   in.Counters->ReleaseGraphicsResources(win);
+  in.Uploader->ReleaseGraphicsResources(win);
   in.Compositor->ReleaseGraphicsResources(win);
   in.CastValid = false;
   in.UploadTime = vtkTimeStamp();

@@ -232,6 +232,20 @@ public:
   vtkGetMacro(RayCastTime, double);
   /** Wall time in ms of the last render's upload of the balls (0 when nothing changed). */
   vtkGetMacro(UploadTime, double);
+  /**
+   * Bytes the last upload wrote for the GPU: with the GPU ray caster the
+   * input's arrays as they go (12 a ball for the positions, 4 for a radius
+   * array, strength and colour each when there are some), with the CPU one
+   * the host's float balls (16, 4 and 4).
+   */
+  vtkGetMacro(UploadedBytes, double);
+  /**
+   * Of UploadTime, the ms the GPU ray caster's upload spent writing the
+   * arrays into GPU-visible memory (its one host copy); the rest is the
+   * radius rule and the driver (the assembly pass's submission, which a
+   * software renderer runs on the CPU). With the CPU ray caster, 0.
+   */
+  vtkGetMacro(UploadCopyTime, double);
   vtkGetMacro(ShadowTime, double);
   ///@}
 
@@ -360,7 +374,17 @@ protected:
    * pixel of the selector's area in the pass's colour, unlit, with its
    * depth. (x0, y0): the viewport's origin in the window.
    */
-  void DrawSelection(vtkRenderer* ren, vtkHardwareSelector* selector, int x0, int y0);
+  void DrawSelection(vtkRenderer* ren,
+    vtkActor* act,
+    vtkHardwareSelector* selector,
+    int x0,
+    int y0);
+  /** The balls in double and in float on the host (the CPU caster's and a selection's). */
+  void HostCopy(vtkActor* act, vtkPointSet* input);
+  /** Does this render use the CPU ray caster (RayCaster, or AUTOMATIC on a software renderer)? */
+  bool UsesCPUCaster();
+  /** The actor's largest axis scale, which the radii grow with. */
+  static double ActorScale(vtkActor* act);
 
   vtkSmartPointer<vtkMetaballField> Field;
   int TileSize = 16;
@@ -377,6 +401,8 @@ protected:
   vtkIdType NumberOfCulledBalls = 0;
   vtkIdType NumberOfInvalidBalls = 0;
   int NumberOfUploads = 0;
+  double UploadedBytes = 0.0;
+  double UploadCopyTime = 0.0;
   vtkIdType NumberOfPixelsStartingInside = 0;
   vtkIdType NumberOfIncompleteRays = 0;
   bool Shadows = false;

@@ -60,9 +60,11 @@ public:
   /** The GPU time of the last shadow pass whose query completed, in seconds (0: none yet). */
   double GetElapsedSeconds();
 
+  ///@{
   /** The light grids' read-backs and overflows (vtkMetaballGridBuilder's counts). */
   vtkIdType GetNumberOfReadBacks();
   vtkIdType GetNumberOfOverflows();
+  ///@}
 
   void ReleaseGraphicsResources(vtkWindow* win);
 

@@ -101,6 +101,39 @@ bool vtkShaderStorageBuffer::Upload(const void* data, size_t bytes)
 }
 
 //------------------------------------------------------------------------------
+void* vtkShaderStorageBuffer::MapForWrite(size_t bytes)
+{
+  if (!this->Allocate(std::max<size_t>(bytes, 4)))
+  {
+    return nullptr;
+  }
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, this->Handle);
+  void* data = glMapBufferRange(GL_SHADER_STORAGE_BUFFER,
+    0,
+    static_cast<GLsizeiptr>(std::max<size_t>(bytes, 4)),
+    GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  if (!data)
+  {
+    vtkErrorMacro(<< "Cannot map " << bytes << " bytes of a storage buffer for writing.");
+  }
+  return data;
+}
+
+//------------------------------------------------------------------------------
+bool vtkShaderStorageBuffer::Unmap()
+{
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, this->Handle);
+  const GLboolean intact = glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
+  glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+  if (!intact)
+  {
+    vtkErrorMacro(<< "A mapped storage buffer was lost (the display changed): upload it again.");
+  }
+  return intact == GL_TRUE;
+}
+
+//------------------------------------------------------------------------------
 bool vtkShaderStorageBuffer::Download(void* data, size_t bytes, size_t offset) const
 {
   if (!this->Handle || offset + bytes > this->Size)

@@ -41,6 +41,20 @@ public:
   /** Allocate and copy `bytes` from `data`. */
   bool Upload(const void* data, size_t bytes);
 
+  ///@{
+  /**
+   * Streaming: MapForWrite() makes the buffer at least `bytes` long and maps
+   * its first `bytes` for writing with its old contents invalidated
+   * (glMapBufferRange with GL_MAP_INVALIDATE_BUFFER_BIT), so that the writes
+   * need not wait for the GPU to finish the commands that read the old
+   * contents: the driver gives fresh storage (buffer orphaning). Any thread
+   * may write into the pointer; Unmap() from the context's thread before
+   * the buffer is used. Null (with an error) when it cannot be mapped.
+   */
+  void* MapForWrite(size_t bytes);
+  bool Unmap();
+  ///@}
+
   /** Copy `bytes` from the buffer at `offset` into `data`. */
   bool Download(void* data, size_t bytes, size_t offset = 0) const;
 

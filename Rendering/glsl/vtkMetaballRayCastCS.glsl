@@ -66,6 +66,7 @@ uniform float threshold;
 uniform float stepScale;
 uniform int bisections;
 uniform int useStrengths;
+uniform int colorPerBall; // else colors[0] is every ball's colour
 
 shared vec4 sharedBalls[MAX_SHARED]; // view-space centre, R
 shared float sharedStrength[MAX_SHARED];
@@ -152,7 +153,7 @@ void psAddGlobal(vec3 p, uint id, inout float f, inout vec3 grad, inout vec4 col
 {
   vec4 b = balls[id];
   psAddBall(p, vec4((worldToView * vec4(b.xyz, 1.0)).xyz, b.w),
-    useStrengths != 0 ? strengths[id] : 1.0, colors[id], f, grad, color, wantColor);
+    useStrengths != 0 ? strengths[id] : 1.0, colors[colorPerBall != 0 ? id : 0u], f, grad, color, wantColor);
 }
 
 bool psAccumulateGlobal(vec3 p, uint first, uint count, inout float f, inout vec3 grad,
@@ -359,7 +360,7 @@ void main()
         vec4 b = balls[id];
         sharedBalls[k] = vec4((worldToView * vec4(b.xyz, 1.0)).xyz, b.w);
         sharedStrength[k] = useStrengths != 0 ? strengths[id] : 1.0;
-        sharedColor[k] = colors[id];
+        sharedColor[k] = colors[colorPerBall != 0 ? id : 0u];
       }
       loaded = !psAny(k < count) && loaded; // a load cut short by the driver
     }
@@ -457,7 +458,7 @@ void main()
             vec4 b = balls[id];
             sharedBalls[k] = vec4((worldToView * vec4(b.xyz, 1.0)).xyz, b.w);
             sharedStrength[k] = useStrengths != 0 ? strengths[id] : 1.0;
-            sharedColor[k] = colors[id];
+            sharedColor[k] = colors[colorPerBall != 0 ? id : 0u];
           }
           // A load cut short by the driver leaves stale balls: no sum to trust.
           complete = psAny(k < uint(n)) || !loaded ? false : complete;
