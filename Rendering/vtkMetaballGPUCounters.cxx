@@ -41,6 +41,11 @@ void vtkMetaballGPUCounters::BeginFrame(const Report& report, const unsigned int
   for (int k = 0; k < Ring; ++k)
   {
     const int slot = (this->Next + k) % Ring; // oldest first: the one to reuse
+    GLsync fence = static_cast<GLsync>(this->Fences[slot]);
+    if (k == 0 && fence && glClientWaitSync(fence, 0, 0) == GL_TIMEOUT_EXPIRED)
+    {
+      ++this->Waits; // the GPU is a whole ring behind: this one waits
+    }
     if (this->ReadSlot(slot, k == 0, counters))
     {
       report(counters);
@@ -48,6 +53,19 @@ void vtkMetaballGPUCounters::BeginFrame(const Report& report, const unsigned int
   }
   const unsigned int zeros[MaxSize] = {};
   this->Buffers[this->Next]->Upload(initial ? initial : zeros, this->Size * sizeof(unsigned int));
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballGPUCounters::Poll(const Report& report)
+{
+  unsigned int counters[MaxSize] = {};
+  for (int k = 0; k < Ring; ++k)
+  {
+    if (this->ReadSlot((this->Next + k) % Ring, false, counters))
+    {
+      report(counters);
+    }
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -53,6 +53,15 @@ public:
    */
   void BeginFrame(const Report& report, const unsigned int* initial = nullptr);
 
+  /** Reports the counters of the finished frames, never waiting. */
+  void Poll(const Report& report);
+
+  /**
+   * How often BeginFrame() waited for the oldest frame because the GPU was
+   * a whole ring behind (a read-back that stalls), since construction.
+   */
+  long long GetNumberOfWaits() const { return this->Waits; }
+
   /** This frame's buffer, for the shaders to add into (binding 5). */
   vtkShaderStorageBuffer* GetFrameBuffer();
 
@@ -69,15 +78,18 @@ protected:
   ~vtkMetaballGPUCounters() override;
 
 private:
-  static constexpr int Ring = 3;
+  // Frames in flight: the metaball mapper and a grid builder use one a
+  // frame, a light's grid builder one per light (up to four a frame).
+  static constexpr int Ring = 8;
   static constexpr int MaxSize = 64;
   bool ReadSlot(int slot, bool wait, unsigned int* out);
 
   int Size = Count;
 
   vtkNew<vtkShaderStorageBuffer> Buffers[Ring];
-  void* Fences[Ring] = { nullptr, nullptr, nullptr }; // GLsync
+  void* Fences[Ring] = {}; // GLsync
   int Next = 0;
+  long long Waits = 0;
 
   vtkMetaballGPUCounters(const vtkMetaballGPUCounters&) = delete;
   void operator=(const vtkMetaballGPUCounters&) = delete;

@@ -19,6 +19,7 @@
 #include "psMetaball.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -132,6 +133,8 @@ struct vtkMetaballGridBuilder::Internals
   vtkNew<vtkMetaballGPUCounters> StatRing; // a ring of statistics buffers, read through fences
   vtkShaderStorageBuffer* Stats = nullptr; // the current build's
   vtkIdType Balls = 0;                     // the current build's ball count
+  long long CountedWaits = 0;              // StatRing's waits already counted
+  unsigned int MaxGroups = 0;              // GL_MAX_COMPUTE_WORK_GROUP_COUNT in x
   std::vector<vtkSmartPointer<vtkShaderStorageBuffer>> Sums; // one per scan level
 
   vtkComputeShaderProgram* Use(vtkOpenGLRenderWindow* renWin, int pass)
@@ -321,8 +324,12 @@ struct vtkMetaballGridBuilder::Internals
     this->Stats->BindBase(StatsBinding);
     pairs->SetUniformui("count", static_cast<unsigned int>(n));
     pairs->SetUniformui("capacity", static_cast<unsigned int>(capacity));
-    pairs->SetUniformui("maxGroups",
-      static_cast<unsigned int>(vtkComputeShaderProgram::GetMaxWorkGroupCount(renWin)));
+    if (this->MaxGroups == 0)
+    {
+      this->MaxGroups =
+        static_cast<unsigned int>(vtkComputeShaderProgram::GetMaxWorkGroupCount(renWin));
+    }
+    pairs->SetUniformui("maxGroups", this->MaxGroups);
     return pairs->Dispatch(1);
   }
 };
@@ -369,9 +376,8 @@ vtkShaderStorageBuffer* vtkMetaballGridBuilder::GetGridStatistics()
 //------------------------------------------------------------------------------
 void vtkMetaballGridBuilder::ReservePairs(vtkIdType pairs)
 {
-  const vtkIdType most =
-    static_cast<vtkIdType>(vtkShaderStorageBuffer::GetMaximumSize() / sizeof(unsigned int));
-  this->PairCapacity = std::max(this->PairCapacity, std::min(pairs, most));
+  // Build() clamps it to the storage buffer limit of its context.
+  this->PairCapacity = std::max(this->PairCapacity, pairs);
 }
 
 //------------------------------------------------------------------------------
@@ -428,7 +434,7 @@ void vtkMetaballGridBuilder::Take(const unsigned int* stats)
   }
   if (4 * needed > 3 * this->PairCapacity)
   {
-    this->ReservePairs(needed + needed / 2);
+    this->ReservePairs(std::min(needed + needed / 2, most));
   }
 }
 
@@ -521,9 +527,14 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
     unsigned int pairs = 0;
     ok = in.Counts->Download(&pairs, sizeof(pairs), n * sizeof(unsigned int));
     ++this->NumberOfReadBacks;
-    this->ReservePairs(std::max<vtkIdType>(pairs + pairs / 2, 1024));
+    const vtkIdType needed = pairs;
+    this->ReservePairs(std::max<vtkIdType>(needed + needed / 2, 1024));
   }
-  const size_t capacity = static_cast<size_t>(this->PairCapacity);
+  // Within one storage buffer, and within the uints the shaders count in.
+  const size_t capacity = std::min({ static_cast<size_t>(this->PairCapacity),
+    maxBytes / sizeof(unsigned int),
+    static_cast<size_t>(UINT_MAX - 1) });
+  this->PairCapacity = static_cast<vtkIdType>(capacity);
   ok = ok && in.PairCount(renWin, n, capacity);
   ok = ok && in.SortPairs(renWin, common, n, voxels, capacity);
   in.Programs[0]->Unbind();
@@ -533,6 +544,8 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
   // overflowed.
   const vtkIdType overflows = this->NumberOfOverflows;
   in.StatRing->EndFrame(take, this->CollectStatistics);
+  this->NumberOfReadBacks += in.StatRing->GetNumberOfWaits() - in.CountedWaits;
+  in.CountedWaits = in.StatRing->GetNumberOfWaits();
   if (!ok)
   {
     vtkErrorMacro(<< "The metaball grid build failed (see the messages above).");
@@ -573,6 +586,7 @@ void vtkMetaballGridBuilder::ReleaseGraphicsResources(vtkWindow* win)
   in.StatRing->ReleaseGraphicsResources(win);
   in.Stats = nullptr;
   in.Balls = 0;
+  in.MaxGroups = 0;
   this->PairCapacity = 0;
   this->SlabPlanesKnown = false;
   for (auto& b : in.Sums)

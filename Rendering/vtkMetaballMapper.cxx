@@ -241,6 +241,10 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
 {
   Internals& in = *this->Impl;
   pointsurfaces::MetaballBalls& balls = in.Balls;
+  // The invalid balls of earlier GPU uploads that the GPU has counted since
+  // (also when nothing changes now).
+  const auto report = [this](vtkIdType invalid) { this->ReportInvalidBalls(invalid); };
+  in.Uploader->Poll(report);
   vtkMTimeType latest = std::max(input->GetMTime(), this->GetMTime());
   latest = std::max(latest, act->GetProperty()->GetMTime());
   latest = std::max(latest, act->GetMTime());
@@ -288,7 +292,7 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
   if (this->UsesCPUCaster())
   {
     // The CPU ray caster reads the host's float balls: made, then sent.
-    this->HostCopy(act, input);
+    this->HostCopy(act, input, mapped, true);
     const std::vector<float>& hostBalls = balls.HostBalls;
     ok =
       balls.Balls->Upload(hostBalls.data(), std::max<size_t>(hostBalls.size(), 4) * sizeof(float));
@@ -321,14 +325,6 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
     {
       vtkWarningMacro(<< strengthWarning);
     }
-    const auto report = [this, n](vtkIdType invalid)
-    {
-      this->NumberOfInvalidBalls = invalid;
-      if (invalid > 0)
-      {
-        vtkWarningMacro(<< pointsurfaces::InvalidBallsWarning(invalid, n));
-      }
-    };
     balls.HostValid = false;
     ok = in.Uploader->Upload(static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow()),
       input,
@@ -369,7 +365,20 @@ double vtkMetaballMapper::ActorScale(vtkActor* act)
 }
 
 //------------------------------------------------------------------------------
-void vtkMetaballMapper::HostCopy(vtkActor* act, vtkPointSet* input)
+void vtkMetaballMapper::ReportInvalidBalls(vtkIdType invalid)
+{
+  this->NumberOfInvalidBalls = invalid;
+  if (invalid > 0)
+  {
+    vtkWarningMacro(<< pointsurfaces::InvalidBallsWarning(invalid, this->Impl->Balls.Count));
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballMapper::HostCopy(vtkActor* act,
+  vtkPointSet* input,
+  vtkUnsignedCharArray* mapped,
+  bool warn)
 {
   // The balls in double (Extracted), and in float relative to Shift with
   // their colours (the host arrays), as the CPU ray caster and a selection
@@ -379,17 +388,20 @@ void vtkMetaballMapper::HostCopy(vtkActor* act, vtkPointSet* input)
   this->Field->ExtractBalls(input, ActorScale(act), balls.Extracted);
   const std::string strengthWarning =
     pointsurfaces::MissingStrengthsWarning(balls.Extracted, this->Field->GetStrengthArrayName());
-  if (!strengthWarning.empty())
+  if (warn && !strengthWarning.empty())
   {
     vtkWarningMacro(<< strengthWarning);
   }
   const vtkIdType invalid = balls.Convert(balls.Extracted.Set);
-  if (invalid > 0)
+  if (warn && invalid > 0)
   {
     vtkWarningMacro(<< pointsurfaces::InvalidBallsWarning(invalid, n));
   }
-  this->NumberOfInvalidBalls = invalid;
-  balls.ConvertColors(this->MapScalars(input, 1.0), act->GetProperty(), n);
+  if (warn)
+  {
+    this->NumberOfInvalidBalls = invalid;
+  }
+  balls.ConvertColors(mapped, act->GetProperty(), n);
   balls.HasStrengths = balls.Extracted.Set.Strengths != nullptr;
   balls.HostValid = true;
 }
@@ -617,8 +629,9 @@ void vtkMetaballMapper::DrawSelection(vtkRenderer* ren,
   vtkPointSet* input = this->GetInput();
   if (!in.Balls.HostValid && input)
   {
-    // The GPU's balls came straight from the arrays: the selection reads the host's.
-    this->HostCopy(act, input);
+    // The GPU's balls came straight from the arrays: the selection reads the
+    // host's (the upload has warned already; colours are not needed).
+    this->HostCopy(act, input, nullptr, false);
   }
   vtkDataArray* ids = input && !this->PointIdArrayName.empty()
     ? input->GetPointData()->GetArray(this->PointIdArrayName.c_str())

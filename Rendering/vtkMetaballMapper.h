@@ -251,9 +251,12 @@ public:
 
   ///@{
   /**
-   * The last render's (voxel, ball) pairs and invalid balls; with
-   * CollectStatistics, the most balls in a voxel and the culled balls too.
-   * Uploads: how often the balls went to the GPU.
+   * The (voxel, ball) pairs the grid needed, the most balls in a voxel, the
+   * culled and the invalid balls. With CollectStatistics, the last render's.
+   * Without it, on the GPU ray caster, those of the latest grid build and
+   * upload the GPU has finished (a frame or two late: nothing waits), and
+   * the most balls in a voxel and the culled balls only with it on the CPU
+   * one. Uploads: how often the balls went to the GPU.
    */
   vtkGetMacro(NumberOfPairs, vtkIdType);
   vtkGetMacro(MaximumBallsPerVoxel, vtkIdType);
@@ -379,8 +382,14 @@ protected:
     vtkHardwareSelector* selector,
     int x0,
     int y0);
-  /** The balls in double and in float on the host (the CPU caster's and a selection's). */
-  void HostCopy(vtkActor* act, vtkPointSet* input);
+  /**
+   * The balls in double and in float on the host with colours `mapped` (the
+   * CPU caster's and a selection's), warning about missing arrays and
+   * invalid balls when `warn`.
+   */
+  void HostCopy(vtkActor* act, vtkPointSet* input, vtkUnsignedCharArray* mapped, bool warn);
+  /** Takes an upload's count of invalid balls, with its warning. */
+  void ReportInvalidBalls(vtkIdType invalid);
   /** Does this render use the CPU ray caster (RayCaster, or AUTOMATIC on a software renderer)? */
   bool UsesCPUCaster();
   /** The actor's largest axis scale, which the radii grow with. */

@@ -54,27 +54,41 @@ void ParallelCopy(void* to, const void* from, size_t bytes)
 }
 
 // The first component of `array` as float, `n` values, in parallel: a
-// one-component float array as it is, double and others converted.
-void FirstComponent(vtkDataArray* array, vtkIdType n, float* out)
+// one-component float array as it is, double and others converted. Returns
+// the smallest positive finite value (+infinity when none), found in the
+// source: the mapped buffer is for writing only.
+float FirstComponent(vtkDataArray* array, vtkIdType n, float* out)
 {
   const int comps = array->GetNumberOfComponents();
   auto* floats = vtkFloatArray::FastDownCast(array);
   auto* doubles = vtkDoubleArray::FastDownCast(array);
-  if (floats && comps == 1)
-  {
-    ParallelCopy(out, floats->GetPointer(0), static_cast<size_t>(n) * sizeof(float));
-    return;
-  }
+  vtkSMPThreadLocal<float> least(std::numeric_limits<float>::infinity());
   vtkSMPTools::For(0,
     n,
     [&](vtkIdType begin, vtkIdType end)
     {
+      float& m = least.Local();
+      const auto keep = [&m](float v)
+      {
+        if (v > 0.0f && v < m)
+        {
+          m = v;
+        }
+      };
       if (floats)
       {
         const float* v = floats->GetPointer(0);
+        if (comps == 1)
+        {
+          std::memcpy(out + begin, v + begin, (end - begin) * sizeof(float));
+        }
         for (vtkIdType i = begin; i < end; ++i)
         {
-          out[i] = v[i * comps];
+          if (comps != 1)
+          {
+            out[i] = v[i * comps];
+          }
+          keep(v[i * comps]);
         }
       }
       else if (doubles)
@@ -83,32 +97,16 @@ void FirstComponent(vtkDataArray* array, vtkIdType n, float* out)
         for (vtkIdType i = begin; i < end; ++i)
         {
           out[i] = static_cast<float>(v[i * comps]);
+          keep(static_cast<float>(v[i * comps]));
         }
       }
       else
       {
         for (vtkIdType i = begin; i < end; ++i)
         {
-          out[i] = static_cast<float>(array->GetComponent(i, 0));
-        }
-      }
-    });
-}
-
-// The smallest positive finite value of `n` floats, or +infinity.
-float SmallestPositive(const float* v, vtkIdType n)
-{
-  vtkSMPThreadLocal<float> least(std::numeric_limits<float>::infinity());
-  vtkSMPTools::For(0,
-    n,
-    [&](vtkIdType begin, vtkIdType end)
-    {
-      float& m = least.Local();
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        if (v[i] > 0.0f && v[i] < m)
-        {
-          m = v[i];
+          const float v = static_cast<float>(array->GetComponent(i, 0));
+          out[i] = v;
+          keep(v);
         }
       }
     });
@@ -118,6 +116,12 @@ float SmallestPositive(const float* v, vtkIdType n)
     m = std::min(m, x);
   }
   return m;
+}
+
+// Does `array` (when there is one) have a value for each of `n` points?
+bool Covers(vtkDataArray* array, vtkIdType n)
+{
+  return !array || array->GetNumberOfTuples() >= n;
 }
 } // namespace
 
@@ -143,15 +147,33 @@ bool vtkMetaballUploader::Upload(vtkOpenGLRenderWindow* renWin,
   pointsurfaces::MetaballBalls& balls)
 {
   balls.Count = 0;
-  const vtkIdType n = input && input->GetPoints() ? input->GetNumberOfPoints() : 0;
-  const size_t count = static_cast<size_t>(n);
   this->UploadedBytes = 0.0;
+  if (!input || !input->GetPoints())
+  {
+    return true; // nothing to draw
+  }
+  const vtkIdType n = input->GetNumberOfPoints();
+  const size_t count = static_cast<size_t>(n);
+  vtkDataArray* strengths = pointsurfaces::StrengthArray(input, rule);
+  vtkDataArray* densities = rule.DensityArrayName.empty()
+    ? nullptr
+    : input->GetPointData()->GetArray(rule.DensityArrayName.c_str());
+  for (vtkDataArray* array : { source.Array, strengths, densities })
+  {
+    if (!Covers(array, n))
+    {
+      vtkErrorMacro(<< "The point array \"" << (array->GetName() ? array->GetName() : "")
+                    << "\" has " << array->GetNumberOfTuples() << " values for " << n
+                    << " points: nothing is drawn.");
+      return false;
+    }
+  }
   const auto copyStart = std::chrono::steady_clock::now();
   const auto take = [&report](const unsigned int* invalid) { report(invalid[0]); };
   this->Invalid->BeginFrame(take);
 
   // Positions: float as it is (shifted on the GPU), others shifted and converted here.
-  vtkDataArray* points = input ? input->GetPoints()->GetData() : nullptr;
+  vtkDataArray* points = input->GetPoints()->GetData();
   auto* floats = vtkFloatArray::FastDownCast(points);
   auto* doubles = vtkDoubleArray::FastDownCast(points);
   this->PositionsAsIs = floats != nullptr && floats->GetNumberOfComponents() == 3;
@@ -212,8 +234,7 @@ bool vtkMetaballUploader::Upload(vtkOpenGLRenderWindow* renWin,
     ok = radii != nullptr;
     if (ok)
     {
-      FirstComponent(source.Array, n, radii);
-      smallest = static_cast<float>(factor * SmallestPositive(radii, n));
+      smallest = static_cast<float>(factor * FirstComponent(source.Array, n, radii));
       ok = this->Radii->Unmap();
       this->UploadedBytes += sizeof(float) * static_cast<double>(n);
     }
@@ -221,10 +242,6 @@ bool vtkMetaballUploader::Upload(vtkOpenGLRenderWindow* renWin,
   balls.MinRadius = smallest > 0.0f && std::isfinite(smallest) ? smallest : 1.0;
 
   // Strengths: only when the rule weights the balls (arrays, SPH normalisation).
-  vtkDataArray* strengths = pointsurfaces::StrengthArray(input, rule);
-  vtkDataArray* densities = rule.DensityArrayName.empty()
-    ? nullptr
-    : input->GetPointData()->GetArray(rule.DensityArrayName.c_str());
   const double normalization = pointsurfaces::KernelNormalization(rule.Kernel);
   balls.HasStrengths = strengths || densities || normalization > 0.0;
   if (balls.HasStrengths && ok)
@@ -317,6 +334,12 @@ bool vtkMetaballUploader::Upload(vtkOpenGLRenderWindow* renWin,
   this->Invalid->EndFrame(take, wait);
   balls.Count = ok ? n : 0;
   return ok;
+}
+
+//------------------------------------------------------------------------------
+void vtkMetaballUploader::Poll(const Report& report)
+{
+  this->Invalid->Poll([&report](const unsigned int* invalid) { report(invalid[0]); });
 }
 
 //------------------------------------------------------------------------------

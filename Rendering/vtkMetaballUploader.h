@@ -76,6 +76,13 @@ public:
     const Report& report,
     pointsurfaces::MetaballBalls& balls);
 
+  /**
+   * Reports the invalid balls of finished uploads without waiting and
+   * without uploading: a mapper whose data does not change calls it each
+   * render, so that the first upload's count and warning still arrive.
+   */
+  void Poll(const Report& report);
+
   /** Bytes the last Upload() wrote for the GPU (its one host copy). */
   vtkGetMacro(UploadedBytes, double);
 

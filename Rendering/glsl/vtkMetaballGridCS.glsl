@@ -100,6 +100,16 @@ int psSlabOf(float d, float slabNear, float slabFar)
 shared uint scratch[1024];
 #endif
 
+#if PASS == 2 || PASS == 3
+// Saturating: a total beyond 2^32 - 1 pairs stays at the top instead of
+// wrapping, so that it reads as an overflow and no offset wraps below the
+// capacity. (Saturating addition of unsigned values is associative.)
+uint psAdd(uint a, uint b)
+{
+  return a > 0xFFFFFFFFu - b ? 0xFFFFFFFFu : a + b;
+}
+#endif
+
 void main()
 {
 #if PASS == 0
@@ -211,7 +221,7 @@ void main()
     {
       uint ai = offset * (2u * local + 1u) - 1u;
       uint bi = offset * (2u * local + 2u) - 1u;
-      scratch[bi] += scratch[ai];
+      scratch[bi] = psAdd(scratch[bi], scratch[ai]);
     }
     offset <<= 1;
   }
@@ -230,7 +240,7 @@ void main()
       uint bi = offset * (2u * local + 2u) - 1u;
       uint t = scratch[ai];
       scratch[ai] = scratch[bi];
-      scratch[bi] += t;
+      scratch[bi] = psAdd(scratch[bi], t);
     }
   }
   barrier();
@@ -247,7 +257,7 @@ void main()
   uint i = gl_GlobalInvocationID.x;
   if (i < count)
   {
-    counts[i] += sums[i / 1024u];
+    counts[i] = psAdd(counts[i], sums[i / 1024u]);
   }
 
 #elif PASS == 4

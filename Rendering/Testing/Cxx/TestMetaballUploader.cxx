@@ -11,11 +11,16 @@
 // balls invalid (radius 0) and counted, strengths and colours as the host's.
 // The smallest radius (the shadow rays' offset) may be that of a ball made
 // invalid by its centre or strength: at most the host's, and positive.
-// The host times are printed; bench_metaball_series.py measures them at size.
+// Last, through vtkMetaballMapper on the GPU caster without statistics: the
+// invalid balls of an upload are counted a frame or two late, also when the
+// data do not change after it. The host times are printed;
+// bench_metaball_upload.py measures them at size.
+#include "vtkActor.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkIntArray.h"
 #include "vtkMetaballField.h"
+#include "vtkMetaballMapper.h"
 #include "vtkMetaballUploader.h"
 #include "vtkNew.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -259,6 +264,37 @@ int TestMetaballUploader(int, char*[])
          Case{ "double points, SPH, one radius", VTK_DOUBLE, "", true } })
   {
     failures += Run(win, c);
+  }
+
+  // The mapper, static data with two invalid balls, statistics off.
+  vtkNew<vtkPoints> points;
+  for (int i = 0; i < 50; ++i)
+  {
+    points->InsertNextPoint(0.1 * i, 0.0, 0.0);
+  }
+  points->SetPoint(3, std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0);
+  points->SetPoint(4, 0.0, std::numeric_limits<double>::infinity(), 0.0);
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(points);
+  vtkNew<vtkMetaballMapper> mapper;
+  mapper->SetInputDataObject(poly);
+  mapper->SetRayCaster(vtkMetaballMapper::GPU);
+  mapper->GetField()->SetRadius(0.2);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  renderer->AddActor(actor);
+  renderer->ResetCamera();
+  std::cout << "expect a warning: 2 invalid balls\n";
+  for (int frame = 0; frame < 6; ++frame)
+  {
+    renWin->Render();
+  }
+  std::cout << "static data on the GPU caster: " << mapper->GetNumberOfUploads() << " upload(s), "
+            << mapper->GetNumberOfInvalidBalls() << " invalid balls reported\n";
+  if (mapper->GetNumberOfUploads() != 1 || mapper->GetNumberOfInvalidBalls() != 2)
+  {
+    std::cerr << "the invalid balls of a static upload were not reported\n";
+    ++failures;
   }
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
