@@ -27,8 +27,11 @@
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
+#include "vtkPoints.h"
 #include "vtkProperty.h"
 #include "vtkRenderer.h"
+#include "vtkSMPThreadLocal.h"
+#include "vtkSMPTools.h"
 #include "vtkScalarsToColors.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -93,6 +96,10 @@ struct vtkMetaballMapper::Internals
   vtkNew<vtkMetaballGPUCounters> Counters;
   vtkIdType CounterReadBacks = 0; // the counters read at once (CollectStatistics)
   vtkNew<vtkMetaballUploader> Uploader;
+  // The bounds of the finite points, when some point is not finite.
+  double FiniteBounds[6] = { 1, -1, 1, -1, 1, -1 };
+  vtkPoints* FiniteBoundsOf = nullptr;
+  vtkMTimeType FiniteBoundsTime = 0;
   bool WarnedShadow = false;
   bool WarnedInside = false;
   bool WarnedBudget = false;
@@ -219,6 +226,75 @@ int vtkMetaballMapper::FillInputPortInformation(int, vtkInformation* info)
 }
 
 //------------------------------------------------------------------------------
+void vtkMetaballMapper::FiniteBounds(vtkPointSet* input, double bounds[6])
+{
+  // One NaN or infinite point (an invalid ball, skipped and counted) must
+  // not make the bounds infinite or stretch them along its finite
+  // coordinates: the camera would be lost, and the shift that keeps
+  // coordinates near 1e7 precise in float would be 0.
+  vtkPoints* points = input->GetPoints();
+  points->GetBounds(bounds); // cached by VTK
+  if (std::all_of(bounds, bounds + 6, [](double v) { return std::isfinite(v); }))
+  {
+    // The usual case, at no cost. (VTK skips NaN values per coordinate, so
+    // a point with a NaN and far finite coordinates still stretches them.)
+    return;
+  }
+  Internals& in = *this->Impl;
+  const vtkMTimeType time = points->GetMTime();
+  if (in.FiniteBoundsOf != points || in.FiniteBoundsTime != time)
+  {
+    struct Box
+    {
+      double B[6] = { VTK_DOUBLE_MAX,
+        VTK_DOUBLE_MIN,
+        VTK_DOUBLE_MAX,
+        VTK_DOUBLE_MIN,
+        VTK_DOUBLE_MAX,
+        VTK_DOUBLE_MIN };
+    };
+    vtkSMPThreadLocal<Box> boxes;
+    vtkDataArray* xyz = points->GetData();
+    vtkSMPTools::For(0,
+      points->GetNumberOfPoints(),
+      [&](vtkIdType begin, vtkIdType end)
+      {
+        double* b = boxes.Local().B;
+        double p[3];
+        for (vtkIdType i = begin; i < end; ++i)
+        {
+          xyz->GetTuple(i, p);
+          if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+          {
+            for (int k = 0; k < 3; ++k)
+            {
+              b[2 * k] = std::min(b[2 * k], p[k]);
+              b[2 * k + 1] = std::max(b[2 * k + 1], p[k]);
+            }
+          }
+        }
+      });
+    Box all;
+    for (const Box& box : boxes)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        all.B[2 * k] = std::min(all.B[2 * k], box.B[2 * k]);
+        all.B[2 * k + 1] = std::max(all.B[2 * k + 1], box.B[2 * k + 1]);
+      }
+    }
+    std::copy_n(all.B, 6, in.FiniteBounds);
+    if (!(all.B[0] <= all.B[1]))
+    {
+      vtkMath::UninitializeBounds(in.FiniteBounds); // no finite point
+    }
+    in.FiniteBoundsOf = points;
+    in.FiniteBoundsTime = time;
+  }
+  std::copy_n(in.FiniteBounds, 6, bounds);
+}
+
+//------------------------------------------------------------------------------
 void vtkMetaballMapper::ComputeBounds()
 {
   vtkPointSet* input = vtkPointSet::SafeDownCast(this->GetInputDataObject(0, 0));
@@ -227,7 +303,7 @@ void vtkMetaballMapper::ComputeBounds()
     vtkMath::UninitializeBounds(this->Bounds);
     return;
   }
-  input->GetPoints()->GetBounds(this->Bounds);
+  FiniteBounds(input, this->Bounds);
   const double pad = this->Field->GetLargestRadius(input);
   for (int k = 0; k < 3; ++k)
   {
@@ -280,7 +356,7 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
   // Float, relative to the centre of the points' bounds, rounded to float so
   // that float positions shifted on the GPU land where the host puts them.
   double bounds[6];
-  input->GetPoints()->GetBounds(bounds);
+  FiniteBounds(input, bounds);
   for (int k = 0; k < 3; ++k)
   {
     const float c = static_cast<float>(0.5 * (bounds[2 * k] + bounds[2 * k + 1]));

@@ -392,6 +392,8 @@ protected:
   void ReportInvalidBalls(vtkIdType invalid);
   /** Does this render use the CPU ray caster (RayCaster, or AUTOMATIC on a software renderer)? */
   bool UsesCPUCaster();
+  /** The bounds of `input`'s finite points (uninitialised when it has none). */
+  void FiniteBounds(vtkPointSet* input, double bounds[6]);
   /** The actor's largest axis scale, which the radii grow with. */
   static double ActorScale(vtkActor* act);
 

@@ -11,9 +11,11 @@
 // balls invalid (radius 0) and counted, strengths and colours as the host's.
 // The smallest radius (the shadow rays' offset) may be that of a ball made
 // invalid by its centre or strength: at most the host's, and positive.
-// Last, through vtkMetaballMapper on the GPU caster without statistics: the
+// Then through vtkMetaballMapper on the GPU caster without statistics: the
 // invalid balls of an upload are counted a frame or two late, also when the
-// data do not change after it. The host times are printed;
+// data do not change after it. Last, 27 balls near 1e7 with and without an
+// infinite point, on both casters: the point is skipped and the picture is
+// the same (the bounds, the camera and the float shift ignore it). The host times are printed;
 // bench_metaball_upload.py measures them at size.
 #include "vtkActor.h"
 #include "vtkDoubleArray.h"
@@ -47,6 +49,37 @@
 
 namespace
 {
+// Hits of 27 balls 0.1 apart near (1e7, -1e7, 0), with an infinite point or not.
+vtkIdType HitsNear1e7(vtkRenderWindow* renWin, bool infinite, int caster)
+{
+  vtkNew<vtkPoints> points;
+  for (int i = 0; i < 27; ++i)
+  {
+    points->InsertNextPoint(1e7 + 0.1 * (i % 3), -1e7 + 0.1 * (i / 3 % 3), 0.1 * (i / 9));
+  }
+  if (infinite)
+  {
+    points->InsertNextPoint(std::numeric_limits<double>::infinity(), 0.0, 0.0);
+  }
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(points);
+  vtkNew<vtkMetaballMapper> mapper;
+  mapper->SetInputDataObject(poly);
+  mapper->SetRayCaster(caster);
+  mapper->CollectStatisticsOn();
+  mapper->GetField()->SetRadius(0.15);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  renWin->AddRenderer(renderer);
+  renderer->ResetCamera();
+  renWin->Render();
+  const vtkIdType hits = mapper->GetNumberOfHits();
+  renWin->RemoveRenderer(renderer);
+  return hits;
+}
+
 struct Case
 {
   std::string Name;
@@ -295,6 +328,21 @@ int TestMetaballUploader(int, char*[])
   {
     std::cerr << "the invalid balls of a static upload were not reported\n";
     ++failures;
+  }
+  renWin->RemoveRenderer(renderer);
+  renWin->SetSize(64, 64);
+  for (const int caster : { vtkMetaballMapper::CPU, vtkMetaballMapper::GPU })
+  {
+    const vtkIdType plain = HitsNear1e7(renWin, false, caster);
+    std::cout << "expect a warning: 1 invalid ball\n";
+    const vtkIdType withInfinite = HitsNear1e7(renWin, true, caster);
+    std::cout << "27 balls near 1e7, caster " << caster << ": " << plain << " hits, "
+              << withInfinite << " with an infinite point\n";
+    if (plain < 500 || withInfinite != plain)
+    {
+      std::cerr << "an infinite point changed the picture near 1e7\n";
+      ++failures;
+    }
   }
   return failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
