@@ -120,6 +120,8 @@ struct MetaballCastStatistics
   std::string Error;              ///< why nothing was cast (too many balls, no memory); else empty
   double GridSeconds = 0.0;       ///< wall time of the grid build
   double CastSeconds = 0.0;       ///< wall time of the march
+  long long MergedBalls = 0;      ///< the GPU caster's level of detail: balls made
+  long long BallsMerged = 0;      ///< and the balls they stand for
 };
 
 /**

@@ -145,7 +145,8 @@ struct MetaballCastRequest
   int Slabs = 16;
   double StepScale = 0.1;
   int Bisections = 10;
-  double MemoryLimit = 0.0; ///< bytes for the CPU caster; 0: the free physical memory
+  double LevelOfDetailPixels = 0.0; ///< the GPU caster's level of detail (0: none)
+  double MemoryLimit = 0.0;         ///< bytes for the CPU caster; 0: the free physical memory
   MetaballKernel Kernel = MetaballKernel::Wyvill;
   double Threshold = 0.5;
   bool CollectStatistics = false;

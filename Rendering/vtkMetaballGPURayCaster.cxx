@@ -6,6 +6,7 @@
 
 #include "vtkComputeShaderProgram.h"
 #include "vtkMetaballGridBuilder.h"
+#include "vtkMetaballLevelOfDetail.h"
 #include "vtkMetaballRayCastCS.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
@@ -56,9 +57,20 @@ bool vtkMetaballGPURayCaster::Cast(vtkOpenGLRenderWindow* renWin,
   this->Grid->SetTileSize(request.TileSize);
   this->Grid->SetCollectStatistics(request.CollectStatistics);
   this->Grid->SetSlabs(request.Slabs);
+  // The level of detail: small balls merged, the grid over the level's balls.
+  const bool level = request.LevelOfDetailPixels > 0.0;
+  if (level &&
+    !this->Level->Build(
+      renWin, balls, view, request.LevelOfDetailPixels, this->Grid, request.CollectStatistics))
+  {
+    return false;
+  }
+  stats.MergedBalls = level ? this->Level->GetNumberOfMergedBalls() : 0;
+  stats.BallsMerged = level ? this->Level->GetNumberOfBallsMerged() : 0;
+  vtkShaderStorageBuffer* gridBalls = level ? this->Level->GetLevelBalls() : balls.Balls.Get();
   if (!this->Grid->Build(renWin,
-        balls.Balls,
-        balls.Count,
+        gridBalls,
+        level ? 2 * balls.Count : balls.Count,
         view.WorldToView,
         view.ViewToClip,
         view.Parallel,
@@ -95,7 +107,13 @@ bool vtkMetaballGPURayCaster::Cast(vtkOpenGLRenderWindow* renWin,
   program->SetUniformi("bisections", request.Bisections);
   program->SetUniformi("useStrengths", balls.HasStrengths ? 1 : 0);
   program->SetUniformi("colorPerBall", balls.ColorPerBall ? 1 : 0);
-  balls.Balls->BindBase(0);
+  program->SetUniformui("baseCount", level ? static_cast<unsigned int>(balls.Count) : 0xFFFFFFFFu);
+  gridBalls->BindBase(0);
+  if (level)
+  {
+    this->Level->GetMergedStrengths()->BindBase(7);
+    this->Level->GetMergedColors()->BindBase(8);
+  }
   balls.Colors->BindBase(1);
   balls.Strengths->BindBase(2);
   this->Grid->GetVoxelOffsets()->BindBase(3);
@@ -134,6 +152,7 @@ vtkIdType vtkMetaballGPURayCaster::GetNumberOfOverflows()
 void vtkMetaballGPURayCaster::ReleaseGraphicsResources(vtkWindow* win)
 {
   this->Grid->ReleaseGraphicsResources(win);
+  this->Level->ReleaseGraphicsResources(win);
   this->RayCast->ReleaseGraphicsResources(win);
   this->Defines.clear();
   this->Timer.ReleaseGraphicsResources();

@@ -23,6 +23,7 @@
 
 class vtkComputeShaderProgram;
 class vtkMetaballGridBuilder;
+class vtkMetaballLevelOfDetail;
 
 class POINTSURFACESRENDERING_EXPORT vtkMetaballGPURayCaster : public vtkMetaballRayCaster
 {
@@ -55,6 +56,7 @@ private:
     const pointsurfaces::MetaballCastRequest& request);
 
   vtkNew<vtkMetaballGridBuilder> Grid;
+  vtkNew<vtkMetaballLevelOfDetail> Level;
   vtkNew<vtkComputeShaderProgram> RayCast;
   std::string Defines;
   vtkOpenGLRenderTimer Timer;

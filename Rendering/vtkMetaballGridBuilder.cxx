@@ -186,7 +186,10 @@ struct vtkMetaballGridBuilder::Internals
     }
     values->BindBase(CountsBinding);
     sums->BindBase(SumsBinding);
-    this->Stats->BindBase(StatsBinding);
+    if (this->Stats)
+    {
+      this->Stats->BindBase(StatsBinding);
+    }
     scan->SetUniformui("count", static_cast<unsigned int>(n));
     scan->SetUniformi("recordMax", recordMax ? 1 : 0);
     if (!scan->Dispatch(static_cast<unsigned int>(groups)))
@@ -371,6 +374,16 @@ vtkShaderStorageBuffer* vtkMetaballGridBuilder::GetVoxelBalls()
 vtkShaderStorageBuffer* vtkMetaballGridBuilder::GetGridStatistics()
 {
   return this->Impl->Stats;
+}
+
+//------------------------------------------------------------------------------
+bool vtkMetaballGridBuilder::ExclusiveScan(vtkOpenGLRenderWindow* renWin,
+  vtkShaderStorageBuffer* values,
+  size_t n)
+{
+  const bool ok = this->Impl->ExclusiveScan(renWin, values, n, 0, false);
+  this->Impl->Programs[0]->Unbind();
+  return ok;
 }
 
 //------------------------------------------------------------------------------

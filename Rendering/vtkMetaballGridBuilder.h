@@ -116,6 +116,14 @@ public:
   vtkShaderStorageBuffer* GetGridStatistics();
   ///@}
 
+  /**
+   * An exclusive prefix sum of the first `n` uints of `values`, in place,
+   * by the build's scan passes (saturating at 2^32 - 1); for other GPU
+   * passes of the mapper (vtkMetaballLevelOfDetail). The context of
+   * `renWin` must be current.
+   */
+  bool ExclusiveScan(vtkOpenGLRenderWindow* renWin, vtkShaderStorageBuffer* values, size_t n);
+
   ///@{
   /**
    * The pairs that the pair buffers hold (0 before the first build); the

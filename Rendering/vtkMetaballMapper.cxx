@@ -585,6 +585,7 @@ void vtkMetaballMapper::MakeRequest(vtkRenderer* ren,
   request.Slabs = this->Slabs;
   request.StepScale = this->StepScale;
   request.Bisections = this->Bisections;
+  request.LevelOfDetailPixels = this->LevelOfDetailPixels;
   request.MemoryLimit = 1024.0 * static_cast<double>(this->MemoryLimit);
   request.Kernel = this->Field->GetKernelId();
   request.Threshold = this->Field->GetThreshold();
@@ -674,6 +675,8 @@ void vtkMetaballMapper::TakeStatistics(const pointsurfaces::MetaballCastStatisti
   bool march)
 {
   this->NumberOfPairs = stats.Pairs;
+  this->NumberOfMergedBalls = stats.MergedBalls;
+  this->NumberOfBallsMerged = stats.BallsMerged;
   this->MaximumBallsPerVoxel = stats.MaxPerVoxel;
   this->NumberOfCulledBalls = stats.Culled;
   this->NumberOfRays = stats.Rays;
@@ -787,6 +790,7 @@ void vtkMetaballMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Slabs: " << this->Slabs << "\n";
   os << indent << "StepScale: " << this->StepScale << "\n";
   os << indent << "Bisections: " << this->Bisections << "\n";
+  os << indent << "LevelOfDetailPixels: " << this->LevelOfDetailPixels << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " KiB\n";
   os << indent << "Shadows: " << this->Shadows << "\n";
 }

@@ -138,6 +138,31 @@ public:
 
   ///@{
   /**
+   * Level of detail on the GPU ray caster: balls whose support radius covers
+   * fewer than this many pixels on screen are merged, per frame, per cell of
+   * that many pixels and the matching depth, into one ball each (their
+   * centroid, second moments and kernel mass; vtkMetaballLevelOfDetail), so
+   * that a cloud seen whole costs what its pixels cost. On a closed surface
+   * the silhouette stays within a cell of the exact one and the depth within
+   * a few cells' depth; 0 (the default) draws every ball exactly. The CPU ray
+   * caster and the shadows draw every ball. Measured by
+   * bench_metaball_lod.py.
+   */
+  vtkSetClampMacro(LevelOfDetailPixels, double, 0.0, 64.0);
+  vtkGetMacro(LevelOfDetailPixels, double);
+  ///@}
+
+  ///@{
+  /**
+   * The last frame's merged balls and the balls they stand for (with
+   * LevelOfDetailPixels; a frame or two late without CollectStatistics).
+   */
+  vtkGetMacro(NumberOfMergedBalls, vtkIdType);
+  vtkGetMacro(NumberOfBallsMerged, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
    * The most memory the CPU ray caster may take for its copy of the balls
    * and its grid, in kibibytes; 0 (the default): the physical memory free
    * when the frame starts. A frame beyond it draws no balls and gives one
@@ -400,6 +425,9 @@ protected:
   vtkSmartPointer<vtkMetaballField> Field;
   int TileSize = 16;
   int Slabs = 16;
+  double LevelOfDetailPixels = 0.0;
+  vtkIdType NumberOfMergedBalls = 0;
+  vtkIdType NumberOfBallsMerged = 0;
   double StepScale = 0.1;
   int Bisections = 10;
   vtkIdType MemoryLimit = 0;

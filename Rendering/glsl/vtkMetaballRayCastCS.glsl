@@ -67,6 +67,22 @@ uniform float stepScale;
 uniform int bisections;
 uniform int useStrengths;
 uniform int colorPerBall; // else colors[0] is every ball's colour
+// Balls from vtkMetaballLevelOfDetail: ids from baseCount on are merged
+// balls, with their strength and colour in the merged arrays.
+layout(std430, binding = 7) readonly buffer MergedStrengths { float mergedStrengths[]; };
+layout(std430, binding = 8) readonly buffer MergedColors { uint mergedColors[]; };
+uniform uint baseCount; // the input's balls (all ids when there is no level of detail)
+
+float psStrength(uint id)
+{
+  return id < baseCount ? (useStrengths != 0 ? strengths[id] : 1.0)
+                        : mergedStrengths[id - baseCount];
+}
+
+uint psColor(uint id)
+{
+  return id < baseCount ? colors[colorPerBall != 0 ? id : 0u] : mergedColors[id - baseCount];
+}
 
 shared vec4 sharedBalls[MAX_SHARED]; // view-space centre, R
 shared float sharedStrength[MAX_SHARED];
@@ -153,7 +169,7 @@ void psAddGlobal(vec3 p, uint id, inout float f, inout vec3 grad, inout vec4 col
 {
   vec4 b = balls[id];
   psAddBall(p, vec4((worldToView * vec4(b.xyz, 1.0)).xyz, b.w),
-    useStrengths != 0 ? strengths[id] : 1.0, colors[colorPerBall != 0 ? id : 0u], f, grad, color, wantColor);
+    psStrength(id), psColor(id), f, grad, color, wantColor);
 }
 
 bool psAccumulateGlobal(vec3 p, uint first, uint count, inout float f, inout vec3 grad,
@@ -330,7 +346,7 @@ void main()
     {
       uint id = voxelBalls[first + kb];
       float R = balls[id].w;
-      partial += (useStrengths != 0 ? abs(strengths[id]) : 1.0) / R;
+      partial += abs(psStrength(id)) / R;
       atomicMin(sharedMinRadius, floatBitsToUint(R));
     }
     sharedReduce[local] = partial;
@@ -359,8 +375,8 @@ void main()
         uint id = voxelBalls[first + k];
         vec4 b = balls[id];
         sharedBalls[k] = vec4((worldToView * vec4(b.xyz, 1.0)).xyz, b.w);
-        sharedStrength[k] = useStrengths != 0 ? strengths[id] : 1.0;
-        sharedColor[k] = colors[colorPerBall != 0 ? id : 0u];
+        sharedStrength[k] = psStrength(id);
+        sharedColor[k] = psColor(id);
       }
       loaded = !psAny(k < count) && loaded; // a load cut short by the driver
     }
@@ -457,8 +473,8 @@ void main()
             uint id = voxelBalls[first + base + k];
             vec4 b = balls[id];
             sharedBalls[k] = vec4((worldToView * vec4(b.xyz, 1.0)).xyz, b.w);
-            sharedStrength[k] = useStrengths != 0 ? strengths[id] : 1.0;
-            sharedColor[k] = colors[colorPerBall != 0 ? id : 0u];
+            sharedStrength[k] = psStrength(id);
+            sharedColor[k] = psColor(id);
           }
           // A load cut short by the driver leaves stale balls: no sum to trust.
           complete = psAny(k < uint(n)) || !loaded ? false : complete;
