@@ -193,6 +193,19 @@ if RANK == 0:
           "MetaballMemoryLimit of 1 KiB draws no balls (%s of the pixels change)"
           % (why or "%.1f %%" % (100 * differ)))
 balls.MetaballMemoryLimit = 0
+# The GPU ray caster with a level of detail below every ball's size on
+# screen: the same surface as the exact CPU caster's.
+balls.MetaballRayCaster = 1
+balls.MetaballLevelOfDetailPixels = 2.0
+Render(view)
+level = os.path.join(out, "PluginMetaballsLevel" + (".mpi" if mpi else "") + ".png")
+SaveScreenshot(level, view, ImageResolution=SIZE)
+if RANK == 0:
+    differ, why = differing_pixels(level, full)
+    check(why is None and differ < 0.02,
+          "MetaballLevelOfDetailPixels 2 on the GPU caster draws the exact surface "
+          "(%s of the pixels change)" % (why or "%.1f %%" % (100 * differ)))
+balls.MetaballLevelOfDetailPixels = 0.0
 balls.MetaballRayCaster = caster
 Render(view)
 compare(view, "PluginMetaballs", tolerance=0.001 if mpi else 0.005)

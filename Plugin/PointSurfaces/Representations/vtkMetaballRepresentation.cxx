@@ -128,6 +128,7 @@ PS_FORWARD(TileSize, TileSize, int)
 PS_FORWARD(Slabs, Slabs, int)
 PS_FORWARD(Shadows, Shadows, bool)
 PS_FORWARD(MemoryLimit, MemoryLimit, vtkIdType)
+PS_FORWARD(LevelOfDetailPixels, LevelOfDetailPixels, double)
 #undef PS_FORWARD
 #undef PS_FORWARD_TO_MAPPERS
 #undef PS_FORWARD_GHOSTS

@@ -63,6 +63,7 @@ public:
   void SetMetaballSlabs(int count);
   void SetMetaballShadows(bool on);
   void SetMetaballMemoryLimit(vtkIdType kibibytes);
+  void SetMetaballLevelOfDetailPixels(double pixels);
   ///@}
 
   void SetSuppressLOD(bool) override { this->Superclass::SetSuppressLOD(true); }
