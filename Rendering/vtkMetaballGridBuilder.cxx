@@ -50,7 +50,6 @@ const size_t PlaceGroupsOffset = 9 * sizeof(unsigned int); // PLACE's indirect c
 enum Binding
 {
   BallsBinding = 0,
-  RangesBinding = 1,
   CountsBinding = 2,
   SumsBinding = 3,
   PairVoxelsBinding = 4,
@@ -128,8 +127,7 @@ struct vtkMetaballGridBuilder::Internals
   vtkObject* Owner = nullptr; // reports errors
   vtkOpenGLRenderTimer Timer; // the build's GPU time, read a build late
   vtkNew<vtkComputeShaderProgram> Programs[NumberOfPasses];
-  vtkNew<vtkShaderStorageBuffer> Ranges, Counts, PairVoxels, PairBalls, Histogram, Cursor,
-    VoxelBalls;
+  vtkNew<vtkShaderStorageBuffer> Counts, PairVoxels, PairBalls, Histogram, Cursor, VoxelBalls;
   vtkNew<vtkMetaballGPUCounters> StatRing; // a ring of statistics buffers, read through fences
   vtkShaderStorageBuffer* Stats = nullptr; // the current build's
   vtkIdType Balls = 0;                     // the current build's ball count
@@ -244,11 +242,11 @@ struct vtkMetaballGridBuilder::Internals
       common.Set(scatter);
       scatter->SetUniformui("count", static_cast<unsigned int>(n));
       scatter->SetUniformui("capacity", static_cast<unsigned int>(capacity));
-      this->Ranges->BindBase(RangesBinding);
       this->Counts->BindBase(CountsBinding);
       this->PairVoxels->BindBase(PairVoxelsBinding);
       this->PairBalls->BindBase(PairBallsBinding);
       this->Histogram->BindBase(HistogramBinding);
+      this->Stats->BindBase(StatsBinding); // the slab range
       ok =
         scatter->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), BallGroup));
     }
@@ -472,7 +470,7 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
   const size_t voxels = static_cast<size_t>(this->TilesX) * this->TilesY * this->Slabs;
   const size_t n = static_cast<size_t>(count);
   const size_t maxBytes = vtkShaderStorageBuffer::GetMaximumSize();
-  if (n + 1 > maxBytes / (3 * 2 * sizeof(int)) || voxels + 1 > maxBytes / sizeof(unsigned int))
+  if (n + 1 > maxBytes / (4 * sizeof(float)) || voxels + 1 > maxBytes / sizeof(unsigned int))
   {
     vtkErrorMacro(<< count << " balls or " << voxels
                   << " voxels exceed the shader storage buffer limit of " << maxBytes << " bytes.");
@@ -518,8 +516,7 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
   bool ok = in.SlabRange(renWin, common, n, this->SlabRange);
 
   // Count voxels per ball, then scan into each ball's first pair.
-  ok = ok && Reserve(in.Ranges, 3 * (n + 1) * 2 * sizeof(int)) &&
-    Reserve(in.Counts, (n + 1) * sizeof(unsigned int));
+  ok = ok && Reserve(in.Counts, (n + 1) * sizeof(unsigned int));
   vtkComputeShaderProgram* countPass = ok ? in.Use(renWin, Count) : nullptr;
   ok = countPass != nullptr;
   if (ok)
@@ -527,7 +524,6 @@ bool vtkMetaballGridBuilder::Build(vtkOpenGLRenderWindow* renWin,
     common.Set(countPass);
     countPass->SetUniformui("count", static_cast<unsigned int>(n));
     balls->BindBase(BallsBinding);
-    in.Ranges->BindBase(RangesBinding);
     in.Counts->BindBase(CountsBinding);
     in.Stats->BindBase(StatsBinding);
     ok = countPass->Dispatch(vtkComputeShaderProgram::GroupCount(n + 1, BallGroup));
@@ -586,8 +582,7 @@ void vtkMetaballGridBuilder::ReleaseGraphicsResources(vtkWindow* win)
   {
     p->ReleaseGraphicsResources(win);
   }
-  for (vtkShaderStorageBuffer* b : { in.Ranges.GetPointer(),
-         in.Counts.GetPointer(),
+  for (vtkShaderStorageBuffer* b : { in.Counts.GetPointer(),
          in.PairVoxels.GetPointer(),
          in.PairBalls.GetPointer(),
          in.Histogram.GetPointer(),

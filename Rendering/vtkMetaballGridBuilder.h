@@ -13,7 +13,8 @@
  * lists the balls whose support sphere reaches into it. The build runs in GL
  * compute shaders (glsl/vtkMetaballGridCS.glsl): frustum culling and a count
  * of voxels per ball, an exclusive scan (Blelloch, multi-level), a scatter
- * of (voxel, ball) pairs with a histogram of pairs per voxel, a scan of the
+ * of (voxel, ball) pairs (each ball's voxels found again rather than stored:
+ * 4 bytes a ball in all) with a histogram of pairs per voxel, a scan of the
  * histogram into voxel offsets, and a counting sort of the ball ids by voxel.
  * The ray caster reads VoxelOffsets and VoxelBalls; within a voxel the order
  * of the ids is not fixed.

@@ -48,7 +48,7 @@ if [ "$smoke" = 1 ]; then
   render_args=(--smoke)
   tiles_args=(--smoke)
 else
-  render_args=(--size 1920x1080 --frames 20 --points 1000000 --balls 100000,1000000,10000000)
+  render_args=(--size 1920x1080 --frames 20 --points 1000000 --balls 100000,1000000,10000000,100000000)
   tiles_args=()
 fi
 "$here/bin/BenchRender" "${render_args[@]}" --out "$out/bench" \

@@ -9,7 +9,8 @@
 //
 // 0 RANGE    nearest and farthest view distance of the balls in the view
 //            (automatic slab placement), as float bits with atomicMin/Max
-// 1 COUNT    per ball: frustum cull, voxel range, number of voxels
+// 1 COUNT    per ball: frustum cull, voxel range, number of voxels (the
+//            ranges are found again by SCATTER, not stored)
 // 2 SCAN     exclusive scan of 1024 values per work group (Blelloch), with
 //            each group's total written out; optionally the largest value
 // 3 ADD      adds the scanned group totals back (multi-level scans)
@@ -46,7 +47,6 @@ layout(local_size_x = 256) in;
 #endif
 
 layout(std430, binding = 0) readonly buffer Balls { vec4 balls[]; };  // centre, radius
-layout(std430, binding = 1) buffer Ranges { ivec2 ranges[]; };        // 3 per ball: x, y, z
 layout(std430, binding = 2) buffer Counts { uint counts[]; };         // per ball, + 1
 layout(std430, binding = 3) buffer Sums { uint sums[]; };             // per work group
 layout(std430, binding = 4) buffer PairVoxels { uint pairVoxels[]; };
@@ -88,11 +88,65 @@ bool psOutside(vec3 c, float r)
   return false;
 }
 
-#if PASS == 1
+#if PASS == 1 || PASS == 4
 int psSlabOf(float d, float slabNear, float slabFar)
 {
   float s = (d - slabNear) / (slabFar - slabNear) * float(slabs);
   return clamp(int(floor(s)), 0, slabs - 1);
+}
+
+// Ball b's voxels: its tile ranges in x and y and its slab range; 0 when it
+// is invalid, 1 when it is culled, 2 with the ranges. COUNT counts them,
+// SCATTER finds them again (storing them would take 24 bytes a ball).
+int psBallVoxels(vec4 b, out ivec2 xr, out ivec2 yr, out ivec2 zr)
+{
+  xr = yr = zr = ivec2(0, -1);
+  if (!psValid(b))
+  {
+    return 0;
+  }
+  vec3 c = (worldToView * vec4(b.xyz, 1.0)).xyz;
+  float r = b.w;
+  float d = -c.z;
+  float slabNear = uintBitsToFloat(stats[5]), slabFar = uintBitsToFloat(stats[6]);
+  if (psOutside(c, r) || d + r < slabNear || d - r > slabFar)
+  {
+    return 1;
+  }
+  zr = ivec2(psSlabOf(d - r, slabNear, slabFar), psSlabOf(d + r, slabNear, slabFar));
+  vec2 lo = vec2(1e30), hi = vec2(-1e30);
+  bool everywhere = parallelProjection == 0 && d - r <= 0.0;
+  for (int k = 0; k < 8 && !everywhere; ++k)
+  {
+    vec3 corner = c + vec3((k & 1) != 0 ? r : -r, (k & 2) != 0 ? r : -r, (k & 4) != 0 ? r : -r);
+    vec4 clip = viewToClip * vec4(corner, 1.0);
+    if (!(clip.w > 0.0))
+    {
+      everywhere = true;
+    }
+    else
+    {
+      vec2 p = (0.5 * clip.xy / clip.w + 0.5) * vec2(viewport);
+      lo = min(lo, p);
+      hi = max(hi, p);
+    }
+  }
+  if (everywhere)
+  {
+    xr = ivec2(0, tiles.x - 1);
+    yr = ivec2(0, tiles.y - 1);
+    return 2;
+  }
+  if (hi.x < 0.0 || hi.y < 0.0 || lo.x >= float(viewport.x) || lo.y >= float(viewport.y))
+  {
+    zr = ivec2(0, -1);
+    return 1;
+  }
+  xr = ivec2(max(0, int(floor(lo.x / float(tileSize)))),
+    min(tiles.x - 1, int(floor(hi.x / float(tileSize)))));
+  yr = ivec2(max(0, int(floor(lo.y / float(tileSize)))),
+    min(tiles.y - 1, int(floor(hi.y / float(tileSize)))));
+  return 2;
 }
 #endif
 
@@ -143,62 +197,13 @@ void main()
     }
     return;
   }
-  vec4 b = balls[i];
-  counts[i] = 0u;
-  if (!psValid(b))
+  ivec2 xr, yr, zr;
+  int kind = psBallVoxels(balls[i], xr, yr, zr);
+  counts[i] = kind == 2 ? uint((xr.y - xr.x + 1) * (yr.y - yr.x + 1) * (zr.y - zr.x + 1)) : 0u;
+  if (kind < 2)
   {
-    atomicAdd(stats[3], 1u);
-    return;
+    atomicAdd(stats[kind == 0 ? 3 : 2], 1u); // invalid, or culled
   }
-  vec3 c = (worldToView * vec4(b.xyz, 1.0)).xyz;
-  float r = b.w;
-  float d = -c.z;
-  float slabNear = uintBitsToFloat(stats[5]), slabFar = uintBitsToFloat(stats[6]);
-  if (psOutside(c, r) || d + r < slabNear || d - r > slabFar)
-  {
-    atomicAdd(stats[2], 1u);
-    return;
-  }
-  ivec2 zr = ivec2(psSlabOf(d - r, slabNear, slabFar), psSlabOf(d + r, slabNear, slabFar));
-  vec2 lo = vec2(1e30), hi = vec2(-1e30);
-  bool everywhere = parallelProjection == 0 && d - r <= 0.0;
-  for (int k = 0; k < 8 && !everywhere; ++k)
-  {
-    vec3 corner = c + vec3((k & 1) != 0 ? r : -r, (k & 2) != 0 ? r : -r, (k & 4) != 0 ? r : -r);
-    vec4 clip = viewToClip * vec4(corner, 1.0);
-    if (!(clip.w > 0.0))
-    {
-      everywhere = true;
-    }
-    else
-    {
-      vec2 p = (0.5 * clip.xy / clip.w + 0.5) * vec2(viewport);
-      lo = min(lo, p);
-      hi = max(hi, p);
-    }
-  }
-  ivec2 xr, yr;
-  if (everywhere)
-  {
-    xr = ivec2(0, tiles.x - 1);
-    yr = ivec2(0, tiles.y - 1);
-  }
-  else
-  {
-    if (hi.x < 0.0 || hi.y < 0.0 || lo.x >= float(viewport.x) || lo.y >= float(viewport.y))
-    {
-      atomicAdd(stats[2], 1u);
-      return;
-    }
-    xr = ivec2(max(0, int(floor(lo.x / float(tileSize)))),
-      min(tiles.x - 1, int(floor(hi.x / float(tileSize)))));
-    yr = ivec2(max(0, int(floor(lo.y / float(tileSize)))),
-      min(tiles.y - 1, int(floor(hi.y / float(tileSize)))));
-  }
-  ranges[3u * i] = xr;
-  ranges[3u * i + 1u] = yr;
-  ranges[3u * i + 2u] = zr;
-  counts[i] = uint((xr.y - xr.x + 1) * (yr.y - yr.x + 1) * (zr.y - zr.x + 1));
 
 #elif PASS == 2
   // Blelloch scan of 1024 values of `counts` from offset group * 1024.
@@ -272,7 +277,8 @@ void main()
   {
     return;
   }
-  ivec2 xr = ranges[3u * i], yr = ranges[3u * i + 1u], zr = ranges[3u * i + 2u];
+  ivec2 xr, yr, zr;
+  psBallVoxels(balls[i], xr, yr, zr);
   uint k = first;
   for (int z = zr.x; z <= zr.y; ++z)
   {

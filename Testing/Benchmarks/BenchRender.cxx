@@ -14,7 +14,8 @@
 //   frame dynamic (the points are marked modified, so they are uploaded and
 //   the grid rebuilt); the grid build and ray cast times are the mapper's
 //   GPU timer queries, and upload_ms the wall time of the last frame's
-//   upload of the balls. The peer: vtkOpenGLSphereMapper on the same balls at
+//   upload of the balls; a second row draws them with LevelOfDetailPixels 2
+//   and counts the read-backs of its frames. The peer: vtkOpenGLSphereMapper on the same balls at
 //   the radius of a lone ball's surface.
 //
 // A frame is Render() plus a one-pixel depth read-back (which waits for the
@@ -440,6 +441,36 @@ struct Bench
     if (r.Note.empty())
     {
       WritePicture(this->Window, this->Opt.Out + "/" + scene.str() + ".png");
+    }
+
+    // The same frames with a level of detail of 2 pixels (vtkMetaballLevelOfDetail),
+    // and the read-backs they waited for (none after the first frame).
+    if (r.Note.empty())
+    {
+      mapper->SetLevelOfDetailPixels(2.0);
+      this->Window->Render();
+      const vtkIdType readBacks = mapper->GetNumberOfReadBacks();
+      Row l;
+      l.Scene = scene.str();
+      l.Method = "metaballs";
+      l.Primitives = n;
+      l.FrameMs =
+        MedianFrameMs(this->Window, this->Opt.Frames, [&points]() { points->Modified(); });
+      l.GridMs = mapper->GetGridBuildTime();
+      l.CastMs = mapper->GetRayCastTime();
+      l.UploadMs = mapper->GetUploadTime();
+      l.Setting = "radius 2 mean spacings, dynamic frames, LevelOfDetailPixels 2 (" +
+        std::to_string(mapper->GetNumberOfBallsMerged()) + " balls merged into " +
+        std::to_string(mapper->GetNumberOfMergedBalls()) + "; " +
+        std::to_string(mapper->GetNumberOfReadBacks() - readBacks) + " read-backs in " +
+        std::to_string(this->Opt.Frames) + " frames)";
+      if (this->Errors > errorsBefore)
+      {
+        l.Note = "not drawn: " + this->LastError;
+        this->Errors = errorsBefore;
+      }
+      this->Record(l);
+      mapper->SetLevelOfDetailPixels(0.0);
     }
 
     vtkNew<vtkOpenGLSphereMapper> spheres;
