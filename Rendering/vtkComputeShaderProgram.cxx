@@ -4,6 +4,8 @@
 
 #include "vtkComputeShaderProgram.h"
 
+#include "psShaderHooks.h"
+
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
 #include "vtkOpenGLShaderCache.h"
@@ -270,6 +272,33 @@ void vtkComputeShaderProgram::DispatchIndirect(unsigned int buffer,
   {
     glMemoryBarrier(barrierBits);
   }
+}
+
+//------------------------------------------------------------------------------
+bool vtkComputeShaderProgram::ReadyPass(vtkOpenGLRenderWindow* renWin,
+  const char* name,
+  const char* source,
+  int pass)
+{
+  if (!this->IsCompiled())
+  {
+    std::string text = source;
+    if (!pointsurfaces::ReplaceHook(
+          text, "//VTK::Pass::Dec", "#define PASS " + std::to_string(pass)))
+    {
+      vtkErrorMacro(<< name << " lacks its //VTK::Pass::Dec hook: pass " << pass
+                    << " cannot be compiled.");
+      return false;
+    }
+    this->SetName((std::string(name) + " pass " + std::to_string(pass)).c_str());
+    this->SetSource(text);
+    if (!this->Compile(renWin))
+    {
+      return false;
+    }
+  }
+  this->Bind(renWin);
+  return true;
 }
 
 //------------------------------------------------------------------------------

@@ -106,6 +106,15 @@ public:
     size_t offset,
     unsigned int barrierBits = 0x2000 | 0x200 | 0x40); // storage, buffer update, command
 
+  /**
+   * For a source of several passes: unless compiled already, compiles
+   * `source` with its pass hook (the Pass::Dec line of the VTK hooks,
+   * psShaderHooks.h) replaced by a definition of PASS as `pass`, named
+   * after `name` and the pass; then binds the program. False, with an
+   * error, when the hook is missing or the compile fails.
+   */
+  bool ReadyPass(vtkOpenGLRenderWindow* renWin, const char* name, const char* source, int pass);
+
   /** Number of groups needed to cover `items` with groups of `groupSize`. */
   static unsigned int GroupCount(size_t items, unsigned int groupSize);
 

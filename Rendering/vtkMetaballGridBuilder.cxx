@@ -4,8 +4,6 @@
 
 #include "vtkMetaballGridBuilder.h"
 
-#include "psShaderHooks.h"
-
 #include "vtkComputeShaderProgram.h"
 #include "vtkMetaballGPUCounters.h"
 #include "vtkMetaballGridCS.h"
@@ -124,7 +122,6 @@ struct PassUniforms
 
 struct vtkMetaballGridBuilder::Internals
 {
-  vtkObject* Owner = nullptr; // reports errors
   vtkOpenGLRenderTimer Timer; // the build's GPU time, read a build late
   vtkNew<vtkComputeShaderProgram> Programs[NumberOfPasses];
   vtkNew<vtkShaderStorageBuffer> Counts, PairVoxels, PairBalls, Histogram, Cursor, VoxelBalls;
@@ -138,26 +135,7 @@ struct vtkMetaballGridBuilder::Internals
   vtkComputeShaderProgram* Use(vtkOpenGLRenderWindow* renWin, int pass)
   {
     vtkComputeShaderProgram* p = this->Programs[pass];
-    if (!p->IsCompiled())
-    {
-      std::string source = vtkMetaballGridCS;
-      if (!pointsurfaces::ReplaceHook(
-            source, "//VTK::Pass::Dec", "#define PASS " + std::to_string(pass)))
-      {
-        vtkErrorWithObjectMacro(this->Owner,
-          << "vtkMetaballGridCS lacks its //VTK::Pass::Dec hook: the metaball grid cannot be "
-             "built.");
-        return nullptr;
-      }
-      p->SetName(("vtkMetaballGridCS pass " + std::to_string(pass)).c_str());
-      p->SetSource(source);
-      if (!p->Compile(renWin))
-      {
-        return nullptr;
-      }
-    }
-    p->Bind(renWin);
-    return p;
+    return p->ReadyPass(renWin, "vtkMetaballGridCS", vtkMetaballGridCS, pass) ? p : nullptr;
   }
 
   // Exclusive scan of `n` uints of `values` in place, over as many levels as needed.
@@ -350,7 +328,6 @@ double vtkMetaballGridBuilder::GetBuildTime()
 vtkMetaballGridBuilder::vtkMetaballGridBuilder()
   : Impl(new Internals)
 {
-  this->Impl->Owner = this;
 }
 
 //------------------------------------------------------------------------------

@@ -4,8 +4,6 @@
 
 #include "vtkMetaballLevelOfDetail.h"
 
-#include "psShaderHooks.h"
-
 #include "vtkComputeShaderProgram.h"
 #include "vtkMetaballGPUCounters.h"
 #include "vtkMetaballGridBuilder.h"
@@ -49,28 +47,12 @@ struct vtkMetaballLevelOfDetail::Internals
     MergedStrengths, MergedColors, FrontBin;
   vtkNew<vtkMetaballGPUCounters> Counts; // [0] merged balls, [1] balls merged
 
-  vtkComputeShaderProgram* Use(vtkOpenGLRenderWindow* renWin, int pass, vtkObject* owner)
+  vtkComputeShaderProgram* Use(vtkOpenGLRenderWindow* renWin, int pass)
   {
     vtkComputeShaderProgram* p = this->Programs[pass];
-    if (!p->IsCompiled())
-    {
-      std::string source = vtkMetaballLevelOfDetailCS;
-      if (!pointsurfaces::ReplaceHook(
-            source, "//VTK::Pass::Dec", "#define PASS " + std::to_string(pass)))
-      {
-        vtkErrorWithObjectMacro(
-          owner, << "vtkMetaballLevelOfDetailCS lacks its //VTK::Pass::Dec hook.");
-        return nullptr;
-      }
-      p->SetName(("vtkMetaballLevelOfDetailCS pass " + std::to_string(pass)).c_str());
-      p->SetSource(source);
-      if (!p->Compile(renWin))
-      {
-        return nullptr;
-      }
-    }
-    p->Bind(renWin);
-    return p;
+    return p->ReadyPass(renWin, "vtkMetaballLevelOfDetailCS", vtkMetaballLevelOfDetailCS, pass)
+      ? p
+      : nullptr;
   }
 };
 
@@ -184,7 +166,7 @@ bool vtkMetaballLevelOfDetail::Build(vtkOpenGLRenderWindow* renWin,
   // the counts into each key's first place.
   for (const int pass : { Classify, Key })
   {
-    vtkComputeShaderProgram* program = ok ? in.Use(renWin, pass, this) : nullptr;
+    vtkComputeShaderProgram* program = ok ? in.Use(renWin, pass) : nullptr;
     ok = program != nullptr;
     if (ok)
     {
@@ -203,14 +185,14 @@ bool vtkMetaballLevelOfDetail::Build(vtkOpenGLRenderWindow* renWin,
     glBindBuffer(GL_COPY_WRITE_BUFFER, 0);
   }
   // The small balls into their keys' lists, then one ball per key.
-  vtkComputeShaderProgram* place = ok ? in.Use(renWin, Place, this) : nullptr;
+  vtkComputeShaderProgram* place = ok ? in.Use(renWin, Place) : nullptr;
   ok = place != nullptr;
   if (ok)
   {
     common(place, n);
     ok = place->Dispatch(vtkComputeShaderProgram::GroupCount(std::max<size_t>(n, 1), Group));
   }
-  vtkComputeShaderProgram* merge = ok ? in.Use(renWin, Merge, this) : nullptr;
+  vtkComputeShaderProgram* merge = ok ? in.Use(renWin, Merge) : nullptr;
   ok = merge != nullptr;
   if (ok)
   {

@@ -22,6 +22,8 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 
+#include "psTestHitMapper.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -31,15 +33,6 @@
 
 namespace
 {
-// The mapper with its hit buffer readable.
-class HitMapper : public vtkMetaballMapper
-{
-public:
-  static HitMapper* New();
-  vtkTypeMacro(HitMapper, vtkMetaballMapper);
-  using vtkMetaballMapper::ReadHitBuffer;
-};
-vtkStandardNewMacro(HitMapper);
 
 struct Frame
 {

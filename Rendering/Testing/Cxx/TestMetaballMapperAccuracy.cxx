@@ -29,25 +29,14 @@
 
 #include "psMetaball.h"
 
+#include "psTestHitMapper.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <random>
 #include <vector>
-
-namespace
-{
-// The mapper with its hit buffer readable.
-class HitMapper : public vtkMetaballMapper
-{
-public:
-  static HitMapper* New();
-  vtkTypeMacro(HitMapper, vtkMetaballMapper);
-  using vtkMetaballMapper::ReadHitBuffer;
-};
-vtkStandardNewMacro(HitMapper);
-} // namespace
 
 int TestMetaballMapperAccuracy(int, char*[])
 {
