@@ -20,6 +20,7 @@
 #include "vtkType.h"
 #include "vtksys/SystemTools.hxx"
 
+#include <oneapi/tbb/task_arena.h>
 #include <openvdb/io/Archive.h>
 #include <openvdb/io/GridDescriptor.h>
 #include <openvdb/io/io.h>
@@ -755,12 +756,27 @@ int vtkOpenVDBPointsReader::RequestData(vtkInformation*,
   }
   openvdb::initialize();
 
-  // In a child process by default: see the class comment.
-  const ReadOutcome outcome =
-    pointsurfaces::GuardedRead([&]() { return ReadFile(this->FileName, this->GridName); },
-      this->ReadInChildProcess,
-      this->FileName,
-      "OpenVDB");
+  // In a child process by default: see the class comment. TBB's worker
+  // threads are not copied into a forked child, and what they held at the
+  // fork stays held there: OpenVDB's parallel loops in the child (Tree::clear,
+  // for one) then waited forever now and then (OpenVDB 13). In the child the
+  // read runs in an arena of one thread, whose loops never wait for workers.
+  const bool inChild = this->ReadInChildProcess;
+  const ReadOutcome outcome = pointsurfaces::GuardedRead(
+    [&]()
+    {
+      if (!inChild)
+      {
+        return ReadFile(this->FileName, this->GridName);
+      }
+      ReadOutcome read;
+      oneapi::tbb::task_arena alone(1, 1);
+      alone.execute([&]() { read = ReadFile(this->FileName, this->GridName); });
+      return read;
+    },
+    inChild,
+    this->FileName,
+    "OpenVDB");
   for (const std::string& warning : outcome.Warnings)
   {
     vtkWarningMacro(<< "\"" << this->FileName << "\": " << warning);
