@@ -362,7 +362,6 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
     const float c = static_cast<float>(0.5 * (bounds[2 * k] + bounds[2 * k + 1]));
     balls.Shift[k] = std::isfinite(c) ? c : 0.0;
   }
-  const double scale = ActorScale(act);
   vtkUnsignedCharArray* mapped = this->MapScalars(input, 1.0);
   bool ok = false;
   if (this->UsesCPUCaster())
@@ -406,7 +405,7 @@ bool vtkMetaballMapper::Upload(vtkRenderer* ren, vtkActor* act, vtkPointSet* inp
       input,
       rule,
       source,
-      scale,
+      ActorScale(act),
       mapped,
       pointsurfaces::PlainColor(act->GetProperty()),
       this->CollectStatistics,
