@@ -286,7 +286,8 @@ public:
     const double* normals,
     const BuildParameters& params,
     const std::function<void(double)>& progress,
-    const std::atomic<bool>* abort);
+    const std::atomic<bool>* abort,
+    ChunkContext* chunk);
 
   BuildResult Run();
 
@@ -378,6 +379,10 @@ private:
   void CoverOf(long long i, double s, std::vector<int>& out) const;
   // The median h of a sample of 64 points.
   double MedianScale() const;
+  // A streaming fit's halo point (see ChunkContext).
+  bool IsHalo(long long i) const { return Chunk && Chunk->Halo && Chunk->Halo[i]; }
+  // The halo points that the points `chosen` cover at s, each once.
+  void ClaimHalo(const std::vector<long long>& chosen, double s, std::vector<long long>& out) const;
   // 1. Positions: every point, the points chosen by quality level, or LOP's.
   void AllPositions(std::vector<Position>& positions, BuildResult& result) const;
   void QualityPositions(std::vector<Position>& positions, BuildResult& result);
@@ -396,6 +401,7 @@ private:
   const BuildParameters& params;
   const std::function<void(double)>& Progress;
   const std::atomic<bool>* Abort;
+  ChunkContext* Chunk;
   PointIndex index;
   SplatFitParameters fit;
   int kAll;
@@ -418,13 +424,15 @@ SplatBuild::SplatBuild(const double* xyz_,
   const double* normals_,
   const BuildParameters& params_,
   const std::function<void(double)>& progress,
-  const std::atomic<bool>* abort)
+  const std::atomic<bool>* abort,
+  ChunkContext* chunk_)
   : xyz(xyz_)
   , n(n_)
   , normals(normals_)
   , params(params_)
   , Progress(progress)
   , Abort(abort)
+  , Chunk(chunk_)
   , index(xyz_, n_)
   , fit(params_.Fit)
   , chosenOf(static_cast<size_t>(n_))
@@ -861,6 +869,27 @@ void SplatBuild::CoverOf(long long i, double s, std::vector<int>& out) const
 }
 
 //------------------------------------------------------------------------------
+void SplatBuild::ClaimHalo(const std::vector<long long>& chosen,
+  double s,
+  std::vector<long long>& out) const
+{
+  std::vector<int> ids;
+  for (long long i : chosen)
+  {
+    this->CoverOf(i, s, ids);
+    for (int id : ids)
+    {
+      if (this->IsHalo(id))
+      {
+        out.push_back(id);
+      }
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+//------------------------------------------------------------------------------
 double SplatBuild::MedianScale() const
 {
   // Median h of a sample of points: it sizes the Lattice grid and the
@@ -887,10 +916,14 @@ double SplatBuild::MedianScale() const
 //------------------------------------------------------------------------------
 void SplatBuild::AllPositions(std::vector<Position>& positions, BuildResult& result) const
 {
-  positions.resize(static_cast<size_t>(n));
+  positions.reserve(static_cast<size_t>(n));
   for (long long i = 0; i < n; ++i)
   {
-    positions[i] = Position{ { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] }, i, 0, params.Quality };
+    if (!this->IsHalo(i))
+    {
+      positions.push_back(
+        Position{ { xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2] }, i, 0, params.Quality });
+    }
   }
   result.LevelQuality.push_back(params.Quality);
 }
@@ -899,10 +932,21 @@ void SplatBuild::AllPositions(std::vector<Position>& positions, BuildResult& res
 void SplatBuild::QualityPositions(std::vector<Position>& positions, BuildResult& result)
 {
   const int levels = std::max(1, params.Levels);
-  const double h = this->MedianScale();
-  const std::vector<long long> order = params.VisitOrder == Order::Lattice
+  const double h =
+    Chunk && Chunk->MedianFeatureSize > 0.0 ? Chunk->MedianFeatureSize : this->MedianScale();
+  std::vector<long long> order = params.VisitOrder == Order::Lattice
     ? LatticeOrder(xyz, n, params.LatticeSpacing * params.Quality * h, params.Seed)
     : RandomOrder(n, params.Seed);
+  if (Chunk && Chunk->Halo)
+  {
+    order.erase(
+      std::remove_if(order.begin(), order.end(), [this](long long i) { return this->IsHalo(i); }),
+      order.end());
+  }
+  if (Chunk)
+  {
+    Chunk->HaloClaims.assign(static_cast<size_t>(levels), {});
+  }
   const double coarsest =
     levels > 1 ? std::max(params.Quality, params.CoarsestQuality) : params.Quality;
   // A cover reaches no farther than the widest disc: RadiusScale s h, with
@@ -920,11 +964,21 @@ void SplatBuild::QualityPositions(std::vector<Position>& positions, BuildResult&
     levelIndex = level;
     levelFit.MaximumDeviation = fit.MaximumDeviation * std::max(1.0, s / params.Quality);
     result.LevelQuality.push_back(s);
-    for (auto& st : state)
+    for (long long i = 0; i < n; ++i)
     {
+      PointState& st = state[i];
       if (st == PointState::Claimed)
       {
         st = PointState::Free; // claims depend on s: redo them at this level
+      }
+      if (st == PointState::Free && this->IsHalo(i))
+      {
+        st = PointState::Reserved;
+      }
+      else if (st == PointState::Free && Chunk && Chunk->ClaimedBefore && level < 8 &&
+        (Chunk->ClaimedBefore[i] >> level) & 1)
+      {
+        st = PointState::Claimed; // by a chunk fitted before this one
       }
     }
     const std::vector<long long> chosen = SelectByQuality(
@@ -943,6 +997,10 @@ void SplatBuild::QualityPositions(std::vector<Position>& positions, BuildResult&
       positions.push_back(Position{ { p[0], p[1], p[2] }, chosen[j], level, s });
     }
     chosenAll.insert(chosenAll.end(), chosen.begin(), chosen.end());
+    if (Chunk && Chunk->Halo)
+    {
+      this->ClaimHalo(chosenAll, s, Chunk->HaloClaims[level]);
+    }
     this->Report(0.5 * (level + 1) / levels);
   }
   for (const auto st : state)
@@ -1126,13 +1184,14 @@ BuildResult BuildSplats(const double* xyz,
   const double* normals,
   const BuildParameters& params,
   const std::function<void(double)>& progress,
-  const std::atomic<bool>* abort)
+  const std::atomic<bool>* abort,
+  ChunkContext* chunk)
 {
   if (n < 3)
   {
     return BuildResult();
   }
-  SplatBuild build(xyz, n, normals, params, progress, abort);
+  SplatBuild build(xyz, n, normals, params, progress, abort, chunk);
   return build.Run();
 }
 

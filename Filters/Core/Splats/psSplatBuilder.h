@@ -116,6 +116,30 @@ struct BuiltSplat
   std::vector<float> Weights;
 };
 
+/**
+ * One chunk of a streaming fit (psSplatStream.h): the points passed to
+ * BuildSplats are the chunk's own points and a halo of its neighbours'
+ * points around it. Halo points are fitted against and bounded against as
+ * usual, but never chosen; the chunk's own points that the splats of chunks
+ * fitted before it claimed start claimed, level by level; and the halo
+ * points that this chunk's splats claim are reported, so that the chunks
+ * after it start with them claimed. With the halo as wide as a fit's
+ * neighbours and a disc's reach, each splat is what the in-memory fit
+ * gives, and the selection is the in-memory one's, chunk after chunk, as
+ * its slabs are (see SelectByQuality).
+ */
+struct ChunkContext
+{
+  /** Per point: non-zero for a halo point (another chunk's). */
+  const unsigned char* Halo = nullptr;
+  /** Per point: bit l set when an earlier chunk claimed it at level l (own points only). */
+  const unsigned char* ClaimedBefore = nullptr;
+  /** The median h that sizes the Lattice grid and the slabs (> 0: the whole cloud's). */
+  double MedianFeatureSize = 0.0;
+  /** Out: per level, the halo points that this chunk's splats claim there. */
+  std::vector<std::vector<long long>> HaloClaims;
+};
+
 struct BuildResult
 {
   std::vector<BuiltSplat> Splats;   ///< successful splats, coarsest level first
@@ -127,14 +151,17 @@ struct BuildResult
 /**
  * Build the splats of `n` finite points `xyz` (with optional unit normals
  * that orient the splats). `progress(f)` is called with f in [0, 1];
- * `abort`, when set, stops the work early with what was built.
+ * `abort`, when set, stops the work early with what was built. `chunk`,
+ * when given, makes this one chunk of a streaming fit (see ChunkContext;
+ * Selection All or Quality only).
  */
 POINTSURFACESFILTERS_EXPORT BuildResult BuildSplats(const double* xyz,
   long long n,
   const double* normals,
   const BuildParameters& params,
   const std::function<void(double)>& progress = nullptr,
-  const std::atomic<bool>* abort = nullptr);
+  const std::atomic<bool>* abort = nullptr,
+  ChunkContext* chunk = nullptr);
 
 /**
  * LOP (Lipman et al. 2007) or WLOP (Huang et al. 2009): move `x` (m xyz

@@ -21,12 +21,8 @@ namespace pointsurfaces
 {
 namespace
 {
-// How large the flux of a part's normals must be, as a share of its largest
-// possible value, to decide which way is out.
-constexpr double Decisive = 0.1;
-// A part whose area-weighted normals sum to more than this share of its
-// area is an open sheet, not a closed surface.
-constexpr double OpenSheet = 0.3;
+constexpr double Decisive = OrientationDecisive;
+constexpr double OpenSheet = OrientationOpenSheet;
 // A splat whose visible views face it, summed as |n.u| over the views, reach
 // SeenEnough, and agree on its side by Unanimous of that sum, is a seed of
 // its closed part's orientation.
@@ -435,7 +431,7 @@ public:
   void BuildGraph(int k);
   // Orients every part from its highest splat, then regrows the closed
   // parts that their views disagree with. Returns the splats flipped.
-  long long Run(long long* parts);
+  long long Run(long long* parts, std::vector<long long>* partOf, bool outside);
 
 private:
   struct Edge
@@ -796,7 +792,7 @@ void Orientation::Regrow()
 }
 
 //------------------------------------------------------------------------------
-long long Orientation::Run(long long* parts)
+long long Orientation::Run(long long* parts, std::vector<long long>* partOf, bool outside)
 {
   const long long n = this->N;
   // Seeds in order of decreasing height; one tree over each part.
@@ -807,6 +803,11 @@ long long Orientation::Run(long long* parts)
     order.end(),
     [&](long long a, long long b) { return this->XYZ[3 * a + 2] > this->XYZ[3 * b + 2]; });
   std::vector<long long> part;
+  long long partCount = 0;
+  if (partOf)
+  {
+    partOf->assign(static_cast<size_t>(n), -1);
+  }
   for (const long long seed : order)
   {
     if (this->Done[seed])
@@ -824,7 +825,15 @@ long long Orientation::Run(long long* parts)
     this->Done[seed] = 1;
     part.assign(1, seed);
     this->Grow({ seed }, &part);
-    if (this->OrientByFlux(part))
+    if (partOf)
+    {
+      for (const long long i : part)
+      {
+        (*partOf)[i] = partCount;
+      }
+    }
+    ++partCount;
+    if (outside && this->OrientByFlux(part))
     {
       this->CheckByViews(part);
     }
@@ -845,11 +854,17 @@ long long Orientation::Run(long long* parts)
 long long OrientSplats(const std::vector<Splat*>& splats,
   int k,
   long long* parts,
-  const std::vector<double>* radii)
+  const std::vector<double>* radii,
+  std::vector<long long>* partOf,
+  bool outside)
 {
   if (parts)
   {
     *parts = 0;
+  }
+  if (partOf)
+  {
+    partOf->assign(splats.size(), -1);
   }
   if (splats.empty())
   {
@@ -857,6 +872,6 @@ long long OrientSplats(const std::vector<Splat*>& splats,
   }
   Orientation orientation(splats, radii);
   orientation.BuildGraph(k);
-  return orientation.Run(parts);
+  return orientation.Run(parts, partOf, outside);
 }
 } // namespace pointsurfaces

@@ -62,6 +62,17 @@
 
 namespace pointsurfaces
 {
+/**
+ * How large the flux of a part's normals must be, as a share of its largest
+ * possible value, to decide which way is out.
+ */
+constexpr double OrientationDecisive = 0.1;
+/**
+ * A part whose area-weighted normals sum to more than this share of its
+ * area is an open sheet, not a closed surface.
+ */
+constexpr double OrientationOpenSheet = 0.3;
+
 /** Turn a splat over: the same surface, seen from its other side. */
 POINTSURFACESFILTERS_EXPORT void FlipSplat(Splat& splat);
 
@@ -70,12 +81,20 @@ POINTSURFACESFILTERS_EXPORT void FlipSplat(Splat& splat);
  * origin) in the graph. Returns the number of splats flipped. `parts`, when
  * given, receives the number of connected parts (each with its own seed).
  * `radii`, when given (one per splat), are the discs' radii for the views
- * from outside; otherwise each splat's h stands in.
+ * from outside; otherwise each splat's h stands in. `partOf`, when given,
+ * receives each splat's part (0 .. parts - 1), the connected parts of the
+ * graph that were oriented each from its own seed. Without `outside`, each
+ * part only takes its seed's side along its tree: no flux and no views
+ * decide a closed part's side (for a piece of a surface, whose side is
+ * decided with the whole, as psSplatStream.h does: a piece of a closed
+ * surface seen through its cut would be seen from inside).
  */
 POINTSURFACESFILTERS_EXPORT long long OrientSplats(const std::vector<Splat*>& splats,
   int k = 8,
   long long* parts = nullptr,
-  const std::vector<double>* radii = nullptr);
+  const std::vector<double>* radii = nullptr,
+  std::vector<long long>* partOf = nullptr,
+  bool outside = true);
 } // namespace pointsurfaces
 
 #endif

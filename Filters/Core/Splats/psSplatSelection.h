@@ -39,7 +39,8 @@ enum class PointState : signed char
   Free = 0,
   Chosen = 1,
   Claimed = 2,
-  Unusable = 3 ///< no frame could be computed: degenerate neighbourhood
+  Unusable = 3, ///< no frame could be computed: degenerate neighbourhood
+  Reserved = 4  ///< another chunk's point (streaming fit): never chosen or claimed here
 };
 
 /**
