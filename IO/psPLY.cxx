@@ -1414,6 +1414,118 @@ bool ReadPLYFile(const std::string& path, PLYMesh& mesh, std::string& error)
   }
 }
 
+bool ReadPLYFilePiece(const std::string& path,
+  std::size_t piece,
+  std::size_t pieces,
+  PLYMesh& mesh,
+  bool& streamed,
+  std::string& error)
+{
+  mesh = PLYMesh();
+  streamed = false;
+  pieces = std::max<std::size_t>(1, pieces);
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : -1;
+  if (!in || size <= 0)
+  {
+    error = !in || size < 0 ? "cannot be opened" : "the file is empty";
+    return false;
+  }
+  // The header: at most its 4096 properties' lines.
+  std::string head(static_cast<std::size_t>(std::min<std::streamoff>(size, 1 << 20)), '\0');
+  in.seekg(0);
+  in.read(&head[0], static_cast<std::streamsize>(head.size()));
+  Header header;
+  std::string headerError;
+  const bool parsed = ParseHeader(head.data(), head.size(), header, headerError);
+  const auto vertex = std::find_if(header.Elements.begin(),
+    header.Elements.end(),
+    [](const Element& e) { return e.Name == "vertex"; });
+  // A binary body whose vertex records have a fixed size and a known place.
+  bool direct =
+    parsed && header.Body != Format::Ascii && vertex != header.Elements.end() && !vertex->HasList();
+  Wide offset = header.Offset;
+  for (auto e = header.Elements.begin(); direct && e != vertex; ++e)
+  {
+    direct = !e->HasList();
+    std::size_t record = 0;
+    for (const Property& p : e->Properties)
+    {
+      record += PLYTypeSize(p.Type);
+    }
+    offset += static_cast<Wide>(e->Count) * record;
+  }
+  if (!direct)
+  {
+    // ASCII, or lists before the vertices: the whole file, then the piece.
+    if (!ReadPLYFile(path, mesh, error))
+    {
+      return false;
+    }
+    const std::size_t n = mesh.NumberOfPoints;
+    const std::size_t first = n * piece / pieces, last = n * (piece + 1) / pieces;
+    for (PLYColumn& c : mesh.Columns)
+    {
+      const std::size_t bytes = PLYTypeSize(c.Type);
+      c.Bytes =
+        std::vector<unsigned char>(c.Bytes.begin() + first * bytes, c.Bytes.begin() + last * bytes);
+    }
+    mesh.NumberOfPoints = last - first;
+    mesh.FaceOffsets.clear();
+    mesh.FaceConnectivity.clear();
+    return true;
+  }
+  std::size_t record = 0;
+  for (const Property& p : vertex->Properties)
+  {
+    record += PLYTypeSize(p.Type);
+  }
+  if (offset + static_cast<Wide>(vertex->Count) * record > static_cast<Wide>(size))
+  {
+    error = Truncated(*vertex);
+    return false;
+  }
+  const std::uint64_t n = vertex->Count;
+  const std::uint64_t first = n * piece / pieces, last = n * (piece + 1) / pieces;
+  Element e = *vertex;
+  e.Count = last - first;
+  std::vector<unsigned char> bytes;
+  try
+  {
+    bytes.resize(static_cast<std::size_t>(e.Count * record));
+  }
+  catch (const std::bad_alloc&)
+  {
+    error = "too large to read into memory";
+    return false;
+  }
+  in.clear();
+  in.seekg(static_cast<std::streamoff>(offset + static_cast<Wide>(first) * record));
+  if (!in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size())))
+  {
+    error = "cannot be read";
+    return false;
+  }
+  Wanted want;
+  for (const Property& p : e.Properties)
+  {
+    mesh.Columns.push_back(PLYColumn{ p.Name, p.Type, {} });
+  }
+  for (PLYColumn& c : mesh.Columns)
+  {
+    want.Columns.push_back(&c);
+  }
+  std::size_t at = 0;
+  const bool swap = (header.Body == Format::LittleEndian) != HostIsLittleEndian();
+  if (!BinaryFixedElement(bytes.data(), bytes.size(), at, e, swap, want, error))
+  {
+    return false;
+  }
+  mesh.NumberOfPoints = static_cast<std::size_t>(e.Count);
+  streamed = true;
+  return true;
+}
+
 std::size_t DropNonFinitePoints(PLYMesh& mesh)
 {
   const PLYColumn* xyz[3] = { mesh.Find("x"), mesh.Find("y"), mesh.Find("z") };

@@ -106,6 +106,22 @@ bool ReadPLY(const char* data, std::size_t size, PLYMesh& mesh, std::string& err
 bool ReadPLYFile(const std::string& path, PLYMesh& mesh, std::string& error);
 
 /**
+ * Piece `piece` of `pieces` of the file's vertices (the vertex element's
+ * scalar properties of records [n piece / pieces, n (piece + 1) / pieces)),
+ * without faces. In a binary file whose vertex records have a fixed size
+ * and come after elements of fixed-size records only, just those records
+ * are read (`streamed` true): a file of any size is read piece by piece in
+ * bounded memory. Otherwise (ASCII, lists before the vertices) the whole
+ * file is read and the piece kept. False, with `error` set, as ReadPLYFile.
+ */
+bool ReadPLYFilePiece(const std::string& path,
+  std::size_t piece,
+  std::size_t pieces,
+  PLYMesh& mesh,
+  bool& streamed,
+  std::string& error);
+
+/**
  * Leaves out the points with a NaN or infinite x, y or z, with the faces
  * that use them (the others renumbered). Returns how many were left out.
  */

@@ -18,6 +18,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
@@ -203,6 +204,23 @@ bool vtkPLYScanReader::CanReadFile(const char* fileName)
 }
 
 //------------------------------------------------------------------------------
+int vtkPLYScanReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* info = outputVector->GetInformationObject(0);
+  if (this->SplitPoints)
+  {
+    info->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  }
+  else
+  {
+    info->Remove(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST());
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 int vtkPLYScanReader::RequestData(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
@@ -213,22 +231,46 @@ int vtkPLYScanReader::RequestData(vtkInformation*,
     vtkErrorMacro(<< "No FileName: nothing to read.");
     return 1;
   }
-  if (pointsurfaces::LaterPiece(outputVector->GetInformationObject(0)))
+  vtkInformation* info = outputVector->GetInformationObject(0);
+  const int piece = info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces = info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
+  const bool split = this->SplitPoints && pieces > 1;
+  if (!split && pointsurfaces::LaterPiece(info))
   {
     return 1; // piece 0 reads the whole file
   }
   pointsurfaces::PLYMesh mesh;
   std::string error;
-  if (!pointsurfaces::ReadPLYFile(this->FileName, mesh, error))
+  bool streamed = false;
+  if (split ? !pointsurfaces::ReadPLYFilePiece(this->FileName,
+                static_cast<size_t>(std::max(0, piece)),
+                static_cast<size_t>(pieces),
+                mesh,
+                streamed,
+                error)
+            : !pointsurfaces::ReadPLYFile(this->FileName, mesh, error))
   {
     vtkErrorMacro(<< this->FileName << ": " << error);
     return 1;
+  }
+  if (split && !streamed && piece == 0)
+  {
+    vtkWarningMacro(<< this->FileName
+                    << ": an ASCII file (or one with lists before its vertices) is read whole "
+                       "for each piece; convert it to binary PLY to read it piece by piece");
   }
   const size_t read = mesh.NumberOfPoints;
   const size_t dropped = pointsurfaces::DropNonFinitePoints(mesh);
   if (mesh.NumberOfPoints == 0)
   {
-    vtkErrorMacro(<< this->FileName << ": no points");
+    if (!split)
+    {
+      vtkErrorMacro(<< this->FileName << ": no points");
+    }
     return 1;
   }
   for (const std::string& warning : mesh.Warnings)
@@ -255,4 +297,5 @@ void vtkPLYScanReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "SplitPoints: " << (this->SplitPoints ? "on" : "off") << "\n";
 }

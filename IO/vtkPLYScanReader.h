@@ -30,7 +30,11 @@
  * file, face indices that are not integers or name no vertex, or a file
  * without points give one vtkErrorMacro line that starts with the file's
  * name, and an empty output. In a parallel pipeline piece 0 holds the
- * whole file, the other pieces nothing.
+ * whole file, the other pieces nothing, unless SplitPoints is on: then
+ * each piece holds its share of the points (no faces), and a binary file
+ * is read piece by piece, only the piece's records (see ReadPLYFilePiece in
+ * psPLY.h), so that a streaming consumer (vtkStreamingSplatFitter) reads a
+ * scan of any size in bounded memory.
  *
  * pointsurfaces.scanio.read_scan reads .ply files with this reader.
  */
@@ -55,6 +59,16 @@ public:
   vtkGetCharFromStdStringMacro(FileName);
   ///@}
 
+  ///@{
+  /**
+   * Pieces of the points: piece k of n holds the vertices [N k / n,
+   * N (k + 1) / n), without faces. Default off: piece 0 holds the whole file.
+   */
+  vtkSetMacro(SplitPoints, bool);
+  vtkGetMacro(SplitPoints, bool);
+  vtkBooleanMacro(SplitPoints, bool);
+  ///@}
+
   /** True when the file starts with the PLY magic ("ply" and a line break). */
   static bool CanReadFile(const char* fileName);
 
@@ -62,9 +76,11 @@ protected:
   vtkPLYScanReader();
   ~vtkPLYScanReader() override = default;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   std::string FileName;
+  bool SplitPoints = false;
 
 private:
   vtkPLYScanReader(const vtkPLYScanReader&) = delete;

@@ -1117,6 +1117,45 @@ bool SplatStream::ReadSplats(long long first,
   return true;
 }
 
+//------------------------------------------------------------------------------
+bool SplatStream::ReadSplatsAt(const std::vector<long long>& ids,
+  std::vector<StreamedSplat>& splats,
+  std::vector<float>& attributes) const
+{
+  // Sorted, then read in runs of consecutive records.
+  std::vector<size_t> order(ids.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return ids[a] < ids[b]; });
+  splats.resize(ids.size());
+  attributes.resize(ids.size() * P->A);
+  std::vector<StreamedSplat> run;
+  std::vector<float> runAttributes;
+  for (size_t k = 0; k < order.size();)
+  {
+    size_t end = k + 1;
+    while (end < order.size() && ids[order[end]] <= ids[order[end - 1]] + 1)
+    {
+      ++end;
+    }
+    const long long first = ids[order[k]];
+    if (first < 0 || ids[order[end - 1]] >= P->SplatCount ||
+      !this->ReadSplats(first, ids[order[end - 1]] - first + 1, run, runAttributes))
+    {
+      return false;
+    }
+    for (size_t j = k; j < end; ++j)
+    {
+      const size_t r = static_cast<size_t>(ids[order[j]] - first);
+      splats[order[j]] = run[r];
+      std::copy(runAttributes.begin() + r * P->A,
+        runAttributes.begin() + (r + 1) * P->A,
+        attributes.begin() + order[j] * P->A);
+    }
+    k = end;
+  }
+  return true;
+}
+
 long long SplatStream::NumberOfSplats() const
 {
   return P->SplatCount;

@@ -143,6 +143,10 @@ public:
     long long count,
     std::vector<StreamedSplat>& splats,
     std::vector<float>& attributes) const;
+  /** Splats `ids` (any order, as ReadSplats), in that order. */
+  bool ReadSplatsAt(const std::vector<long long>& ids,
+    std::vector<StreamedSplat>& splats,
+    std::vector<float>& attributes) const;
   /** After Run(): every splat's origin (3 a splat), disc radius and level, in memory. */
   const std::vector<double>& Origins() const;
   const std::vector<double>& Radii() const;

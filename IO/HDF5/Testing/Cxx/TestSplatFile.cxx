@@ -1,0 +1,441 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+// The multi-resolution splat file and the streaming fit that writes it:
+// - a fitted sphere (three levels, a colour array) written and read back
+//   whole: every splat, each value as the file stores it (origins in
+//   double, the rest in float), and written again from what was read, the
+//   same rows bit for bit;
+// - lazy reads: a budget that holds the coarsest level of every page loads
+//   all of it first; a camera loads only the pages in view, and with a
+//   PixelError only the levels its pixels need; a budget smaller than one
+//   page gives a warning and an empty output;
+// - bad files (missing, empty, truncated, foreign HDF5, unfinished,
+//   damaged octree): one error each, naming the file, and an empty output;
+// - vtkStreamingSplatFitter on a binary PLY read in 7 pieces
+//   (vtkPLYScanReader SplitPoints) across chunks: the in-memory fit's count
+//   within 3 %, every splat in the file, the colours carried; on a source
+//   that does not split (the whole input in piece 0) the same; no FileName
+//   and FixedCount refused with one error.
+#include "psIOTestSupport.h"
+#include "psSplatFile.h"
+
+#include "vtkAlgebraicSplatFitter.h"
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkPLYScanReader.h"
+#include "vtkSplatDataModel.h"
+#include "vtkSplatFileReader.h"
+#include "vtkSplatFileWriter.h"
+#include "vtkStreamingSplatFitter.h"
+#include "vtkTrivialProducer.h"
+#include "vtk_hdf5.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+
+using namespace pointsurfaces_test;
+
+namespace
+{
+std::string Temp(const std::string& name)
+{
+  const char* dir = std::getenv("POINTSURFACES_TEMP_DIR");
+  return std::string(dir ? dir : "/tmp") + "/" + name;
+}
+
+// n points on a sphere of radius 1 (a Fibonacci lattice), with a colour
+// array "Colour" (3 floats: the point's x, y, z mapped to 0..1).
+vtkSmartPointer<vtkPolyData> Sphere(long long n)
+{
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkFloatArray> colour;
+  colour->SetName("Colour");
+  colour->SetNumberOfComponents(3);
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (long long i = 0; i < n; ++i)
+  {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n;
+    const double s = std::sqrt(1.0 - z * z);
+    const double p[3] = { s * std::cos(golden * i), s * std::sin(golden * i), z };
+    points->InsertNextPoint(p);
+    const float c[3] = { static_cast<float>(0.5 + 0.5 * p[0]),
+      static_cast<float>(0.5 + 0.5 * p[1]),
+      static_cast<float>(0.5 + 0.5 * p[2]) };
+    colour->InsertNextTypedTuple(c);
+  }
+  pd->SetPoints(points);
+  pd->GetPointData()->AddArray(colour);
+  return pd;
+}
+
+// The binary PLY of `pd`'s points (float x y z) and colours (uchar).
+void WritePLY(vtkPolyData* pd, const std::string& path)
+{
+  const vtkIdType n = pd->GetNumberOfPoints();
+  std::string bytes = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(n) +
+    "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\n"
+    "property uchar green\nproperty uchar blue\nend_header\n";
+  vtkDataArray* colour = pd->GetPointData()->GetArray("Colour");
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    pd->GetPoint(i, p);
+    for (int c = 0; c < 3; ++c)
+    {
+      const float f = static_cast<float>(p[c]);
+      bytes.append(reinterpret_cast<const char*>(&f), 4);
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      bytes += static_cast<char>(static_cast<unsigned char>(255.0 * colour->GetComponent(i, c)));
+    }
+  }
+  Write(path, bytes);
+}
+
+vtkSmartPointer<vtkPolyData> Fit(vtkPolyData* points, int levels)
+{
+  vtkNew<vtkAlgebraicSplatFitter> fitter;
+  fitter->SetInputData(points);
+  fitter->SetNumberOfLevels(levels);
+  fitter->Update();
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->ShallowCopy(fitter->GetOutput());
+  return out;
+}
+
+vtkSmartPointer<vtkPolyData> Read(const std::string& path,
+  double budget = 0.0,
+  vtkCamera* camera = nullptr,
+  double pixelError = 0.0,
+  int* warnings = nullptr)
+{
+  vtkNew<vtkSplatFileReader> reader;
+  vtkNew<vtkTest::ErrorObserver> observer;
+  reader->AddObserver(vtkCommand::WarningEvent, observer);
+  reader->SetFileName(path.c_str());
+  reader->SetMemoryBudget(budget);
+  reader->SetCamera(camera);
+  reader->SetViewportSize(400, 300);
+  reader->SetPixelError(pixelError);
+  reader->Update();
+  if (warnings)
+  {
+    *warnings = observer->GetWarning() ? 1 : 0;
+  }
+  auto out = vtkSmartPointer<vtkPolyData>::New();
+  out->ShallowCopy(reader->GetOutput());
+  return out;
+}
+
+// The splats of `pd` by origin: every array's tuple, as doubles.
+std::map<std::array<double, 3>, std::vector<double>> ByOrigin(vtkPolyData* pd)
+{
+  std::map<std::array<double, 3>, std::vector<double>> out;
+  vtkPointData* data = pd->GetPointData();
+  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
+  {
+    std::array<double, 3> key;
+    pd->GetPoint(i, key.data());
+    std::vector<double> values;
+    for (int a = 0; a < data->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* array = data->GetArray(a);
+      for (int c = 0; array && c < array->GetNumberOfComponents(); ++c)
+      {
+        values.push_back(array->GetComponent(i, c));
+      }
+    }
+    out[key] = values;
+  }
+  return out;
+}
+
+// Every row of the file `path`, as the file holds it.
+pointsurfaces::SplatColumns Rows(const std::string& path)
+{
+  pointsurfaces::SplatFileReader file;
+  pointsurfaces::SplatColumns rows;
+  std::string error;
+  if (!file.Open(path, error) || !file.Read(0, file.Info().Splats, rows, error))
+  {
+    std::cerr << path << ": " << error << "\n";
+  }
+  return rows;
+}
+
+bool Same(const pointsurfaces::SplatColumns& a, const pointsurfaces::SplatColumns& b)
+{
+  auto bytes = [](const auto& x, const auto& y)
+  { return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0; };
+  bool same = a.Count == b.Count && bytes(a.Origin, b.Origin) && bytes(a.Normal, b.Normal) &&
+    bytes(a.Tangent, b.Tangent) && bytes(a.FeatureSize, b.FeatureSize) &&
+    bytes(a.Coefficients, b.Coefficients) && bytes(a.Radius, b.Radius) &&
+    bytes(a.MaxDeviation, b.MaxDeviation) && bytes(a.NominalRadius, b.NominalRadius) &&
+    bytes(a.Tolerance, b.Tolerance) && bytes(a.LOD, b.LOD) &&
+    a.Attributes.size() == b.Attributes.size();
+  for (size_t k = 0; same && k < a.Attributes.size(); ++k)
+  {
+    same = bytes(a.Attributes[k], b.Attributes[k]);
+  }
+  return same;
+}
+
+vtkIdType Level(vtkPolyData* pd, int level)
+{
+  vtkDataArray* lod = pd->GetPointData()->GetArray(vtkSplatDataModel::LODName());
+  vtkIdType count = 0;
+  for (vtkIdType i = 0; lod && i < lod->GetNumberOfTuples(); ++i)
+  {
+    count += static_cast<int>(lod->GetTuple1(i)) == level ? 1 : 0;
+  }
+  return count;
+}
+
+void WriteAndReadBack()
+{
+  const auto splats = Fit(Sphere(60000), 3);
+  const vtkIdType n = splats->GetNumberOfPoints();
+  const std::string path = Temp("TestSplatFile-sphere.psplat");
+  vtkNew<vtkSplatFileWriter> writer;
+  writer->SetInputData(splats);
+  writer->SetFileName(path.c_str());
+  writer->SetPageSize(256); // some 40 pages
+  writer->Write();
+  Check(writer->GetNumberOfSplats() == n, "the writer writes every splat");
+
+  const auto whole = Read(path);
+  std::cout << "sphere: " << n << " splats written, " << whole->GetNumberOfPoints() << " read\n";
+  Check(whole->GetNumberOfPoints() == n, "the whole file reads every splat");
+  Check(vtkSplatDataModel::GetSplatDegree(whole) == 3, "the degree survives");
+  vtkDataArray* q = whole->GetFieldData()->GetArray(vtkSplatDataModel::LODQualityName());
+  Check(q && q->GetNumberOfTuples() == 3 && q->GetTuple1(0) == 4.0, "the levels' s survive");
+  Check(whole->GetPointData()->GetArray("Colour") &&
+      whole->GetPointData()->GetArray("Colour")->GetNumberOfComponents() == 3,
+    "the carried colour is stored with its components");
+  pointsurfaces::Octree tree;
+  std::vector<double> quality;
+  Check(vtkSplatDataModel::GetOctree(whole, tree, quality) == vtkSplatDataModel::ValidOctree,
+    "the output has an octree for the mapper's LOD");
+
+  // Each splat as the file stores it: origins exact, the rest float.
+  const auto before = ByOrigin(splats), after = ByOrigin(whole);
+  long long matched = 0, exact = 0;
+  std::vector<std::string> names;
+  for (const auto& [origin, values] : before)
+  {
+    const auto it = after.find(origin);
+    if (it == after.end())
+    {
+      continue;
+    }
+    ++matched;
+    // The arrays may come in another order: compare the multisets of values.
+    std::vector<double> a, b = it->second;
+    for (double v : values)
+    {
+      a.push_back(static_cast<double>(static_cast<float>(v)));
+    }
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    exact += a == b ? 1 : 0;
+  }
+  Check(matched == n, "every splat's origin comes back exactly");
+  Check(exact == n, "every splat's values come back as the file's floats");
+
+  // Written again from what was read: the same rows, bit for bit.
+  const std::string again = Temp("TestSplatFile-again.psplat");
+  vtkNew<vtkSplatFileWriter> writer2;
+  writer2->SetInputData(whole);
+  writer2->SetPageSize(256);
+  writer2->SetFileName(again.c_str());
+  writer2->Write();
+  Check(Same(Rows(path), Rows(again)), "a file written from what was read holds the same rows");
+
+  // A budget for a bit more than the coarsest levels: all of level 0 first.
+  pointsurfaces::SplatFileReader file;
+  std::string error;
+  file.Open(path, error);
+  const double perSplat = file.BytesPerSplat();
+  const vtkIdType coarse = Level(splats, 0);
+  int warned = 0;
+  const auto partial = Read(path, 1.2 * coarse * perSplat / 1e6, nullptr, 0.0, &warned);
+  std::cout << "budget for 1.2 x level 0 (" << coarse
+            << " splats): " << partial->GetNumberOfPoints() << " loaded, " << Level(partial, 0)
+            << " of level 0\n";
+  Check(Level(partial, 0) == coarse, "a budget that holds level 0 loads all of it first");
+  Check(partial->GetNumberOfPoints() < n && partial->GetNumberOfPoints() <= 1.2 * coarse + 1,
+    "and stays within the budget");
+  Check(!warned, "no warning when something fits");
+
+  const auto none = Read(path, 1e-6, nullptr, 0.0, &warned);
+  Check(none->GetNumberOfPoints() == 0 && warned,
+    "a budget smaller than one page: a warning and an empty output");
+
+  // A camera inside the sphere, looking along +x, sees only its +x cap.
+  vtkNew<vtkCamera> camera;
+  camera->SetPosition(0, 0, 0);
+  camera->SetFocalPoint(1, 0, 0);
+  camera->SetViewUp(0, 0, 1);
+  camera->SetViewAngle(30);
+  camera->SetClippingRange(0.01, 10);
+  const auto seen = Read(path, 0.0, camera);
+  std::cout << "camera inside, looking along +x: " << seen->GetNumberOfPoints() << " splats\n";
+  Check(seen->GetNumberOfPoints() > 0 && seen->GetNumberOfPoints() < 0.5 * n,
+    "a camera loads only the pages in its frustum");
+  // Far away (the sphere some 28 pixels tall): level 0's splats are 4
+  // pixels across there, level 1's 2.5, level 2's 1.
+  camera->SetPosition(40, 0, 0);
+  camera->SetFocalPoint(0, 0, 0);
+  camera->SetClippingRange(30, 50);
+  const auto far = Read(path, 0.0, camera, 5.0);
+  std::cout << "camera at x = 40, PixelError 5: " << far->GetNumberOfPoints() << " splats, "
+            << Level(far, 2) << " of level 2\n";
+  Check(far->GetNumberOfPoints() > 0 && Level(far, 2) == 0,
+    "far away with a PixelError, only coarse levels are loaded");
+}
+
+void BadFiles()
+{
+  const std::string good = Temp("TestSplatFile-sphere.psplat");
+  ExpectReadError<vtkSplatFileReader>(Temp("TestSplatFile-missing.psplat"), "cannot be opened");
+  ExpectEmptyFileError<vtkSplatFileReader>(Temp("TestSplatFile-empty.psplat"));
+  const std::string bytes = Slurp(good);
+  const std::string truncated =
+    Write(Temp("TestSplatFile-truncated.psplat"), bytes.substr(0, bytes.size() / 2));
+  ExpectReadError<vtkSplatFileReader>(truncated, "truncated");
+  ExpectReadError<vtkSplatFileReader>(
+    Write(Temp("TestSplatFile-text.psplat"), "not a splat file\n"), "not an HDF5 file");
+
+  // A foreign HDF5 file, an unfinished one and a damaged octree.
+  const std::string foreign = Temp("TestSplatFile-foreign.h5");
+  H5Fclose(H5Fcreate(foreign.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+  ExpectReadError<vtkSplatFileReader>(foreign, "not a PointSurfaces splat file");
+  const std::string unfinished = Write(Temp("TestSplatFile-unfinished.psplat"), bytes);
+  {
+    const hid_t f = H5Fopen(unfinished.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    H5Adelete(f, "Complete");
+    H5Fclose(f);
+  }
+  ExpectReadError<vtkSplatFileReader>(unfinished, "unfinished");
+  const std::string damaged = Write(Temp("TestSplatFile-damaged.psplat"), bytes);
+  {
+    const hid_t f = H5Fopen(damaged.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t d = H5Dopen2(f, "Octree/Range", H5P_DEFAULT);
+    std::vector<long long> range(2 * 4);
+    const hsize_t start[2] = { 0, 0 }, count[2] = { 4, 2 }; // the page octree has more nodes
+    const hid_t space = H5Dget_space(d);
+    H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+    const hid_t memory = H5Screate_simple(2, count, nullptr);
+    H5Dread(d, H5T_NATIVE_LLONG, memory, space, H5P_DEFAULT, range.data());
+    range[7] = 1LL << 40; // node 3 ends far past the splats
+    H5Dwrite(d, H5T_NATIVE_LLONG, memory, space, H5P_DEFAULT, range.data());
+    H5Sclose(memory);
+    H5Sclose(space);
+    H5Dclose(d);
+    H5Fclose(f);
+  }
+  ExpectReadError<vtkSplatFileReader>(damaged, "damaged");
+}
+
+void Streaming()
+{
+  const auto points = Sphere(40000);
+  const auto memory = Fit(points, 1);
+  const std::string ply = Temp("TestSplatFile-sphere.ply");
+  WritePLY(points, ply);
+
+  vtkNew<vtkPLYScanReader> reader;
+  reader->SetFileName(ply.c_str());
+  reader->SplitPointsOn();
+  vtkNew<vtkStreamingSplatFitter> fitter;
+  fitter->SetInputConnection(reader->GetOutputPort());
+  fitter->SetNumberOfPieces(7);
+  fitter->SetChunkPoints(5000);
+  const std::string path = Temp("TestSplatFile-streamed.psplat");
+  fitter->SetFileName(path.c_str());
+  fitter->SetOutputMemoryBudget(0);
+  fitter->Update();
+  const double ratio = static_cast<double>(fitter->GetNumberOfSplatsWritten()) /
+    std::max<vtkIdType>(1, memory->GetNumberOfPoints());
+  std::cout << "streamed from 7 PLY pieces: " << fitter->GetNumberOfSplatsWritten()
+            << " splats over " << fitter->GetNumberOfChunks() << " chunks (in memory "
+            << memory->GetNumberOfPoints() << ", " << ratio << "x)\n";
+  Check(fitter->GetNumberOfChunks() > 4, "the sphere is cut across chunks");
+  Check(std::abs(ratio - 1.0) < 0.03, "the streamed count is within 3 % of the in-memory one");
+  vtkPolyData* out = fitter->GetOutput();
+  Check(out->GetNumberOfPoints() == fitter->GetNumberOfSplatsWritten(),
+    "with no budget the output is the whole file");
+  vtkDataArray* colour = out->GetPointData()->GetArray("RGB");
+  Check(colour && colour->GetNumberOfComponents() == 3, "the PLY's colours are carried");
+  double worst = 0.0;
+  for (vtkIdType i = 0; colour && i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    out->GetPoint(i, p);
+    worst = std::max(worst, std::abs(colour->GetComponent(i, 0) - 255.0 * (0.5 + 0.5 * p[0])));
+  }
+  std::cout << "colour: largest |red - 255 (0.5 + 0.5 x)| " << worst << "\n";
+  Check(worst < 3.0, "a splat's colour is its points' colour");
+  vtkDataArray* oriented = out->GetFieldData()->GetArray(vtkSplatDataModel::NormalsOrientedName());
+  Check(oriented && oriented->GetTuple1(0) == 1, "the streamed normals are oriented");
+  long long inward = 0;
+  vtkDataArray* normals = out->GetPointData()->GetArray(vtkSplatDataModel::NormalName());
+  for (vtkIdType i = 0; normals && i < out->GetNumberOfPoints(); ++i)
+  {
+    double p[3], m[3];
+    out->GetPoint(i, p);
+    normals->GetTuple(i, m);
+    inward += p[0] * m[0] + p[1] * m[1] + p[2] * m[2] < 0.0 ? 1 : 0;
+  }
+  Check(inward == 0, "every streamed normal faces outward");
+
+  // A source that does not split: the whole input arrives in piece 0.
+  vtkNew<vtkStreamingSplatFitter> whole;
+  whole->SetInputData(points);
+  whole->SetNumberOfPieces(3);
+  whole->SetChunkPoints(5000);
+  whole->SetFileName(Temp("TestSplatFile-whole.psplat").c_str());
+  whole->Update();
+  Check(whole->GetNumberOfSplatsWritten() == fitter->GetNumberOfSplatsWritten() ||
+      std::abs(static_cast<double>(whole->GetNumberOfSplatsWritten()) /
+          fitter->GetNumberOfSplatsWritten() -
+        1.0) < 0.01,
+    "an input that does not split streams all the same");
+
+  // Errors.
+  vtkNew<vtkStreamingSplatFitter> nowhere;
+  vtkNew<vtkTest::ErrorObserver> errors;
+  nowhere->AddObserver(vtkCommand::ErrorEvent, errors);
+  nowhere->SetInputData(points);
+  nowhere->Update();
+  Check(errors->GetError() && errors->GetErrorMessage().find("FileName") != std::string::npos &&
+      nowhere->GetOutput()->GetNumberOfPoints() == 0,
+    "no FileName: one error and an empty output");
+  vtkNew<vtkStreamingSplatFitter> lop;
+  vtkNew<vtkTest::ErrorObserver> lopErrors;
+  lop->AddObserver(vtkCommand::ErrorEvent, lopErrors);
+  lop->SetInputData(points);
+  lop->SetFileName(Temp("TestSplatFile-lop.psplat").c_str());
+  lop->SetSelectionMode(vtkAlgebraicSplatFitter::FixedCount);
+  lop->Update();
+  Check(lopErrors->GetError() &&
+      lopErrors->GetErrorMessage().find("FixedCount") != std::string::npos &&
+      lop->GetOutput()->GetNumberOfPoints() == 0,
+    "FixedCount: one error and an empty output");
+}
+} // namespace
+
+int TestSplatFile(int, char*[])
+{
+  WriteAndReadBack();
+  BadFiles();
+  Streaming();
+  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

@@ -1,0 +1,144 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file psSplatFile.h
+ * @brief The multi-resolution splat file (HDF5): written in blocks, read by page and level.
+ *
+ * One HDF5 file holds a splat set in the order of its page octree (a
+ * psOctree whose leaves hold at most PageSplats splats, each leaf's
+ * splats sorted by level, coarsest first), so that a page's levels 0..l
+ * are one contiguous run of rows in every column:
+ *
+ *     /                      attributes: PointSurfacesSplatFile (version,
+ *                            1), Complete (1 once the writer closed it),
+ *                            Degree, Levels, LevelQuality[Levels],
+ *                            NumberOfSplats, NumberOfInputPoints, Oriented,
+ *                            Bounds[6]
+ *     /Splats/Origin         float64 [N, 3]  splat origins
+ *     /Splats/Normal         float32 [N, 3]  (the splat data model's arrays,
+ *     /Splats/Tangent        float32 [N, 3]   vtkSplatDataModel)
+ *     /Splats/FeatureSize    float32 [N]
+ *     /Splats/Coefficients   float32 [N, m]  m = MonomialCount(Degree)
+ *     /Splats/Radius, MaxDeviation, NominalRadius, Tolerance  float32 [N]
+ *     /Splats/LOD            int32   [N]
+ *     /Attributes/<name>     float32 [N, c]  the input's point arrays, MLS-weighted
+ *     /Octree/Bounds         float64 [M, 6]  per node, discs included
+ *     /Octree/Sphere         float64 [M, 4]
+ *     /Octree/Children       int32   [M, 2]  first child, child count
+ *     /Octree/Range          int64   [M, 2]  rows [begin, end)
+ *     /Octree/LevelEnds      int64   [M, Levels]
+ *     /Octree/MeanScale      float64 [M]     mean R / s of the node's splats
+ *     /Octree/Reach          float64 [M]     sphere radius that holds its patches
+ *
+ * Columns are chunked by 65 536 rows, so that reading a page touches its
+ * chunks only. The origins stay in double (coordinates near 1e7 keep
+ * their millimetres); everything else is float, what the mapper draws
+ * with: about 30 + 4 m + 4 c bytes a splat (cubic: 94).
+ *
+ * SplatFileReader::Open checks everything it will index with (the format's
+ * version and completeness, every column's shape, the octree's ranges,
+ * children and level ends) and says what is wrong in one line: a
+ * truncated, damaged, foreign or unfinished file is refused before
+ * anything is read from it.
+ */
+#ifndef psSplatFile_h
+#define psSplatFile_h
+
+#include "psSplatLOD.h" // For LODOctree
+
+#include <functional> // For the fetch
+#include <memory>     // For the implementation
+#include <string>     // For names and errors
+#include <vector>     // For columns
+
+namespace pointsurfaces
+{
+/** Splats at most per page (the page octree's bucket). */
+constexpr int PageSplats = 16384;
+
+struct SplatFileInfo
+{
+  int Degree = 3;
+  long long Splats = 0;
+  long long InputPoints = 0;
+  bool Oriented = false;
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  std::vector<std::string> AttributeNames;
+  std::vector<int> AttributeComponents;
+  /** The page octree with the s of each level (Pages.Tree.Levels levels). */
+  LODOctree Pages;
+};
+
+/** Rows of splats, column by column, as the file stores them. */
+struct SplatColumns
+{
+  long long Count = 0;
+  std::vector<double> Origin;
+  std::vector<float> Normal, Tangent, FeatureSize, Coefficients;
+  std::vector<float> Radius, MaxDeviation, NominalRadius, Tolerance;
+  std::vector<int> LOD;
+  std::vector<std::vector<float>> Attributes; ///< one per attribute, components a row
+  /** Sizes every column for `count` rows of `degree` and those attributes. */
+  void Resize(long long count, int degree, const std::vector<int>& components);
+};
+
+class SplatFileWriter
+{
+public:
+  SplatFileWriter();
+  ~SplatFileWriter();
+  /**
+   * Create `path` for `info` (its Splats rows and its Pages, whose ranges
+   * the rows will follow). False with `error` set when it cannot be made.
+   */
+  bool Open(const std::string& path, const SplatFileInfo& info, std::string& error);
+  /** Rows [first, first + block.Count). */
+  bool Write(long long first, const SplatColumns& block, std::string& error);
+  /** The octree and the header, then Complete: the file is whole only after this. */
+  bool Close(std::string& error);
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> P;
+};
+
+/** Fill rows 0 .. ids.size() - 1 of `out` (sized already) with splats `ids`; false on error. */
+using SplatFetch = std::function<bool(const std::vector<long long>& ids, SplatColumns& out)>;
+
+/**
+ * Write `n` splats as a splat file: their page octree from their `origins`,
+ * disc `radii` and `levels` (s of each in `levelQuality`), then their rows
+ * in its order, fetched block by block. `info` gives the degree, the
+ * attributes, the input's point count and whether the normals are oriented.
+ */
+bool WriteSplatFile(const std::string& path,
+  SplatFileInfo info,
+  const double* origins,
+  const double* radii,
+  const int* levels,
+  long long n,
+  const std::vector<double>& levelQuality,
+  const SplatFetch& fetch,
+  std::string& error,
+  int pageSplats = PageSplats);
+
+class SplatFileReader
+{
+public:
+  SplatFileReader();
+  ~SplatFileReader();
+  /** Open and check `path`; false with `error` set (one line) for a file it cannot use. */
+  bool Open(const std::string& path, std::string& error);
+  const SplatFileInfo& Info() const;
+  /** Rows [first, first + count), appended to `out` (Resize'd to hold them). */
+  bool Read(long long first, long long count, SplatColumns& out, std::string& error);
+  /** Bytes one splat takes in a vtkPolyData of the splat data model (the budget's unit). */
+  double BytesPerSplat() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> P;
+};
+} // namespace pointsurfaces
+
+#endif

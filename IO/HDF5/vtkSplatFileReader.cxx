@@ -1,0 +1,291 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSplatFileReader.h"
+
+#include "psLocalFit.h"
+#include "psOctree.h"
+#include "psSplatFile.h"
+#include "psSplatPages.h"
+
+#include "vtkCamera.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkIdTypeArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkMath.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkSplatDataModel.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+
+vtkStandardNewMacro(vtkSplatFileReader);
+
+namespace
+{
+// The file's modification time, to reopen a file that changed.
+long long FileStamp(const std::string& path)
+{
+  struct stat s;
+  return stat(path.c_str(), &s) == 0
+    ? static_cast<long long>(s.st_mtime) * 1000000000LL + static_cast<long long>(s.st_mtim.tv_nsec)
+    : -1;
+}
+
+void AddCount(vtkFieldData* fd, const char* name, vtkIdType value)
+{
+  vtkNew<vtkIdTypeArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+
+// The loaded rows as the splat data model, in the order of their own LOD octree.
+void Assemble(const pointsurfaces::SplatColumns& c,
+  const pointsurfaces::SplatFileInfo& info,
+  vtkPolyData* output)
+{
+  const vtkIdType n = static_cast<vtkIdType>(c.Count);
+  const int L = std::max(1, info.Pages.Tree.Levels);
+  std::vector<double> radii(c.Radius.begin(), c.Radius.end());
+  const pointsurfaces::Octree tree =
+    pointsurfaces::BuildOctree(c.Origin.data(), radii.data(), c.LOD.data(), n, L, 64);
+  const int m = pointsurfaces::MonomialCount(info.Degree);
+  auto make = [&](const char* name, int comps)
+  {
+    vtkNew<vtkDoubleArray> a;
+    a->SetName(name);
+    a->SetNumberOfComponents(comps);
+    a->SetNumberOfTuples(n);
+    output->GetPointData()->AddArray(a);
+    return a.GetPointer();
+  };
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(n);
+  vtkDoubleArray* normal = make(vtkSplatDataModel::NormalName(), 3);
+  vtkDoubleArray* tangent = make(vtkSplatDataModel::TangentName(), 3);
+  vtkDoubleArray* size = make(vtkSplatDataModel::FeatureSizeName(), 1);
+  vtkDoubleArray* coeffs = make(vtkSplatDataModel::CoefficientsName(), m);
+  vtkDoubleArray* radius = make(vtkSplatDataModel::RadiusName(), 1);
+  vtkDoubleArray* deviation = make(vtkSplatDataModel::MaxDeviationName(), 1);
+  vtkDoubleArray* nominal = make(vtkSplatDataModel::NominalRadiusName(), 1);
+  vtkDoubleArray* tolerance = make(vtkSplatDataModel::ToleranceName(), 1);
+  vtkNew<vtkIntArray> lod;
+  lod->SetName(vtkSplatDataModel::LODName());
+  lod->SetNumberOfTuples(n);
+  output->GetPointData()->AddArray(lod);
+  std::vector<vtkFloatArray*> attributes;
+  for (size_t a = 0; a < info.AttributeNames.size(); ++a)
+  {
+    vtkNew<vtkFloatArray> array;
+    array->SetName(info.AttributeNames[a].c_str());
+    array->SetNumberOfComponents(info.AttributeComponents[a]);
+    array->SetNumberOfTuples(n);
+    output->GetPointData()->AddArray(array);
+    attributes.push_back(array);
+  }
+  for (vtkIdType k = 0; k < n; ++k)
+  {
+    const long long i = tree.Order[k];
+    points->SetPoint(k, &c.Origin[3 * i]);
+    for (int j = 0; j < 3; ++j)
+    {
+      normal->SetTypedComponent(k, j, c.Normal[3 * i + j]);
+      tangent->SetTypedComponent(k, j, c.Tangent[3 * i + j]);
+    }
+    for (int j = 0; j < m; ++j)
+    {
+      coeffs->SetTypedComponent(k, j, c.Coefficients[static_cast<size_t>(m) * i + j]);
+    }
+    size->SetValue(k, c.FeatureSize[i]);
+    radius->SetValue(k, c.Radius[i]);
+    deviation->SetValue(k, c.MaxDeviation[i]);
+    nominal->SetValue(k, c.NominalRadius[i]);
+    tolerance->SetValue(k, c.Tolerance[i]);
+    lod->SetValue(k, c.LOD[i]);
+    for (size_t a = 0; a < attributes.size(); ++a)
+    {
+      const int comps = info.AttributeComponents[a];
+      for (int j = 0; j < comps; ++j)
+      {
+        attributes[a]->SetTypedComponent(k, j, c.Attributes[a][static_cast<size_t>(comps) * i + j]);
+      }
+    }
+  }
+  output->SetPoints(points);
+  vtkSplatDataModel::AddVertexCells(output);
+  vtkFieldData* fd = output->GetFieldData();
+  vtkNew<vtkIntArray> degree;
+  degree->SetName(vtkSplatDataModel::DegreeName());
+  degree->InsertNextValue(info.Degree);
+  fd->AddArray(degree);
+  vtkNew<vtkDoubleArray> levels;
+  levels->SetName(vtkSplatDataModel::LODQualityName());
+  for (double s : info.Pages.LevelQuality)
+  {
+    levels->InsertNextValue(s);
+  }
+  fd->AddArray(levels);
+  AddCount(fd, vtkSplatDataModel::NormalsOrientedName(), info.Oriented ? 1 : 0);
+  if (n > 0)
+  {
+    vtkSplatDataModel::AddOctree(output, tree);
+  }
+}
+} // namespace
+
+struct vtkSplatFileReader::Impl
+{
+  pointsurfaces::SplatFileReader File;
+  std::string Path;
+  long long Stamp = -1;
+  bool Open = false;
+};
+
+//------------------------------------------------------------------------------
+vtkSplatFileReader::vtkSplatFileReader()
+  : P(new Impl)
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkSplatFileReader::~vtkSplatFileReader() = default;
+
+//------------------------------------------------------------------------------
+void vtkSplatFileReader::SetCamera(vtkCamera* camera)
+{
+  if (this->Camera != camera)
+  {
+    this->Camera = camera;
+    this->Modified();
+  }
+}
+
+vtkCamera* vtkSplatFileReader::GetCamera()
+{
+  return this->Camera;
+}
+
+vtkMTimeType vtkSplatFileReader::GetMTime()
+{
+  const vtkMTimeType own = this->Superclass::GetMTime();
+  return this->Camera ? std::max(own, this->Camera->GetMTime()) : own;
+}
+
+//------------------------------------------------------------------------------
+bool vtkSplatFileReader::CanReadFile(const char* fileName)
+{
+  pointsurfaces::SplatFileReader file;
+  std::string error;
+  return fileName && file.Open(fileName, error);
+}
+
+//------------------------------------------------------------------------------
+int vtkSplatFileReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  this->NumberOfSplats = this->NumberOfLoadedSplats = 0;
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro(<< "No FileName: nothing to read.");
+    return 1;
+  }
+  const long long stamp = FileStamp(this->FileName);
+  if (!P->Open || P->Path != this->FileName || P->Stamp != stamp)
+  {
+    std::string error;
+    P->Open = P->File.Open(this->FileName, error);
+    P->Path = this->FileName;
+    P->Stamp = stamp;
+    if (!P->Open)
+    {
+      vtkErrorMacro(<< this->FileName << ": " << error);
+      return 1;
+    }
+  }
+  const pointsurfaces::SplatFileInfo& info = P->File.Info();
+  this->NumberOfSplats = static_cast<vtkIdType>(info.Splats);
+
+  pointsurfaces::LODView view;
+  if (this->Camera)
+  {
+    const int w = std::max(1, this->ViewportSize[0]), h = std::max(1, this->ViewportSize[1]);
+    this->Camera->GetFrustumPlanes(static_cast<double>(w) / h, view.Planes);
+    this->Camera->GetPosition(view.Eye);
+    view.ViewportHeight = h;
+    view.Parallel = this->Camera->GetParallelProjection() != 0;
+    view.ParallelScale = this->Camera->GetParallelScale();
+    view.TanHalfAngle = std::tan(0.5 * vtkMath::RadiansFromDegrees(this->Camera->GetViewAngle()));
+    view.PixelError = this->PixelError;
+  }
+  const double perSplat = P->File.BytesPerSplat();
+  const pointsurfaces::PageSelection selection = pointsurfaces::SelectPages(
+    info.Pages, perSplat, this->MemoryBudget * 1e6, this->Camera ? &view : nullptr);
+  if (selection.Ranges.empty() && selection.SmallestPage > 0.0)
+  {
+    vtkWarningMacro(<< this->FileName << ": MemoryBudget " << this->MemoryBudget
+                    << " MB holds no page's coarsest level (the smallest needs "
+                    << selection.SmallestPage / 1e6 << " MB): the output is empty.");
+  }
+  pointsurfaces::SplatColumns columns;
+  columns.Resize(0, info.Degree, info.AttributeComponents);
+  // Adjacent pages in one read.
+  for (size_t k = 0; k < selection.Ranges.size();)
+  {
+    long long begin = selection.Ranges[k].Begin, end = selection.Ranges[k].End;
+    size_t next = k + 1;
+    while (next < selection.Ranges.size() && selection.Ranges[next].Begin == end)
+    {
+      end = selection.Ranges[next++].End;
+    }
+    std::string error;
+    if (!P->File.Read(begin, end - begin, columns, error))
+    {
+      vtkErrorMacro(<< this->FileName << ": " << error);
+      P->Open = false;
+      return 1;
+    }
+    k = next;
+    this->UpdateProgress(static_cast<double>(k) / selection.Ranges.size());
+  }
+  Assemble(columns, info, output);
+  this->NumberOfLoadedSplats = static_cast<vtkIdType>(columns.Count);
+  vtkFieldData* fd = output->GetFieldData();
+  long long pages = 0;
+  for (const pointsurfaces::OctreeNode& node : info.Pages.Tree.Nodes)
+  {
+    pages += node.ChildCount == 0 && node.End > node.Begin ? 1 : 0;
+  }
+  AddCount(fd, "SplatFilePages", pages);
+  AddCount(fd, "SplatFileLoadedPages", static_cast<vtkIdType>(selection.Ranges.size()));
+  AddCount(fd, "SplatFileSplats", this->NumberOfSplats);
+  AddCount(fd, "SplatFileLoadedSplats", this->NumberOfLoadedSplats);
+  AddCount(fd, "SplatInputPoints", info.InputPoints);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkSplatFileReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "MemoryBudget: " << this->MemoryBudget << " MB\n";
+  os << indent << "PixelError: " << this->PixelError << "\n";
+  os << indent << "Camera: " << this->Camera.GetPointer() << "\n";
+  os << indent << "ViewportSize: " << this->ViewportSize[0] << " x " << this->ViewportSize[1]
+     << "\n";
+  os << indent << "NumberOfSplats: " << this->NumberOfSplats << "\n";
+  os << indent << "NumberOfLoadedSplats: " << this->NumberOfLoadedSplats << "\n";
+}

@@ -1,0 +1,113 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkSplatFileReader
+ * @brief   Opens a multi-resolution splat file lazily: the pages and levels a view needs, within a memory budget.
+ *
+ * A splat file (vtkSplatFileWriter, vtkStreamingSplatFitter; layout in
+ * psSplatFile.h) holds a splat set of any size in pages of an octree, each
+ * page's splats by level, coarsest first. Opening it reads the header and
+ * the octree only; each update then loads the prefixes of the pages that
+ * pointsurfaces::SelectPages chooses:
+ *
+ * - with a Camera (and ViewportSize), the pages in its frustum, each down
+ *   to the level whose splats are at most PixelError pixels across (all
+ *   levels when PixelError is 0), as vtkAlgebraicSplatMapper's LOD would
+ *   draw them; without one, every page with all its levels;
+ * - within MemoryBudget megabytes of output (the splat data model's
+ *   arrays): every page's coarsest level first, nearest pages first, then
+ *   finer levels while the budget lasts. The first picture of a file of
+ *   any size thus comes from its coarsest levels.
+ *
+ * The output is a splat set of the splat data model with its own LOD
+ * octree (the mapper culls and refines within what was loaded), the
+ * file's attributes as float point arrays, and field data saying what was
+ * loaded (SplatFilePages, SplatFileLoadedPages, SplatFileSplats,
+ * SplatFileLoadedSplats). A camera move re-executes the reader only when
+ * a Camera is set (its MTime counts).
+ *
+ * A missing, truncated, damaged, foreign or unfinished file gives one
+ * vtkErrorMacro line that starts with the file's name, and an empty
+ * output. A budget that holds no page's coarsest level gives a warning
+ * with the budget that would, and an empty output.
+ */
+#ifndef vtkSplatFileReader_h
+#define vtkSplatFileReader_h
+
+#include "PointSurfacesIOHDF5Module.h" // For export macro
+#include "vtkPolyDataAlgorithm.h"
+#include "vtkSmartPointer.h" // For the camera
+
+#include <memory> // For the open file
+#include <string> // For FileName
+
+class vtkCamera;
+
+class POINTSURFACESIOHDF5_EXPORT vtkSplatFileReader : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkSplatFileReader* New();
+  vtkTypeMacro(vtkSplatFileReader, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** The splat file. Default: none. */
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+  ///@}
+
+  ///@{
+  /** Most megabytes of output; 0: no limit. Default 1024. */
+  vtkSetClampMacro(MemoryBudget, double, 0.0, 1e12);
+  vtkGetMacro(MemoryBudget, double);
+  ///@}
+
+  ///@{
+  /** With a Camera: the largest splat size in pixels a page is loaded down to; 0: all levels. Default 0. */
+  vtkSetClampMacro(PixelError, double, 0.0, 1e6);
+  vtkGetMacro(PixelError, double);
+  ///@}
+
+  ///@{
+  /** The view that chooses the pages (null, the default: the whole model). */
+  void SetCamera(vtkCamera* camera);
+  vtkCamera* GetCamera();
+  ///@}
+
+  ///@{
+  /** The view's size in pixels (with a Camera). Default 1920 x 1080. */
+  vtkSetVector2Macro(ViewportSize, int);
+  vtkGetVector2Macro(ViewportSize, int);
+  ///@}
+
+  /** After an update: the file's splats, and those loaded. */
+  vtkGetMacro(NumberOfSplats, vtkIdType);
+  vtkGetMacro(NumberOfLoadedSplats, vtkIdType);
+
+  /** True when the file opens as a splat file. */
+  static bool CanReadFile(const char* fileName);
+
+  vtkMTimeType GetMTime() override;
+
+protected:
+  vtkSplatFileReader();
+  ~vtkSplatFileReader() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  std::string FileName;
+  double MemoryBudget = 1024.0;
+  double PixelError = 0.0;
+  int ViewportSize[2] = { 1920, 1080 };
+  vtkSmartPointer<vtkCamera> Camera;
+  vtkIdType NumberOfSplats = 0;
+  vtkIdType NumberOfLoadedSplats = 0;
+
+private:
+  vtkSplatFileReader(const vtkSplatFileReader&) = delete;
+  void operator=(const vtkSplatFileReader&) = delete;
+  struct Impl;
+  std::unique_ptr<Impl> P;
+};
+
+#endif

@@ -1,0 +1,295 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkStreamingSplatFitter.h"
+
+#include "psLocalFit.h"
+#include "psSplatFile.h"
+#include "psSplatStream.h"
+#include "vtkSplatFileReader.h"
+
+#include "vtkDataArray.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPointSet.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <algorithm>
+#include <atomic>
+
+vtkStandardNewMacro(vtkStreamingSplatFitter);
+
+struct vtkStreamingSplatFitter::Impl
+{
+  std::unique_ptr<pointsurfaces::SplatStream> Stream;
+  int Piece = 0;
+  std::vector<std::string> Names; // the carried arrays, from the first piece with points
+  std::vector<int> Components;
+  bool Normals = false;
+  bool Failed = false;
+  vtkIdType Points = 0;
+};
+
+//------------------------------------------------------------------------------
+vtkStreamingSplatFitter::vtkStreamingSplatFitter()
+  : P(new Impl)
+{
+}
+
+vtkStreamingSplatFitter::~vtkStreamingSplatFitter() = default;
+
+//------------------------------------------------------------------------------
+int vtkStreamingSplatFitter::RequestUpdateExtent(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector*)
+{
+  vtkInformation* in = inputVector[0]->GetInformationObject(0);
+  in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), P->Piece);
+  in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), this->NumberOfPieces);
+  in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkPointSet* input = vtkPointSet::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  if (P->Piece == 0)
+  {
+    this->NumberOfSplatsWritten = this->NumberOfChunks = this->NumberOfHaloPoints = 0;
+    this->LargestChunk = 0;
+    this->NumberOfInvalidPoints = this->NumberOfMergedPoints = 0;
+    this->NumberOfDegenerateSplats = this->NumberOfReducedDegreeSplats = 0;
+    P->Stream.reset();
+    P->Names.clear();
+    P->Components.clear();
+    P->Failed = this->FileName.empty();
+    P->Points = 0;
+    if (P->Failed)
+    {
+      vtkErrorMacro(<< "No FileName: the splats would have nowhere to go.");
+    }
+  }
+  const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
+  vtkPointData* pd = input ? input->GetPointData() : nullptr;
+  if (!P->Failed && !P->Stream && n > 0)
+  {
+    // The arrays to carry: every numeric point array of the first piece.
+    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* array = pd->GetArray(a);
+      if (array && array->GetName())
+      {
+        P->Names.emplace_back(array->GetName());
+        P->Components.push_back(array->GetNumberOfComponents());
+      }
+    }
+    int total = 0;
+    for (int c : P->Components)
+    {
+      total += c;
+    }
+    P->Normals = pd->GetNormals() != nullptr;
+    pointsurfaces::StreamParameters params;
+    params.Build = this->MakeParameters(total > 0);
+    params.ChunkPoints = this->ChunkPoints;
+    params.ScratchDirectory = this->ScratchDirectory;
+    params.Orient = this->OrientNormals;
+    params.MergeTolerance = this->MergeTolerance;
+    P->Stream = std::make_unique<pointsurfaces::SplatStream>(params, total, P->Normals);
+  }
+  if (!P->Failed && n > 0)
+  {
+    // This piece, in blocks.
+    const int total = P->Stream->Attributes();
+    vtkDataArray* normals = P->Normals ? pd->GetNormals() : nullptr;
+    std::vector<vtkDataArray*> arrays;
+    for (const std::string& name : P->Names)
+    {
+      arrays.push_back(pd->GetArray(name.c_str()));
+    }
+    std::vector<double> xyz;
+    std::vector<float> nrm, attr;
+    const vtkIdType block = 65536;
+    for (vtkIdType first = 0; first < n && !P->Failed; first += block)
+    {
+      const vtkIdType count = std::min(block, n - first);
+      xyz.resize(3 * count);
+      nrm.assign(normals ? 3 * count : 0, 0.0f);
+      attr.assign(static_cast<size_t>(count) * total, 0.0f);
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        input->GetPoint(first + i, &xyz[3 * i]);
+        for (int c = 0; normals && c < 3; ++c)
+        {
+          nrm[3 * i + c] = static_cast<float>(normals->GetComponent(first + i, c));
+        }
+        int at = 0;
+        for (size_t a = 0; a < arrays.size(); ++a)
+        {
+          for (int c = 0; c < P->Components[a]; ++c, ++at)
+          {
+            const bool has = arrays[a] && c < arrays[a]->GetNumberOfComponents();
+            attr[static_cast<size_t>(i) * total + at] =
+              has ? static_cast<float>(arrays[a]->GetComponent(first + i, c)) : 0.0f;
+          }
+        }
+      }
+      P->Failed = !P->Stream->AddPoints(
+        xyz.data(), normals ? nrm.data() : nullptr, total ? attr.data() : nullptr, count);
+    }
+    P->Points += n;
+    if (P->Failed)
+    {
+      vtkErrorMacro(<< P->Stream->Error());
+    }
+  }
+  this->UpdateProgress(0.2 * (P->Piece + 1) / this->NumberOfPieces);
+  if (++P->Piece < this->NumberOfPieces && !P->Failed && !this->GetAbortExecute())
+  {
+    request->Set(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING(), 1);
+    return 1;
+  }
+  request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
+  P->Piece = 0;
+  if (P->Failed || !this->Finish(output))
+  {
+    output->Initialize();
+  }
+  P->Stream.reset();
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+bool vtkStreamingSplatFitter::Finish(vtkPolyData* output)
+{
+  if (!P->Stream)
+  {
+    vtkWarningMacro(<< "The input has no points: no splat file written.");
+    return false;
+  }
+  pointsurfaces::SplatStream& stream = *P->Stream;
+  std::atomic<bool> abort(false);
+  if (!stream.Run(
+        [&](double f)
+        {
+          this->UpdateProgress(0.2 + 0.7 * f);
+          abort = this->GetAbortExecute() != 0;
+        },
+        &abort))
+  {
+    vtkErrorMacro(<< stream.Error());
+    return false;
+  }
+  const pointsurfaces::StreamStatistics& stats = stream.Statistics();
+  this->NumberOfInvalidPoints = static_cast<vtkIdType>(stats.Dropped);
+  this->NumberOfMergedPoints = static_cast<vtkIdType>(stats.Merged);
+  this->NumberOfDegenerateSplats = static_cast<vtkIdType>(stats.Degenerate);
+  this->NumberOfReducedDegreeSplats = static_cast<vtkIdType>(stats.Reduced);
+  this->NumberOfChunks = static_cast<vtkIdType>(stats.Chunks);
+  this->NumberOfHaloPoints = static_cast<vtkIdType>(stats.HaloPoints);
+  this->LargestChunk = static_cast<vtkIdType>(stats.LargestChunk);
+  if (stats.Dropped > 0)
+  {
+    vtkWarningMacro(<< "Dropped " << stats.Dropped << " of " << P->Points
+                    << " input points with NaN or infinite coordinates.");
+  }
+
+  // The file: page octree, then the rows in its order.
+  pointsurfaces::SplatFileInfo info;
+  info.Degree = this->Degree;
+  info.InputPoints = stats.Points;
+  info.Oriented = stream.Oriented();
+  info.AttributeNames = P->Names;
+  info.AttributeComponents = P->Components;
+  const int m = pointsurfaces::MonomialCount(this->Degree);
+  const int total = stream.Attributes();
+  std::vector<pointsurfaces::StreamedSplat> splats;
+  std::vector<float> attributes;
+  auto fetch = [&](const std::vector<long long>& ids, pointsurfaces::SplatColumns& out)
+  {
+    if (!stream.ReadSplatsAt(ids, splats, attributes))
+    {
+      return false;
+    }
+    for (size_t k = 0; k < ids.size(); ++k)
+    {
+      const pointsurfaces::StreamedSplat& s = splats[k];
+      const pointsurfaces::LocalFrame& f = s.Fitted.Frame;
+      for (int c = 0; c < 3; ++c)
+      {
+        out.Origin[3 * k + c] = f.Origin[c];
+        out.Normal[3 * k + c] = static_cast<float>(f.Normal[c]);
+        out.Tangent[3 * k + c] = static_cast<float>(f.Tangent[c]);
+      }
+      out.FeatureSize[k] = static_cast<float>(f.Scale);
+      for (int c = 0; c < m; ++c)
+      {
+        // Lower-degree fallbacks keep zeros in the higher coefficients.
+        out.Coefficients[static_cast<size_t>(m) * k + c] = static_cast<float>(
+          c < pointsurfaces::MonomialCount(s.Fitted.Fit.Degree) ? s.Fitted.Fit.Coefficients[c]
+                                                                : 0.0);
+      }
+      out.Radius[k] = static_cast<float>(s.Radius);
+      out.MaxDeviation[k] = static_cast<float>(s.MaxDeviation);
+      out.NominalRadius[k] = static_cast<float>(s.NominalRadius);
+      out.Tolerance[k] = static_cast<float>(s.Tolerance);
+      out.LOD[k] = s.Level;
+      int at = 0;
+      for (size_t a = 0; a < P->Components.size(); ++a)
+      {
+        for (int c = 0; c < P->Components[a]; ++c, ++at)
+        {
+          out.Attributes[a][static_cast<size_t>(P->Components[a]) * k + c] =
+            attributes[k * total + at];
+        }
+      }
+    }
+    return true;
+  };
+  std::string error;
+  if (!pointsurfaces::WriteSplatFile(this->FileName,
+        info,
+        stream.Origins().data(),
+        stream.Radii().data(),
+        stream.Levels().data(),
+        stream.NumberOfSplats(),
+        stream.LevelQuality(),
+        fetch,
+        error,
+        this->PageSize))
+  {
+    vtkErrorMacro(<< this->FileName << ": " << error);
+    return false;
+  }
+  this->NumberOfSplatsWritten = static_cast<vtkIdType>(stream.NumberOfSplats());
+  this->UpdateProgress(0.95);
+
+  // The output: the file, coarsest levels first, within the budget.
+  vtkNew<vtkSplatFileReader> reader;
+  reader->SetFileName(this->FileName.c_str());
+  reader->SetMemoryBudget(this->OutputMemoryBudget);
+  reader->Update();
+  output->ShallowCopy(reader->GetOutput());
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkStreamingSplatFitter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "PageSize: " << this->PageSize << "\n";
+  os << indent << "NumberOfPieces: " << this->NumberOfPieces << "\n";
+  os << indent << "ChunkPoints: " << this->ChunkPoints << "\n";
+  os << indent << "ScratchDirectory: " << this->ScratchDirectory << "\n";
+  os << indent << "OutputMemoryBudget: " << this->OutputMemoryBudget << " MB\n";
+  os << indent << "NumberOfSplatsWritten: " << this->NumberOfSplatsWritten << "\n";
+  os << indent << "NumberOfChunks: " << this->NumberOfChunks << "\n";
+}

@@ -1,0 +1,122 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkStreamingSplatFitter
+ * @brief   Fits splats to a point set larger than memory, piece by piece, into a multi-resolution splat file.
+ *
+ * vtkAlgebraicSplatFitter holds every point and its fits at once (about
+ * 580 bytes a point at the defaults). This filter takes the same
+ * parameters (it is one), but asks its input for NumberOfPieces pieces, one
+ * after another, and never holds more than one chunk of the points:
+ * pointsurfaces::SplatStream (psSplatStream.h) spills the pieces to
+ * scratch files in ScratchDirectory, cuts the bounds into octree chunks of
+ * at most ChunkPoints points, fits each chunk with a halo of its
+ * neighbours' points by exactly the in-memory fit's rules (a splat at a
+ * border is the in-memory one; a border is neither covered twice nor left
+ * open), orients the normals across chunks, and carries every input point
+ * array over (MLS-weighted, as float). The splats are written to FileName
+ * as a multi-resolution splat file (vtkSplatFileWriter's format), which
+ * vtkSplatFileReader opens lazily.
+ *
+ * The output is that file read back within OutputMemoryBudget megabytes
+ * (coarsest levels first, see vtkSplatFileReader): a picture of a fit of
+ * any size. Set NumberOfLevels above 1 for levels of detail in the file.
+ *
+ * Inputs that stream: vtkPLYScanReader with SplitPoints on (binary PLY,
+ * read record range by record range), and any source or filter that
+ * honours piece requests; any other input arrives whole in piece 0 (and
+ * is then fitted chunk by chunk all the same). Selection FixedCount is not
+ * streamed (LOP moves points across the whole set): use Quality.
+ *
+ * Errors (no FileName, a scratch directory or file that cannot be written,
+ * FixedCount) give one vtkErrorMacro line and an empty output.
+ */
+#ifndef vtkStreamingSplatFitter_h
+#define vtkStreamingSplatFitter_h
+
+#include "PointSurfacesIOHDF5Module.h" // For export macro
+#include "vtkAlgebraicSplatFitter.h"
+
+#include <memory> // For the stream
+#include <string> // For names
+#include <vector> // For the arrays
+
+class POINTSURFACESIOHDF5_EXPORT vtkStreamingSplatFitter : public vtkAlgebraicSplatFitter
+{
+public:
+  static vtkStreamingSplatFitter* New();
+  vtkTypeMacro(vtkStreamingSplatFitter, vtkAlgebraicSplatFitter);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** The splat file to write. Default: none (an error). */
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+  ///@}
+
+  ///@{
+  /** Pieces asked of the input, one after another. Default 16. */
+  vtkSetClampMacro(NumberOfPieces, int, 1, 1 << 20);
+  vtkGetMacro(NumberOfPieces, int);
+  ///@}
+
+  ///@{
+  /** Most points of one chunk (its halo excluded). Default 2 000 000 (about 1.5 GB at the defaults). */
+  vtkSetClampMacro(ChunkPoints, vtkIdType, 1000, VTK_ID_MAX);
+  vtkGetMacro(ChunkPoints, vtkIdType);
+  ///@}
+
+  ///@{
+  /** Where the scratch files go (about 60 bytes a point). Default: the system's temporary directory. */
+  vtkSetStdStringFromCharMacro(ScratchDirectory);
+  vtkGetCharFromStdStringMacro(ScratchDirectory);
+  ///@}
+
+  ///@{
+  /** Megabytes of the file read back as the output; 0: the whole file. Default 256. */
+  vtkSetClampMacro(OutputMemoryBudget, double, 0.0, 1e12);
+  vtkGetMacro(OutputMemoryBudget, double);
+  ///@}
+
+  ///@{
+  /**
+   * Most splats of one page of the file (a leaf of its page octree): the
+   * unit the reader loads. Default 16384 (about 1.5 MB of file).
+   */
+  vtkSetClampMacro(PageSize, int, 16, 1 << 24);
+  vtkGetMacro(PageSize, int);
+  ///@}
+
+  /** After an update: splats written, chunks fitted, halo points loaded in all. */
+  vtkGetMacro(NumberOfSplatsWritten, vtkIdType);
+  vtkGetMacro(NumberOfChunks, vtkIdType);
+  vtkGetMacro(NumberOfHaloPoints, vtkIdType);
+  vtkGetMacro(LargestChunk, vtkIdType);
+
+protected:
+  vtkStreamingSplatFitter();
+  ~vtkStreamingSplatFitter() override;
+
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  std::string FileName;
+  int PageSize = 16384;
+  int NumberOfPieces = 16;
+  vtkIdType ChunkPoints = 2000000;
+  std::string ScratchDirectory;
+  double OutputMemoryBudget = 256.0;
+  vtkIdType NumberOfSplatsWritten = 0;
+  vtkIdType NumberOfChunks = 0;
+  vtkIdType NumberOfHaloPoints = 0;
+  vtkIdType LargestChunk = 0;
+
+private:
+  vtkStreamingSplatFitter(const vtkStreamingSplatFitter&) = delete;
+  void operator=(const vtkStreamingSplatFitter&) = delete;
+  bool Finish(vtkPolyData* output);
+  struct Impl;
+  std::unique_ptr<Impl> P;
+};
+
+#endif
