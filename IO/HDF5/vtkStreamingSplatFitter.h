@@ -9,7 +9,7 @@
  * parameters (it is one), but asks its input for NumberOfPieces pieces, one
  * after another, and never holds more than one chunk of the points:
  * pointsurfaces::SplatStream (psSplatStream.h) spills the pieces to
- * scratch files in ScratchDirectory, cuts the bounds into octree chunks of
+ * scratch files in ScratchDirectory, cuts the bounds into k-d chunks of
  * at most ChunkPoints points, fits each chunk with a halo of its
  * neighbours' points by exactly the in-memory fit's rules (a splat at a
  * border is the in-memory one; a border is neither covered twice nor left

@@ -9,7 +9,8 @@ as Metaballs with the defaults (pvbatch).
   plugin's reader for `dump.meoh`, `dump.1000.melt`, `melt.lammpstrj`,
   `confout.gro`, `traj_comp.xtc`, `snapshot_000.hdf5`, `snap_000.0.hdf5`,
   `output_0000.hdf5`, `points.vdb` and `cloud.off` (copies of the test data
-  under those names, and a lattice of points written here);
+  under those names, and a lattice of points written here), and
+  `sphere.psplat`, a splat file the Streaming Splat Fitter writes here;
 - a .vdb on which OpenVDB aborts reads as empty (in the reader's child
   process) and the session goes on;
 - each reader's output, shown as Metaballs with no property touched (the
@@ -157,6 +158,28 @@ Delete(damaged)
 opened["points.vdb"].UpdatePipeline()
 check(opened["points.vdb"].GetDataInformation().GetNumberOfPoints() > 0,
       "a good .vdb reads after the damaged one")
+
+# The Streaming Splat Fitter writes a splat file, which File > Open opens
+# with the Splat File Reader (serial: two ranks would write one file twice).
+if not mpi:
+    sphere = Sphere(ThetaResolution=160, PhiResolution=160)
+    streamed = StreamingSplatFitter(Input=sphere)
+    streamed.FileName = os.path.join(named, "sphere.psplat")
+    streamed.NumberOfPieces = 3
+    streamed.ChunkPoints = 5000
+    streamed.UpdatePipeline()
+    written = streamed.GetDataInformation().GetNumberOfPoints()
+    check(written > 100, "the Streaming Splat Fitter writes a splat file (%d splats)" % written)
+    splat_file = OpenDataFile(os.path.join(named, "sphere.psplat"))
+    got = splat_file.GetXMLName() if splat_file is not None else None
+    check(got == "SplatFileReader", "sphere.psplat opens with SplatFileReader (%s)" % got)
+    if splat_file is not None:
+        splat_file.UpdatePipeline()
+        check(splat_file.GetDataInformation().GetNumberOfPoints() == written,
+              "the splat file reads back its %d splats" % written)
+        Delete(splat_file)
+    Delete(streamed)
+    Delete(sphere)
 
 if RANK == 0:
     print("TestPointSurfacesReaders: %d failure(s)" % len(check.failures), flush=True)

@@ -352,17 +352,45 @@ long long SplatStream::Impl::CountIn(const int lo[3],
 }
 
 //------------------------------------------------------------------------------
-void SplatStream::Impl::Split(const int lo[3],
-  const int hi[3],
+void SplatStream::Impl::Split(const int lo_[3],
+  const int hi_[3],
   const std::vector<long long>& prefix)
 {
-  const long long count = this->CountIn(lo, hi, prefix);
+  const long long count = this->CountIn(lo_, hi_, prefix);
   if (count == 0)
   {
     return;
   }
-  const bool single = hi[0] - lo[0] == 1 && hi[1] - lo[1] == 1 && hi[2] - lo[2] == 1;
-  if (count <= this->Params.ChunkPoints || single)
+  // The box shrunk to its occupied cells: no halo reaches into empty space.
+  int lo[3] = { lo_[0], lo_[1], lo_[2] }, hi[3] = { hi_[0], hi_[1], hi_[2] };
+  for (int c = 0; c < 3; ++c)
+  {
+    int a[3] = { lo[0], lo[1], lo[2] }, b[3] = { hi[0], hi[1], hi[2] };
+    for (a[c] = lo[c], b[c] = lo[c] + 1; this->CountIn(a, b, prefix) == 0; ++a[c], ++b[c])
+    {
+      lo[c] = a[c] + 1;
+    }
+    a[c] = hi[c] - 1;
+    b[c] = hi[c];
+    while (this->CountIn(a, b, prefix) == 0)
+    {
+      hi[c] = a[c];
+      --a[c];
+      --b[c];
+    }
+  }
+  int axis = -1;
+  double longest = 0.0;
+  for (int c = 0; c < 3; ++c)
+  {
+    const double extent = (hi[c] - lo[c]) * this->CellSize[c];
+    if (hi[c] - lo[c] > 1 && extent > longest)
+    {
+      axis = c;
+      longest = extent;
+    }
+  }
+  if (count <= this->Params.ChunkPoints || axis < 0)
   {
     Chunk chunk;
     for (int c = 0; c < 3; ++c)
@@ -376,35 +404,29 @@ void SplatStream::Impl::Split(const int lo[3],
     this->Chunks.push_back(chunk);
     return;
   }
-  // Octants (halves of the axes longer than one cell), z, y, x order: a
-  // depth-first walk keeps neighbouring chunks close in the fitted order.
-  int mid[3];
-  for (int c = 0; c < 3; ++c)
+  // Halves of the longest axis at the slab that splits the points most
+  // evenly (a k-d split): chunks of ChunkPoints / 2 to ChunkPoints points,
+  // as far as the cells allow, and a depth-first walk keeps neighbouring
+  // chunks close in the fitted order.
+  int split = lo[axis] + 1;
+  long long best = -1;
+  int a[3] = { lo[0], lo[1], lo[2] }, b[3] = { hi[0], hi[1], hi[2] };
+  for (int m = lo[axis] + 1; m < hi[axis]; ++m)
   {
-    mid[c] = hi[c] - lo[c] > 1 ? (lo[c] + hi[c]) / 2 : hi[c];
-  }
-  for (int z = 0; z < 2; ++z)
-  {
-    for (int y = 0; y < 2; ++y)
+    b[axis] = m;
+    const long long below = this->CountIn(a, b, prefix);
+    const long long off = std::abs(2 * below - count);
+    if (best < 0 || off < best)
     {
-      for (int x = 0; x < 2; ++x)
-      {
-        const int side[3] = { x, y, z };
-        int a[3], b[3];
-        bool empty = false;
-        for (int c = 0; c < 3; ++c)
-        {
-          a[c] = side[c] ? mid[c] : lo[c];
-          b[c] = side[c] ? hi[c] : mid[c];
-          empty = empty || a[c] >= b[c];
-        }
-        if (!empty)
-        {
-          this->Split(a, b, prefix);
-        }
-      }
+      best = off;
+      split = m;
     }
   }
+  int upper[3] = { lo[0], lo[1], lo[2] }, lower[3] = { hi[0], hi[1], hi[2] };
+  lower[axis] = split;
+  upper[axis] = split;
+  this->Split(lo, lower, prefix);
+  this->Split(upper, hi, prefix);
 }
 
 //------------------------------------------------------------------------------

@@ -13,9 +13,10 @@
  *    with their bounds. Points with a NaN or infinite coordinate are
  *    dropped and counted.
  * 2. Run() counts the points in a 64 x 64 x 64 grid over the bounds, splits
- *    the bounds as an octree of those cells until no chunk holds more than
+ *    the occupied cells in halves of their longest axis at the slab that
+ *    halves their points (a k-d tree) until no chunk holds more than
  *    ChunkPoints points, and writes each point to its chunk's file.
- * 3. Chunk after chunk, in the octree's depth-first order: its points and
+ * 3. Chunk after chunk, in the k-d tree's depth-first order: its points and
  *    a halo of the neighbouring chunks' points around it (as wide as a
  *    fit's neighbours and a disc's reach, measured on the chunk) go to
  *    BuildSplats as one chunk (ChunkContext): only its own points are
