@@ -40,7 +40,7 @@ inline std::string FuzzFile(const uint8_t* data, size_t size, const std::string&
     []
     {
       for (const char* ext :
-        { "pcd", "off", "obj", "om", "stl", "vdb", "lammpstrj", "gro", "0.hdf5", "ply" })
+        { "pcd", "off", "obj", "om", "stl", "vdb", "lammpstrj", "gro", "0.hdf5", "ply", "psplat" })
       {
         std::remove((base + ext).c_str());
       }
