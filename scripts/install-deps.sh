@@ -82,6 +82,12 @@ if [ "$demo" = 0 ]; then
     bookworm) packages+=(libclang-rt-14-dev) ;;
     *) packages+=(libclang-rt-dev) ;;
   esac
+  # LAS and LAZ lidar files (PointSurfaces::IOLAS): LASzip, which Debian 12
+  # does not package (nor PDAL or libLAS)
+  case "$release" in
+    bookworm) ;;
+    *) packages+=(liblaszip-dev) ;;
+  esac
 fi
 dryrun=0
 paraview=0

@@ -33,7 +33,7 @@ from .PointSurfacesRendering import vtkPointSurfacesRenderWindowFactory as _Fact
 # (OpenVDB, OpenMesh, PCL's io, VTK's HDF5): the classes of those that were
 # built are here too; OPTIONAL_MODULES says which ones.
 OPTIONAL_MODULES = {}
-for _name in ("FiltersOpenVDB", "IOOpenVDB", "IOOpenMesh", "IOPCL", "IOHDF5"):
+for _name in ("FiltersOpenVDB", "IOOpenVDB", "IOOpenMesh", "IOPCL", "IOHDF5", "IOLAS"):
     try:
         _module = __import__("pointsurfaces.PointSurfaces" + _name, fromlist=["*"])
     except ImportError:
