@@ -80,13 +80,16 @@ public:
   vtkGetVector2Macro(ViewportSize, int);
   ///@}
 
+  ///@{
   /** After an update: the file's splats, and those loaded. */
   vtkGetMacro(NumberOfSplats, vtkIdType);
   vtkGetMacro(NumberOfLoadedSplats, vtkIdType);
+  ///@}
 
   /** True when the file opens as a splat file. */
   static bool CanReadFile(const char* fileName);
 
+  /** The reader's MTime, or its Camera's when later: a moved camera loads again. */
   vtkMTimeType GetMTime() override;
 
 protected:

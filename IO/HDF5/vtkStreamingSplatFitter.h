@@ -87,11 +87,16 @@ public:
   vtkGetMacro(PageSize, int);
   ///@}
 
-  /** After an update: splats written, chunks fitted, halo points loaded in all. */
+  ///@{
+  /**
+   * After an update: splats written, chunks fitted, halo points loaded in
+   * all, and the most points of one chunk with its halo.
+   */
   vtkGetMacro(NumberOfSplatsWritten, vtkIdType);
   vtkGetMacro(NumberOfChunks, vtkIdType);
   vtkGetMacro(NumberOfHaloPoints, vtkIdType);
   vtkGetMacro(LargestChunk, vtkIdType);
+  ///@}
 
 protected:
   vtkStreamingSplatFitter();
