@@ -318,7 +318,10 @@ bool SplatStream::AddPoints(const double* xyz,
     const size_t at = buffer.size();
     buffer.resize(at + rec);
     std::memcpy(&buffer[at], p, 24);
-    std::memcpy(&buffer[at + 24], extra.data(), 4 * extra.size());
+    if (!extra.empty())
+    {
+      std::memcpy(&buffer[at + 24], extra.data(), 4 * extra.size());
+    }
     if (buffer.size() >= static_cast<size_t>(Block) * rec)
     {
       if (!P->Spill.Write(buffer.data(), buffer.size()))
@@ -609,9 +612,12 @@ bool SplatStream::Impl::ReadChunk(size_t c, const double* keep, PointBatch& into
         std::memcpy(&values[k], r + 32 + 4 * k, 4);
       }
       into.Normals.insert(into.Normals.end(), values, values + nc);
-      const size_t at = into.Attributes.size();
-      into.Attributes.resize(at + this->A);
-      std::memcpy(into.Attributes.data() + at, r + 32 + 4 * nc, 4 * static_cast<size_t>(this->A));
+      if (this->A > 0)
+      {
+        const size_t at = into.Attributes.size();
+        into.Attributes.resize(at + this->A);
+        std::memcpy(into.Attributes.data() + at, r + 32 + 4 * nc, 4 * static_cast<size_t>(this->A));
+      }
     }
   }
   return true;
@@ -1004,7 +1010,10 @@ bool SplatStream::Impl::FitChunk(size_t c,
       }
     }
     std::memcpy(&out[k * rec], &s, sizeof(s));
-    std::memcpy(&out[k * rec + sizeof(s)], carried.data(), 4 * carried.size());
+    if (!carried.empty())
+    {
+      std::memcpy(&out[k * rec + sizeof(s)], carried.data(), 4 * carried.size());
+    }
     for (int j = 0; j < 3; ++j)
     {
       this->Origins.push_back(s.Fitted.Frame.Origin[j]);
@@ -1129,7 +1138,10 @@ bool SplatStream::ReadSplats(long long first,
   for (long long k = 0; k < count; ++k)
   {
     std::memcpy(&splats[k], &buffer[k * rec], sizeof(StreamedSplat));
-    std::memcpy(attributes.data() + k * P->A, &buffer[k * rec + sizeof(StreamedSplat)], 4 * P->A);
+    if (P->A > 0)
+    {
+      std::memcpy(attributes.data() + k * P->A, &buffer[k * rec + sizeof(StreamedSplat)], 4 * P->A);
+    }
     const long long node = P->Node[first + k];
     if (node >= 0 && !P->FinalFlip.empty() && P->FinalFlip[node])
     {
