@@ -86,7 +86,7 @@ void vtkSplatFileWriter::WriteData()
   for (vtkIdType i = 0; i < n; ++i)
   {
     input->GetPoint(i, &origins[3 * i]);
-    radii[i] = columns[4] ? columns[4]->GetTuple1(i) : columns[2]->GetTuple1(i);
+    radii[i] = columns[4]->GetTuple1(i); // a splat set has radii (GetSplatDegree)
     levels[i] = columns[8] ? static_cast<int>(columns[8]->GetTuple1(i)) : 0;
   }
   std::vector<double> quality;

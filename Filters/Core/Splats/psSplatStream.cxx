@@ -260,7 +260,17 @@ SplatStream::SplatStream(const StreamParameters& params, int attributes, bool no
   P->Params = params;
   P->A = std::max(0, attributes);
   P->HasNormals = normals;
-  if (P->MakeDirectory() && !P->Spill.Open((P->Directory / "spill.bin").string(), "w+b"))
+  // Refused before any point is read and spilled.
+  if (params.Build.Select == Selection::FixedCount)
+  {
+    P->Fail("a streaming fit selects by quality or keeps every point: FixedCount (LOP) "
+            "needs every point at once");
+  }
+  else if (params.Build.Levels > 8)
+  {
+    P->Fail("a streaming fit has at most 8 levels");
+  }
+  else if (P->MakeDirectory() && !P->Spill.Open((P->Directory / "spill.bin").string(), "w+b"))
   {
     P->Fail("cannot write the scratch file in " + P->Directory.string());
   }
@@ -1043,15 +1053,6 @@ bool SplatStream::Run(const std::function<void(double)>& progress, const std::at
   if (!P->Error.empty())
   {
     return false;
-  }
-  if (P->Params.Build.Select == Selection::FixedCount)
-  {
-    return P->Fail("a streaming fit selects by quality or keeps every point: FixedCount (LOP) "
-                   "needs every point at once");
-  }
-  if (P->Params.Build.Levels > 8)
-  {
-    return P->Fail("a streaming fit has at most 8 levels");
   }
   if (P->Stats.Points == 0)
   {

@@ -112,7 +112,9 @@ public:
    * `attributes` float components a point carries besides its coordinates
    * (colours, intensity: MLS-weighted onto the splats); `normals` whether
    * AddPoints receives unit normals (they orient the splats and take part
-   * in the bound's normal test).
+   * in the bound's normal test). A Selection it cannot stream (FixedCount),
+   * more than 8 levels or a scratch directory it cannot make set Error()
+   * here, before any point is spilled, and every call after fails.
    */
   SplatStream(const StreamParameters& params, int attributes, bool normals);
   ~SplatStream();
@@ -129,7 +131,7 @@ public:
   /**
    * Fit every chunk. `progress(f)` with f in [0, 1]; `abort`, when set,
    * stops after the current chunk with what was fitted. False, with
-   * Error() set, on a scratch file error or a Selection it cannot stream.
+   * Error() set, on a scratch file error or after a refusal (above).
    */
   bool Run(const std::function<void(double)>& progress = nullptr,
     const std::atomic<bool>* abort = nullptr);
