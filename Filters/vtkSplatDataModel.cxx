@@ -9,6 +9,7 @@
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkIdTypeArray.h"
+#include "vtkIntArray.h"
 #include "vtkMath.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -32,6 +33,30 @@ void vtkSplatDataModel::AddVertexCells(vtkPolyData* pd)
   vtkNew<vtkCellArray> verts;
   verts->SetData(1, connectivity);
   pd->SetVerts(verts);
+}
+
+//------------------------------------------------------------------------------
+void vtkSplatDataModel::AddSetFields(vtkPolyData* pd,
+  int degree,
+  const std::vector<double>& levelQuality,
+  bool oriented)
+{
+  vtkFieldData* fd = pd->GetFieldData();
+  vtkNew<vtkIntArray> degreeArray;
+  degreeArray->SetName(DegreeName());
+  degreeArray->InsertNextValue(degree);
+  fd->AddArray(degreeArray);
+  vtkNew<vtkDoubleArray> levels;
+  levels->SetName(LODQualityName());
+  for (double s : levelQuality)
+  {
+    levels->InsertNextValue(s);
+  }
+  fd->AddArray(levels);
+  vtkNew<vtkIdTypeArray> orientedArray;
+  orientedArray->SetName(NormalsOrientedName());
+  orientedArray->InsertNextValue(oriented ? 1 : 0);
+  fd->AddArray(orientedArray);
 }
 
 //------------------------------------------------------------------------------
@@ -160,6 +185,20 @@ void vtkSplatDataModel::AddOctree(vtkPolyData* pd, const pointsurfaces::Octree& 
   fd->AddArray(children);
   fd->AddArray(range);
   fd->AddArray(ends);
+  if (!tree.PresentLevels.empty())
+  {
+    vtkNew<vtkIntArray> present;
+    make(present.GetPointer(), OctreeNodePresentLevelsName(), 1);
+    for (vtkIdType id = 0; id < nodes; ++id)
+    {
+      present->SetValue(id, tree.PresentLevels[id]);
+    }
+    fd->AddArray(present);
+  }
+  else
+  {
+    fd->RemoveArray(OctreeNodePresentLevelsName());
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -180,6 +219,7 @@ vtkSplatDataModel::OctreeStatus vtkSplatDataModel::GetOctree(vtkPolyData* pd,
   vtkDataArray* range = fd->GetArray(OctreeNodeRangeName());
   vtkDataArray* ends = fd->GetArray(OctreeNodeLevelEndsName());
   vtkDataArray* quality = fd->GetArray(LODQualityName());
+  vtkDataArray* present = fd->GetArray(OctreeNodePresentLevelsName());
   vtkDataArray* radius = pd->GetPointData()->GetArray(RadiusName());
   vtkDataArray* lod = pd->GetPointData()->GetArray(LODName());
   const vtkIdType count = sphere ? sphere->GetNumberOfTuples() : 0;
@@ -188,7 +228,8 @@ vtkSplatDataModel::OctreeStatus vtkSplatDataModel::GetOctree(vtkPolyData* pd,
     range->GetNumberOfComponents() != 2 || children->GetNumberOfTuples() != count ||
     range->GetNumberOfTuples() != count || ends->GetNumberOfTuples() != count ||
     ends->GetNumberOfComponents() != quality->GetNumberOfTuples() ||
-    (bounds && (bounds->GetNumberOfComponents() != 6 || bounds->GetNumberOfTuples() != count)))
+    (bounds && (bounds->GetNumberOfComponents() != 6 || bounds->GetNumberOfTuples() != count)) ||
+    (present && (present->GetNumberOfComponents() != 1 || present->GetNumberOfTuples() != count)))
   {
     return NoOctree;
   }
@@ -225,6 +266,11 @@ vtkSplatDataModel::OctreeStatus vtkSplatDataModel::GetOctree(vtkPolyData* pd,
       const double e = ends->GetComponent(i, l);
       valid = e >= begin && e <= end;
     }
+    if (present && valid)
+    {
+      const double p = present->GetTuple1(i);
+      valid = p >= 0 && p <= levels;
+    }
   }
   for (vtkIdType k = 0; k < n && valid; ++k)
   {
@@ -238,6 +284,10 @@ vtkSplatDataModel::OctreeStatus vtkSplatDataModel::GetOctree(vtkPolyData* pd,
   tree.Levels = levels;
   tree.Nodes.resize(count);
   tree.LevelEnds.resize(static_cast<size_t>(count) * levels);
+  if (present)
+  {
+    tree.PresentLevels.resize(count);
+  }
   for (vtkIdType i = 0; i < count; ++i)
   {
     pointsurfaces::OctreeNode& node = tree.Nodes[i];
@@ -253,6 +303,10 @@ vtkSplatDataModel::OctreeStatus vtkSplatDataModel::GetOctree(vtkPolyData* pd,
     for (int l = 0; l < levels; ++l)
     {
       tree.LevelEnds[i * levels + l] = static_cast<long long>(ends->GetComponent(i, l));
+    }
+    if (present)
+    {
+      tree.PresentLevels[i] = static_cast<int>(present->GetTuple1(i));
     }
   }
   for (int l = 0; l < levels; ++l)

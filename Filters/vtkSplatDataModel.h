@@ -41,6 +41,8 @@
  * OctreeNodeLevelEnds (the end of each level's prefix of the range). The
  * points are then grouped by leaf and, within a leaf, sorted by level, so
  * that levels 0 to l of a leaf are the points from begin to LevelEnds[l].
+ * A partly loaded set (vtkStreamingSplatMapper's pages) adds
+ * OctreeNodePresentLevels: how many levels each node holds.
  *
  * GetSplatDegree checks that a data set carries the model; GetOctree reads
  * the octree back and refuses one that no longer fits its splats.
@@ -100,6 +102,8 @@ public:
   static const char* OctreeNodeChildrenName() { return "OctreeNodeChildren"; }
   static const char* OctreeNodeRangeName() { return "OctreeNodeRange"; }
   static const char* OctreeNodeLevelEndsName() { return "OctreeNodeLevelEnds"; }
+  /** Optional: the levels each node holds, of a partly loaded set (Octree::PresentLevels). */
+  static const char* OctreeNodePresentLevelsName() { return "OctreeNodePresentLevels"; }
   ///@}
 
   /** What GetOctree found. */
@@ -113,6 +117,18 @@ public:
 
   /** One vertex cell per point of `pd`, replacing its verts. */
   static void AddVertexCells(vtkPolyData* pd);
+
+#ifndef __VTK_WRAP__
+  /**
+   * The field data of a splat set: its degree (DegreeName), the s of each
+   * level (LODQualityName) and whether its normals are oriented
+   * (NormalsOrientedName).
+   */
+  static void AddSetFields(vtkPolyData* pd,
+    int degree,
+    const std::vector<double>& levelQuality,
+    bool oriented);
+#endif
 
   /**
    * The degree of a splat set (field data SplatDegree), or -1 when `pd` lacks

@@ -525,11 +525,11 @@ void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
 }
 
 //------------------------------------------------------------------------------
-void vtkAlgebraicSplatMapper::DrawOctree(vtkRenderer* ren, vtkActor* act)
+void vtkAlgebraicSplatMapper::MakeLODView(vtkRenderer* ren,
+  vtkActor* act,
+  pointsurfaces::LODView& view)
 {
-  vtkShaderProgram* program = this->CurrentBO->Program;
   vtkCamera* cam = ren->GetActiveCamera();
-  pointsurfaces::LODView view;
   cam->GetFrustumPlanes(ren->GetTiledAspectRatio(), view.Planes);
   cam->GetPosition(view.Eye);
   int size[2];
@@ -545,6 +545,14 @@ void vtkAlgebraicSplatMapper::DrawOctree(vtkRenderer* ren, vtkActor* act)
   }
   view.Cull = this->Culling;
   view.PixelError = this->LODPixelError;
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatMapper::DrawOctree(vtkRenderer* ren, vtkActor* act)
+{
+  vtkShaderProgram* program = this->CurrentBO->Program;
+  pointsurfaces::LODView view;
+  this->MakeLODView(ren, act, view);
   this->NumberOfRenderedSplats = 0;
   for (const pointsurfaces::DrawRange& range : pointsurfaces::SelectDrawRanges(*this->Nodes, view))
   {

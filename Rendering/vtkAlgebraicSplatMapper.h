@@ -71,6 +71,7 @@ class vtkAlgebraicSplatBlendHelper;
 namespace pointsurfaces
 {
 struct LODOctree;
+struct LODView;
 }
 
 class POINTSURFACESRENDERING_EXPORT vtkAlgebraicSplatMapper : public vtkOpenGLPolyDataMapper
@@ -207,6 +208,11 @@ protected:
    */
   bool ResetForInput(vtkPolyData* poly);
   void ReadOctree(vtkPolyData* poly);
+  /**
+   * The view that culls and picks levels: `ren`'s camera and tiled viewport,
+   * `act`'s matrix, Culling and LODPixelError.
+   */
+  void MakeLODView(vtkRenderer* ren, vtkActor* act, pointsurfaces::LODView& view);
   void DrawSplats(vtkRenderer* ren, vtkActor* act, bool useOctree);
   void DrawOctree(vtkRenderer* ren, vtkActor* act);
 

@@ -10,16 +10,29 @@
 #include "vtk_hdf5.h"
 
 #include <algorithm> // For std::copy_n
+#include <mutex>     // For the lock
 #include <vector>    // For values
 
 namespace pointsurfaces
 {
+// The lock every HDF5 call of this module holds: a splat file may be read
+// on a loading thread (vtkStreamingSplatMapper) beside other HDF5 files, and
+// an HDF5 library built without thread safety (Debian's MPI flavours) must
+// see one call at a time. Recursive: a reader's method may call another.
+inline std::recursive_mutex& HDF5Mutex()
+{
+  static std::recursive_mutex mutex;
+  return mutex;
+}
+
 // HDF5 prints its error stack by default: quiet while we read (our errors
-// say what went wrong), restored after.
+// say what went wrong), restored after. Holds HDF5Mutex meanwhile, so that
+// every entry point that quiets the stack is also serialised.
 class QuietHDF5
 {
 public:
   QuietHDF5()
+    : Lock(HDF5Mutex())
   {
     H5Eget_auto2(H5E_DEFAULT, &this->Function, &this->Data);
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -29,6 +42,7 @@ public:
   QuietHDF5& operator=(const QuietHDF5&) = delete;
 
 private:
+  std::lock_guard<std::recursive_mutex> Lock;
   H5E_auto2_t Function = nullptr;
   void* Data = nullptr;
 };

@@ -40,11 +40,17 @@
  * children and level ends) and says what is wrong in one line: a
  * truncated, damaged, foreign or unfinished file is refused before
  * anything is read from it.
+ *
+ * Every HDF5 call of the writer and the reader holds one process-wide lock,
+ * so that a reader may run on a loading thread (vtkStreamingSplatMapper)
+ * beside other splat files whether or not the HDF5 library was built
+ * thread-safe.
  */
 #ifndef psSplatFile_h
 #define psSplatFile_h
 
-#include "psSplatLOD.h" // For LODOctree
+#include "PointSurfacesIOHDF5Module.h" // For export macro
+#include "psSplatLOD.h"                // For LODOctree
 
 #include <functional> // For the fetch
 #include <memory>     // For the implementation
@@ -70,7 +76,7 @@ struct SplatFileInfo
 };
 
 /** Rows of splats, column by column, as the file stores them. */
-struct SplatColumns
+struct POINTSURFACESIOHDF5_EXPORT SplatColumns
 {
   long long Count = 0;
   std::vector<double> Origin;
@@ -82,7 +88,7 @@ struct SplatColumns
   void Resize(long long count, int degree, const std::vector<int>& components);
 };
 
-class SplatFileWriter
+class POINTSURFACESIOHDF5_EXPORT SplatFileWriter
 {
 public:
   SplatFileWriter();
@@ -111,7 +117,7 @@ using SplatFetch = std::function<bool(const std::vector<long long>& ids, SplatCo
  * in its order, fetched block by block. `info` gives the degree, the
  * attributes, the input's point count and whether the normals are oriented.
  */
-bool WriteSplatFile(const std::string& path,
+POINTSURFACESIOHDF5_EXPORT bool WriteSplatFile(const std::string& path,
   SplatFileInfo info,
   const double* origins,
   const double* radii,
@@ -122,7 +128,7 @@ bool WriteSplatFile(const std::string& path,
   std::string& error,
   int pageSplats = PageSplats);
 
-class SplatFileReader
+class POINTSURFACESIOHDF5_EXPORT SplatFileReader
 {
 public:
   SplatFileReader();

@@ -124,19 +124,7 @@ void Assemble(const pointsurfaces::SplatColumns& c,
   }
   output->SetPoints(points);
   vtkSplatDataModel::AddVertexCells(output);
-  vtkFieldData* fd = output->GetFieldData();
-  vtkNew<vtkIntArray> degree;
-  degree->SetName(vtkSplatDataModel::DegreeName());
-  degree->InsertNextValue(info.Degree);
-  fd->AddArray(degree);
-  vtkNew<vtkDoubleArray> levels;
-  levels->SetName(vtkSplatDataModel::LODQualityName());
-  for (double s : info.Pages.LevelQuality)
-  {
-    levels->InsertNextValue(s);
-  }
-  fd->AddArray(levels);
-  AddCount(fd, vtkSplatDataModel::NormalsOrientedName(), info.Oriented ? 1 : 0);
+  vtkSplatDataModel::AddSetFields(output, info.Degree, info.Pages.LevelQuality, info.Oriented);
   if (n > 0)
   {
     vtkSplatDataModel::AddOctree(output, tree);

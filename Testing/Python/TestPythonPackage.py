@@ -20,7 +20,8 @@ for name in ("vtkEGLHeadlessRenderWindow", "vtkPointSurfacesRenderWindowFactory"
 # whose packages install-deps.sh installs).
 optional = {"FiltersOpenVDB": "vtkOpenVDBParticleMesher", "IOOpenVDB": "vtkOpenVDBPointsReader",
             "IOOpenMesh": "vtkOpenMeshReader", "IOPCL": "vtkPCDReader",
-            "IOHDF5": "vtkGadgetHDF5Reader", "IOLAS": "vtkLASReader"}
+            "IOHDF5": "vtkGadgetHDF5Reader", "IOLAS": "vtkLASReader",
+            "RenderingHDF5": "vtkStreamingSplatMapper"}
 
 
 def release():

@@ -115,6 +115,16 @@ std::vector<DrawRange> SelectDrawRanges(const LODOctree& lod, const LODView& vie
         }
       }
     }
+    // A partly loaded node draws its finest level present, with that level's s
+    // (a coarser splat drawn with a finer level's s would shrink and leave holes).
+    if (!tree.PresentLevels.empty())
+    {
+      level = std::min(level, tree.PresentLevels[id] - 1);
+      if (level < 0)
+      {
+        continue;
+      }
+    }
     const long long end = tree.LevelEnds[static_cast<size_t>(id) * tree.Levels + level];
     if (end > node.Begin)
     {

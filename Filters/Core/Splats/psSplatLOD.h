@@ -9,7 +9,9 @@
  * tree for one view: nodes whose bounding sphere lies outside the view
  * frustum are skipped, and each visible leaf draws the prefix of its
  * level-sorted splats down to the first level whose splats are at most
- * PixelError pixels across on screen (all levels when PixelError is 0).
+ * PixelError pixels across on screen (all levels when PixelError is 0);
+ * a node of a partly loaded set (Octree::PresentLevels) draws no finer
+ * level than it holds, with that level's s.
  * The result is a list of contiguous index ranges, each with its level's s,
  * ready for one draw call each. A model matrix moves the spheres and scales
  * them and the splats by its largest axis scale. Plain functions: no GL, no

@@ -30,10 +30,11 @@ from .PointSurfacesRendering import *  # noqa: F401,F403
 from .PointSurfacesRendering import vtkPointSurfacesRenderWindowFactory as _Factory
 
 # The modules of third-party libraries are built when the library is found
-# (OpenVDB, OpenMesh, PCL's io, VTK's HDF5): the classes of those that were
+# (OpenVDB, OpenMesh, PCL's io, VTK's HDF5, LASzip): the classes of those that were
 # built are here too; OPTIONAL_MODULES says which ones.
 OPTIONAL_MODULES = {}
-for _name in ("FiltersOpenVDB", "IOOpenVDB", "IOOpenMesh", "IOPCL", "IOHDF5", "IOLAS"):
+for _name in ("FiltersOpenVDB", "IOOpenVDB", "IOOpenMesh", "IOPCL", "IOHDF5", "IOLAS",
+              "RenderingHDF5"):
     try:
         _module = __import__("pointsurfaces.PointSurfaces" + _name, fromlist=["*"])
     except ImportError:

@@ -1,0 +1,324 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkStreamingSplatMapper on a fitted sphere written as a splat file (three
+// levels, pages of 128 splats, a colour array), against
+// vtkAlgebraicSplatMapper drawing the whole file (vtkSplatFileReader):
+// - without a budget, reading before it draws: the same picture, coloured
+//   by the file's array;
+// - with its loading thread: the first render returns without waiting, and
+//   rendering until Loading is false ends on the same picture;
+// - a budget that holds the coarsest level and little more: at most the
+//   budget in memory, fewer splats, and no holes (the coarse splats keep
+//   their size): the sphere covers as many pixels as the whole file;
+// - a close view within a budget of a third of the file: only pages in
+//   view are loaded, and the picture is the whole file's;
+// - the bounds are the file's before anything is drawn;
+// - a budget smaller than one page (a warning, nothing drawn), a truncated
+//   file (one error naming it) and no FileName (one error): no crash.
+#include "psIOTestSupport.h"
+#include "psRenderTestSupport.h"
+
+#include "vtkActor.h"
+#include "vtkAlgebraicSplatFitter.h"
+#include "vtkAlgebraicSplatMapper.h"
+#include "vtkCamera.h"
+#include "vtkFloatArray.h"
+#include "vtkPointData.h"
+#include "vtkSplatDataModel.h"
+#include "vtkSplatFileReader.h"
+#include "vtkSplatFileWriter.h"
+#include "vtkStreamingSplatMapper.h"
+
+#include <cstdlib>
+
+using namespace pointsurfaces_test;
+
+namespace
+{
+constexpr int Size = 240;
+const double Background[3] = { 0.1, 0.2, 0.3 };
+
+std::string Temp(const std::string& name)
+{
+  const char* dir = std::getenv("POINTSURFACES_TEMP_DIR");
+  return std::string(dir ? dir : "/tmp") + "/" + name;
+}
+
+struct Scene
+{
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkActor> Actor;
+  Scene(vtkMapper* mapper, double zoom)
+  {
+    this->Actor->SetMapper(mapper);
+    this->Renderer->AddActor(this->Actor);
+    this->Renderer->SetBackground(Background[0], Background[1], Background[2]);
+    this->Window->SetSize(Size, Size);
+    this->Window->SetMultiSamples(0);
+    this->Window->AddRenderer(this->Renderer);
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    camera->SetPosition(0, 0, 6);
+    camera->SetFocalPoint(0.3, 0.3, 0.8);
+    camera->SetViewUp(0, 1, 0);
+    camera->Zoom(zoom);
+    camera->SetClippingRange(1.0, 20.0);
+  }
+  std::vector<unsigned char> Pixels()
+  {
+    this->Window->Render();
+    vtkNew<vtkUnsignedCharArray> rgb;
+    this->Window->GetPixelData(0, 0, Size - 1, Size - 1, 0, rgb);
+    return std::vector<unsigned char>(rgb->GetPointer(0), rgb->GetPointer(0) + 3 * Size * Size);
+  }
+};
+
+// Share of pixels whose colour differs by more than 8 in some channel.
+double Differ(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
+{
+  long long n = 0;
+  for (size_t k = 0; k < a.size(); k += 3)
+  {
+    bool d = false;
+    for (int c = 0; c < 3; ++c)
+    {
+      d = d || std::abs(int(a[k + c]) - int(b[k + c])) > 8;
+    }
+    n += d ? 1 : 0;
+  }
+  return static_cast<double>(n) / (a.size() / 3);
+}
+
+// Pixels that are not the background.
+long long Covered(const std::vector<unsigned char>& a)
+{
+  long long n = 0;
+  for (size_t k = 0; k < a.size(); k += 3)
+  {
+    bool fg = false;
+    for (int c = 0; c < 3; ++c)
+    {
+      fg = fg || std::abs(int(a[k + c]) - int(255.0 * Background[c] + 0.5)) > 2;
+    }
+    n += fg ? 1 : 0;
+  }
+  return n;
+}
+
+void ColourBy(vtkMapper* mapper)
+{
+  mapper->SetScalarModeToUsePointFieldData();
+  mapper->SelectColorArray("Colour");
+  mapper->SetColorModeToDirectScalars();
+  mapper->ScalarVisibilityOn();
+}
+
+// The whole file through vtkSplatFileReader and vtkAlgebraicSplatMapper.
+std::vector<unsigned char> Reference(const std::string& path, double zoom)
+{
+  vtkNew<vtkSplatFileReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetMemoryBudget(0.0);
+  vtkNew<vtkAlgebraicSplatMapper> mapper;
+  mapper->SetInputConnection(reader->GetOutputPort());
+  ColourBy(mapper);
+  Scene scene(mapper, zoom);
+  return scene.Pixels();
+}
+
+vtkSmartPointer<vtkStreamingSplatMapper> Streaming(const std::string& path,
+  double budget,
+  bool asynchronous)
+{
+  auto mapper = vtkSmartPointer<vtkStreamingSplatMapper>::New();
+  mapper->SetFileName(path.c_str());
+  mapper->SetMemoryBudget(budget);
+  mapper->SetAsynchronous(asynchronous);
+  ColourBy(mapper);
+  return mapper;
+}
+
+struct Messages
+{
+  vtkNew<vtkTest::ErrorObserver> Observer;
+  vtkNew<vtkCallbackCommand> Errors, Warnings;
+  explicit Messages(vtkObject* o)
+  {
+    this->Errors->SetCallback(CountError);
+    this->Warnings->SetCallback(CountWarning);
+    o->AddObserver(vtkCommand::ErrorEvent, this->Observer);
+    o->AddObserver(vtkCommand::WarningEvent, this->Observer);
+    o->AddObserver(vtkCommand::ErrorEvent, this->Errors);
+    o->AddObserver(vtkCommand::WarningEvent, this->Warnings);
+  }
+};
+} // namespace
+
+int TestStreamingSplatMapper(int, char*[])
+{
+  // The file: a fitted unit sphere, coloured by position.
+  auto sphere = psFibonacciSphere(20000);
+  vtkNew<vtkFloatArray> colour;
+  colour->SetName("Colour");
+  colour->SetNumberOfComponents(3);
+  colour->SetNumberOfTuples(sphere->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    sphere->GetPoint(i, p);
+    colour->SetTuple3(i, 127.5 + 127.5 * p[0], 127.5 + 127.5 * p[1], 127.5 + 127.5 * p[2]);
+  }
+  sphere->GetPointData()->AddArray(colour);
+  vtkNew<vtkAlgebraicSplatFitter> fitter;
+  fitter->SetInputData(sphere);
+  fitter->SetNumberOfLevels(3);
+  const std::string path = Temp("TestStreamingSplatMapper.psplat");
+  vtkNew<vtkSplatFileWriter> writer;
+  writer->SetInputConnection(fitter->GetOutputPort());
+  writer->SetFileName(path.c_str());
+  writer->SetPageSize(128);
+  writer->Write();
+  const vtkIdType total = writer->GetNumberOfSplats();
+
+  const std::vector<unsigned char> whole = Reference(path, 1.0);
+  const long long wholeCover = Covered(whole);
+  Check(wholeCover > Size * Size / 10, "the reference draws the sphere");
+
+  // Bounds before anything is drawn.
+  {
+    auto mapper = Streaming(path, 0.0, true);
+    const double* b = mapper->GetBounds();
+    Check(b[0] <= -0.99 && b[1] >= 0.99 && b[2] <= -0.99 && b[3] >= 0.99 && b[4] <= -0.99 &&
+        b[5] >= 0.99 && b[1] < 1.5,
+      "the bounds are the file's before a render");
+  }
+
+  // Synchronous, no budget: the reference picture.
+  std::vector<unsigned char> synchronous;
+  {
+    auto mapper = Streaming(path, 0.0, false);
+    Scene scene(mapper, 1.0);
+    synchronous = scene.Pixels();
+    std::cout << "synchronous: " << mapper->GetNumberOfResidentSplats() << " of "
+              << mapper->GetNumberOfSplats() << " splats, " << mapper->GetBytesPerSplat()
+              << " GPU bytes each, differs from the reference at "
+              << 100 * Differ(synchronous, whole) << " % of the pixels\n";
+    Check(mapper->GetNumberOfSplats() == total, "the mapper counts the file's splats");
+    Check(Differ(synchronous, whole) < 0.005, "without a budget, the whole file's picture");
+  }
+
+  // Asynchronous: render until nothing is loading.
+  {
+    auto mapper = Streaming(path, 0.0, true);
+    Scene scene(mapper, 1.0);
+    scene.Pixels();
+    const vtkIdType first = mapper->GetNumberOfResidentSplats();
+    int renders = 1;
+    std::vector<unsigned char> last;
+    while (true)
+    {
+      const bool loading = mapper->GetLoading();
+      Check(mapper->WaitForPages(60.0), "WaitForPages returns");
+      last = scene.Pixels();
+      ++renders;
+      if (!loading || renders > 100)
+      {
+        break;
+      }
+    }
+    std::cout << "asynchronous: first render " << first << " splats, " << renders << " renders to "
+              << mapper->GetNumberOfResidentSplats() << "\n";
+    Check(first < total || renders == 2, "the first render does not wait for every page");
+    Check(mapper->GetNumberOfResidentSplats() == total && Differ(last, synchronous) < 0.001,
+      "the loading thread ends on the whole picture");
+  }
+
+  // A budget of the coarsest level and a little more: no holes.
+  {
+    auto probe = Streaming(path, 0.0, false);
+    Scene s(probe, 1.0);
+    s.Pixels();
+    const double perSplat = probe->GetBytesPerSplat();
+    vtkNew<vtkSplatFileReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->Update();
+    vtkDataArray* lod = reader->GetOutput()->GetPointData()->GetArray(vtkSplatDataModel::LODName());
+    long long coarse = 0;
+    for (vtkIdType i = 0; lod && i < lod->GetNumberOfTuples(); ++i)
+    {
+      coarse += lod->GetTuple1(i) == 0 ? 1 : 0;
+    }
+    const double budget = (coarse + 200) * perSplat / 1e6;
+    auto mapper = Streaming(path, budget, false);
+    Scene scene(mapper, 1.0);
+    const std::vector<unsigned char> pixels = scene.Pixels();
+    const vtkIdType resident = mapper->GetNumberOfResidentSplats();
+    std::cout << "budget " << budget << " MB (" << coarse << " level-0 splats): " << resident
+              << " resident, covering " << Covered(pixels) << " pixels of " << wholeCover << "\n";
+    Check(resident >= coarse && resident * perSplat <= budget * 1e6 + 1 && resident < total,
+      "a coarse budget: level 0 everywhere, within the budget");
+    Check(Covered(pixels) >= 0.99 * wholeCover && Covered(pixels) <= 1.01 * wholeCover,
+      "the coarsest levels cover the sphere without holes");
+  }
+
+  // A close view within a third of the file: only the pages in view.
+  {
+    const std::vector<unsigned char> close = Reference(path, 4.0);
+    auto probe = Streaming(path, 0.0, false);
+    Scene s(probe, 1.0);
+    s.Pixels();
+    const double budget = total * probe->GetBytesPerSplat() / 3.0 / 1e6;
+    auto mapper = Streaming(path, budget, false);
+    Scene scene(mapper, 4.0);
+    const std::vector<unsigned char> pixels = scene.Pixels();
+    std::cout << "close view within " << budget << " MB: " << mapper->GetNumberOfResidentSplats()
+              << " of " << total << " splats, differs at " << 100 * Differ(pixels, close)
+              << " % of the pixels\n";
+    Check(mapper->GetNumberOfResidentSplats() < total / 3 + 1 &&
+        mapper->GetNumberOfResidentSplats() == mapper->GetNumberOfWantedSplats(),
+      "a close view loads only what it wants, within the budget");
+    Check(Differ(pixels, close) < 0.005, "the close view is the whole file's");
+  }
+
+  // A budget below one page: a warning, nothing drawn.
+  {
+    auto mapper = Streaming(path, 1e-6, false);
+    Messages messages(mapper);
+    const int before = Warnings;
+    Scene scene(mapper, 1.0);
+    const std::vector<unsigned char> pixels = scene.Pixels();
+    scene.Pixels();
+    Check(Warnings - before == 1 &&
+        messages.Observer->GetWarningMessage().find("MemoryBudget") != std::string::npos,
+      "one warning for a budget below one page (got '" + messages.Observer->GetWarningMessage() +
+        "')");
+    Check(Covered(pixels) == 0, "nothing drawn within a budget below one page");
+  }
+
+  // A truncated file; no file name.
+  {
+    const std::string bytes = Slurp(path);
+    const std::string cut =
+      Write(Temp("TestStreamingSplatMapper-cut.psplat"), bytes.substr(0, bytes.size() / 3));
+    auto mapper = Streaming(cut, 0.0, true);
+    Messages messages(mapper);
+    const int before = Errors;
+    Scene scene(mapper, 1.0);
+    const std::vector<unsigned char> pixels = scene.Pixels();
+    scene.Pixels();
+    Check(
+      Errors - before == 1 && messages.Observer->GetErrorMessage().find(cut) != std::string::npos,
+      "one error naming a truncated file (got '" + messages.Observer->GetErrorMessage() + "')");
+    Check(Covered(pixels) == 0, "nothing drawn from a truncated file");
+    std::remove(cut.c_str());
+
+    vtkNew<vtkStreamingSplatMapper> empty;
+    Messages none(empty);
+    const int before2 = Errors;
+    Scene scene2(empty, 1.0);
+    scene2.Pixels();
+    Check(Errors - before2 == 1, "one error without a FileName");
+  }
+  std::remove(path.c_str());
+  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

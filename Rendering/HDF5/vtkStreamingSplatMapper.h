@@ -1,0 +1,136 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class   vtkStreamingSplatMapper
+ * @brief   Draws a multi-resolution splat file of any size: only what the view needs, within a GPU budget, loaded by a thread.
+ *
+ * A vtkAlgebraicSplatMapper whose splats come from a splat file
+ * (FileName: vtkStreamingSplatFitter, vtkSplatFileWriter) instead of its
+ * input. Each render:
+ *
+ * 1. chooses the file's pages and levels for this view with
+ *    pointsurfaces::SelectPages: the pages in the frustum, each down to the
+ *    level whose splats are at most LODPixelError pixels across (all
+ *    levels at 0), within MemoryBudget megabytes of GPU buffers, every
+ *    page's coarsest level before any page's finer ones, nearest first;
+ * 2. hands that choice to a loading thread (psSplatPageCache.h), which reads
+ *    the missing levels from the disk, coarsest first, and evicts what the
+ *    view no longer needs when the budget is full; the render never waits
+ *    for it (Asynchronous, the default);
+ * 3. draws what is in memory now: the resident pages are gathered into the
+ *    mapper's input (the splat data model, its octree the file's page
+ *    octree), and culled and refined per frame by the superclass. A page
+ *    whose finer levels are still on the disk draws its finest level
+ *    present, with that level's disc size, so the picture has no holes
+ *    while it sharpens.
+ *
+ * The first picture of a file of any size thus comes from its coarsest
+ * levels, as soon as they are read; Loading() says that more is coming,
+ * so an application renders again (a timer of its interactor, or
+ * WaitForPages() in a script) until it is false. Without Asynchronous,
+ * each render reads what it needs first (batch pictures, tests).
+ *
+ * The bounds are the file's, whatever is loaded, so that cameras and
+ * cullers see the whole model. Every vtkAlgebraicSplatMapper setting
+ * (blending, anti-aliasing, LODPixelError, colouring by the file's
+ * attributes) applies. The input is the mapper's own: a connection set
+ * by hand is replaced, with a warning.
+ *
+ * A file that cannot be opened or read gives one vtkErrorMacro line that
+ * names it, and nothing is drawn; a budget smaller than the coarsest level
+ * of every page in view gives a warning with the budget that would hold
+ * one, and nothing is drawn.
+ *
+ * GPU memory holds at most MemoryBudget MB of splat buffers; host memory
+ * holds the resident pages twice (the page cache and the mapper's input),
+ * in float, about 2 x 94 bytes a cubic splat. Each time pages arrive, the
+ * resident set is gathered and uploaded again whole: its cost grows with
+ * the budget, not with the file.
+ */
+#ifndef vtkStreamingSplatMapper_h
+#define vtkStreamingSplatMapper_h
+
+#include "PointSurfacesRenderingHDF5Module.h" // For export macro
+#include "vtkAlgebraicSplatMapper.h"
+
+#include <memory> // For the cache
+#include <string> // For FileName
+
+class POINTSURFACESRENDERINGHDF5_EXPORT vtkStreamingSplatMapper : public vtkAlgebraicSplatMapper
+{
+public:
+  static vtkStreamingSplatMapper* New();
+  vtkTypeMacro(vtkStreamingSplatMapper, vtkAlgebraicSplatMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /** The splat file to draw. Default: none. */
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+  ///@}
+
+  ///@{
+  /** Most megabytes of splat buffers on the GPU; 0: no limit. Default 512. */
+  vtkSetClampMacro(MemoryBudget, double, 0.0, 1e12);
+  vtkGetMacro(MemoryBudget, double);
+  ///@}
+
+  ///@{
+  /**
+   * Load pages on a thread while rendering goes on (default), or read what
+   * a view needs before drawing it (each render then waits on the disk).
+   */
+  vtkSetMacro(Asynchronous, bool);
+  vtkGetMacro(Asynchronous, bool);
+  vtkBooleanMacro(Asynchronous, bool);
+  ///@}
+
+  /** True while pages the last view wants are still being read: render again for them. */
+  bool GetLoading();
+
+  /**
+   * Wait until the pages the last rendered view wants are in memory, or
+   * `seconds` have passed (< 0: no limit); the next render draws them.
+   * False on a timeout or a read error.
+   */
+  bool WaitForPages(double seconds = -1.0);
+
+  ///@{
+  /** After a render: the file's splats; those in memory; those the view wants within the budget. */
+  vtkGetMacro(NumberOfSplats, vtkIdType);
+  vtkGetMacro(NumberOfResidentSplats, vtkIdType);
+  vtkGetMacro(NumberOfWantedSplats, vtkIdType);
+  ///@}
+
+  /** Bytes of GPU buffers a splat of the open file takes (the budget's unit). */
+  double GetBytesPerSplat();
+
+  /** The file's bounds (discs included), whatever is loaded. */
+  double* GetBounds() override;
+  using vtkAlgebraicSplatMapper::GetBounds;
+
+  void Render(vtkRenderer* ren, vtkActor* act) override;
+
+protected:
+  vtkStreamingSplatMapper();
+  ~vtkStreamingSplatMapper() override;
+
+  void ComputeBounds() override;
+  /** Open FileName when it is new or changed (one error when it cannot be); false when not open. */
+  bool OpenFile();
+
+  std::string FileName;
+  double MemoryBudget = 512.0;
+  bool Asynchronous = true;
+  vtkIdType NumberOfSplats = 0;
+  vtkIdType NumberOfResidentSplats = 0;
+  vtkIdType NumberOfWantedSplats = 0;
+
+private:
+  vtkStreamingSplatMapper(const vtkStreamingSplatMapper&) = delete;
+  void operator=(const vtkStreamingSplatMapper&) = delete;
+  struct Impl;
+  std::unique_ptr<Impl> P;
+};
+
+#endif
