@@ -229,7 +229,8 @@ double vtkStreamingSplatMapper::GetBytesPerSplat()
 
 bool vtkStreamingSplatMapper::GetLoading()
 {
-  return P->Cache && P->Cache->Loading();
+  // Still reading, or read since the last render gathered the pages.
+  return P->Cache && (P->Cache->Loading() || P->Cache->Generation() != P->Drawn);
 }
 
 bool vtkStreamingSplatMapper::WaitForPages(double seconds)

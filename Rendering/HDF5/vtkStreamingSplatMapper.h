@@ -85,7 +85,10 @@ public:
   vtkBooleanMacro(Asynchronous, bool);
   ///@}
 
-  /** True while pages the last view wants are still being read: render again for them. */
+  /**
+   * True while pages the last rendered view wants are still being read, or
+   * were read after that render: render again for them.
+   */
   bool GetLoading();
 
   /**

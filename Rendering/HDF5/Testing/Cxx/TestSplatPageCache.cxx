@@ -24,6 +24,7 @@
 #include "vtkSplatFileWriter.h"
 
 #include <cstdlib>
+#include <unistd.h>
 #include <cstring>
 
 using namespace pointsurfaces_test;
@@ -33,7 +34,8 @@ namespace
 std::string Temp(const std::string& name)
 {
   const char* dir = std::getenv("POINTSURFACES_TEMP_DIR");
-  return std::string(dir ? dir : "/tmp") + "/" + name;
+  // The egl and x11 variants run at once: a file of their own each.
+  return std::string(dir ? dir : "/tmp") + "/" + std::to_string(getpid()) + "-" + name;
 }
 
 std::vector<int> Pages(const pointsurfaces::SplatFileInfo& info)

@@ -30,6 +30,7 @@
 #include "vtkStreamingSplatMapper.h"
 
 #include <cstdlib>
+#include <unistd.h>
 
 using namespace pointsurfaces_test;
 
@@ -41,7 +42,8 @@ const double Background[3] = { 0.1, 0.2, 0.3 };
 std::string Temp(const std::string& name)
 {
   const char* dir = std::getenv("POINTSURFACES_TEMP_DIR");
-  return std::string(dir ? dir : "/tmp") + "/" + name;
+  // The egl and x11 variants run at once: a file of their own each.
+  return std::string(dir ? dir : "/tmp") + "/" + std::to_string(getpid()) + "-" + name;
 }
 
 struct Scene
