@@ -24,8 +24,8 @@
 #include "vtkSplatFileWriter.h"
 
 #include <cstdlib>
-#include <unistd.h>
 #include <cstring>
+#include <unistd.h>
 
 using namespace pointsurfaces_test;
 
