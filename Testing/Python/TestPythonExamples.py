@@ -19,6 +19,7 @@ import subprocess
 import sys
 
 import numpy as np
+import pointsurfaces
 from pstesting import data_file, fail
 from vtkmodules.vtkIOImage import vtkPNGReader
 from vtkmodules.util.numpy_support import vtk_to_numpy
@@ -26,7 +27,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.join(HERE, "..", "..")
 EXAMPLES = os.path.join(ROOT, "Examples", "Python")
-TEMP = os.environ.get("POINTSURFACES_TEMP_DIR", ".")
+TEMP = os.path.abspath(os.environ.get("POINTSURFACES_TEMP_DIR", "."))
 os.makedirs(TEMP, exist_ok=True)
 SCANS = os.path.join(TEMP, "scans")  # the inputs written below, remade every run
 shutil.rmtree(SCANS, ignore_errors=True)
@@ -178,6 +179,11 @@ runs = [
                                  "--size", "96", "--steps", "0.4,0.1", "--bisections", "0,5"],
      "sweep:        4 settings", os.path.join(TEMP, "sweep.png")),
 ]
+# A splat file drawn within a budget, its pages loaded by a thread (the Bunny's, made by the script).
+if pointsurfaces.OPTIONAL_MODULES.get("RenderingHDF5"):
+    runs.append(("view_splat_file.py", ["--png", temp("view_splat_file.png"), "--size", "120",
+                                        "--orbit", "3", "--budget", "0.3"],
+                 "resident:", os.path.join(TEMP, "view_splat_file.png")))
 # Meshes through OpenMesh, and the range map that crashes vtkPLYReader (binary, with faces).
 for name in ("sphere.obj", "sphere.off", "sphere.stl", "rangemap_le.ply"):
     out = os.path.join(SCANS, os.path.splitext(name)[0] + "_" + name[-3:] + ".png")
@@ -187,7 +193,7 @@ for script, arguments, expected, out in runs:
     if os.path.exists(out):
         os.remove(out)
     args = [sys.executable, os.path.join(EXAMPLES, script)] + arguments
-    result = subprocess.run(args, capture_output=True, text=True, timeout=600)
+    result = subprocess.run(args, capture_output=True, text=True, timeout=600, cwd=TEMP)
     if result.returncode != 0 or expected not in result.stdout:
         fail("%s failed (%d):\n%s\n%s" % (script, result.returncode, result.stdout, result.stderr))
     reader = vtkPNGReader()
@@ -198,7 +204,6 @@ for script, arguments, expected, out in runs:
         fail("%s wrote a blank image" % script)
     print("%s: %s" % (script, result.stdout.splitlines()[0]))
 # The animation's level sets are OpenVDB files that its reader side accepts as VDB.
-import pointsurfaces  # noqa: E402
 from pointsurfaces.scanio import ScanReadError, read_scan  # noqa: E402
 if not pointsurfaces.vtkOpenVDBPointsReader.CanReadFile(os.path.join(frames, "frame_0002.vdb")):
     fail("particle_animation.py --vdb wrote no OpenVDB file")
