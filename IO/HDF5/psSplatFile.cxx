@@ -6,6 +6,8 @@
 #include "psLocalFit.h" // For MonomialCount
 #include "psOctree.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -191,6 +193,14 @@ bool ReadTable(hid_t group,
 } // namespace
 
 //------------------------------------------------------------------------------
+long long FileModificationStamp(const std::string& path)
+{
+  struct stat s;
+  return stat(path.c_str(), &s) == 0
+    ? static_cast<long long>(s.st_mtime) * 1000000000LL + static_cast<long long>(s.st_mtim.tv_nsec)
+    : -1;
+}
+
 void SplatColumns::Resize(long long count, int degree, const std::vector<int>& components)
 {
   const size_t n = static_cast<size_t>(std::max(0LL, count));

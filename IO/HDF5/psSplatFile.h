@@ -59,6 +59,9 @@
 
 namespace pointsurfaces
 {
+/** The modification time of `path` in nanoseconds (-1 when it cannot be read): reopen a changed file. */
+POINTSURFACESIOHDF5_EXPORT long long FileModificationStamp(const std::string& path);
+
 /** Splats at most per page (the page octree's bucket). */
 constexpr int PageSplats = 16384;
 

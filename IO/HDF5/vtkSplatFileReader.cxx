@@ -23,8 +23,6 @@
 #include "vtkPolyData.h"
 #include "vtkSplatDataModel.h"
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -32,15 +30,6 @@ vtkStandardNewMacro(vtkSplatFileReader);
 
 namespace
 {
-// The file's modification time, to reopen a file that changed.
-long long FileStamp(const std::string& path)
-{
-  struct stat s;
-  return stat(path.c_str(), &s) == 0
-    ? static_cast<long long>(s.st_mtime) * 1000000000LL + static_cast<long long>(s.st_mtim.tv_nsec)
-    : -1;
-}
-
 void AddCount(vtkFieldData* fd, const char* name, vtkIdType value)
 {
   vtkNew<vtkIdTypeArray> a;
@@ -190,7 +179,7 @@ int vtkSplatFileReader::RequestData(vtkInformation*,
     vtkErrorMacro(<< "No FileName: nothing to read.");
     return 1;
   }
-  const long long stamp = FileStamp(this->FileName);
+  const long long stamp = pointsurfaces::FileModificationStamp(this->FileName);
   if (!P->Open || P->Path != this->FileName || P->Stamp != stamp)
   {
     std::string error;

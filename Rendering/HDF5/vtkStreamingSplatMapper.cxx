@@ -18,8 +18,6 @@
 #include "vtkPolyData.h"
 #include "vtkSplatDataModel.h"
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -28,15 +26,6 @@ vtkStandardNewMacro(vtkStreamingSplatMapper);
 
 namespace
 {
-// The file's modification time, to reopen a file that changed.
-long long FileStamp(const std::string& path)
-{
-  struct stat s;
-  return stat(path.c_str(), &s) == 0
-    ? static_cast<long long>(s.st_mtime) * 1000000000LL + static_cast<long long>(s.st_mtim.tv_nsec)
-    : -1;
-}
-
 // GPU bytes a splat of `degree` takes before the first upload measures it:
 // position, normal, tangent and sizes (3 floats each), the coefficients in
 // vec4s, a colour.
@@ -273,7 +262,7 @@ bool vtkStreamingSplatMapper::OpenFile()
     P->Resident->Initialize();
     return false;
   }
-  const long long stamp = FileStamp(this->FileName);
+  const long long stamp = pointsurfaces::FileModificationStamp(this->FileName);
   if (P->Cache && P->Path == this->FileName && P->Stamp == stamp &&
     P->CacheAsynchronous == this->Asynchronous)
   {

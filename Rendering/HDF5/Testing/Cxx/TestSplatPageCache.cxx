@@ -15,29 +15,16 @@
 // - a truncated file is refused at Open with one line.
 #include "psIOTestSupport.h"
 #include "psLocalFit.h"
-#include "psRenderTestSupport.h"
+#include "psSplatFileTestSupport.h"
 #include "psSplatPageCache.h"
-
-#include "vtkAlgebraicSplatFitter.h"
-#include "vtkFloatArray.h"
-#include "vtkPointData.h"
-#include "vtkSplatFileWriter.h"
 
 #include <cstdlib>
 #include <cstring>
-#include <unistd.h>
 
 using namespace pointsurfaces_test;
 
 namespace
 {
-std::string Temp(const std::string& name)
-{
-  const char* dir = std::getenv("POINTSURFACES_TEMP_DIR");
-  // The egl and x11 variants run at once: a file of their own each.
-  return std::string(dir ? dir : "/tmp") + "/" + std::to_string(getpid()) + "-" + name;
-}
-
 std::vector<int> Pages(const pointsurfaces::SplatFileInfo& info)
 {
   std::vector<int> pages;
@@ -186,27 +173,8 @@ void Run(const std::string& path, bool asynchronous)
 
 int TestSplatPageCache(int, char*[])
 {
-  vtkNew<vtkAlgebraicSplatFitter> fitter;
-  auto sphere = psFibonacciSphere(20000);
-  vtkNew<vtkFloatArray> colour;
-  colour->SetName("Colour");
-  colour->SetNumberOfComponents(3);
-  colour->SetNumberOfTuples(sphere->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    sphere->GetPoint(i, p);
-    colour->SetTuple3(i, 0.5 + 0.5 * p[0], 0.5 + 0.5 * p[1], 0.5 + 0.5 * p[2]);
-  }
-  sphere->GetPointData()->AddArray(colour);
-  fitter->SetInputData(sphere);
-  fitter->SetNumberOfLevels(3);
-  const std::string path = Temp("TestSplatPageCache.psplat");
-  vtkNew<vtkSplatFileWriter> writer;
-  writer->SetInputConnection(fitter->GetOutputPort());
-  writer->SetFileName(path.c_str());
-  writer->SetPageSize(128);
-  writer->Write();
+  const std::string path = psScratchPath("TestSplatPageCache.psplat");
+  psWriteSphereSplatFile(path, 20000, 1.0, 128);
 
   Run(path, false);
   Run(path, true);
@@ -214,7 +182,7 @@ int TestSplatPageCache(int, char*[])
   // A truncated file: refused at Open, one line.
   const std::string bytes = Slurp(path);
   const std::string cut =
-    Write(Temp("TestSplatPageCache-cut.psplat"), bytes.substr(0, bytes.size() / 2));
+    Write(psScratchPath("TestSplatPageCache-cut.psplat"), bytes.substr(0, bytes.size() / 2));
   pointsurfaces::SplatPageCache cache;
   std::string error;
   Check(!cache.Open(cut, error) && !error.empty() && error.find('\n') == std::string::npos &&

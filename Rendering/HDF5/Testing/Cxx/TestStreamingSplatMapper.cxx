@@ -16,21 +16,17 @@
 // - a budget smaller than one page (a warning, nothing drawn), a truncated
 //   file (one error naming it) and no FileName (one error): no crash.
 #include "psIOTestSupport.h"
-#include "psRenderTestSupport.h"
+#include "psSplatFileTestSupport.h"
 
 #include "vtkActor.h"
-#include "vtkAlgebraicSplatFitter.h"
 #include "vtkAlgebraicSplatMapper.h"
 #include "vtkCamera.h"
-#include "vtkFloatArray.h"
 #include "vtkPointData.h"
 #include "vtkSplatDataModel.h"
 #include "vtkSplatFileReader.h"
-#include "vtkSplatFileWriter.h"
 #include "vtkStreamingSplatMapper.h"
 
 #include <cstdlib>
-#include <unistd.h>
 
 using namespace pointsurfaces_test;
 
@@ -38,13 +34,6 @@ namespace
 {
 constexpr int Size = 240;
 const double Background[3] = { 0.1, 0.2, 0.3 };
-
-std::string Temp(const std::string& name)
-{
-  const char* dir = std::getenv("POINTSURFACES_TEMP_DIR");
-  // The egl and x11 variants run at once: a file of their own each.
-  return std::string(dir ? dir : "/tmp") + "/" + std::to_string(getpid()) + "-" + name;
-}
 
 struct Scene
 {
@@ -159,28 +148,8 @@ struct Messages
 int TestStreamingSplatMapper(int, char*[])
 {
   // The file: a fitted unit sphere, coloured by position.
-  auto sphere = psFibonacciSphere(20000);
-  vtkNew<vtkFloatArray> colour;
-  colour->SetName("Colour");
-  colour->SetNumberOfComponents(3);
-  colour->SetNumberOfTuples(sphere->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < sphere->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    sphere->GetPoint(i, p);
-    colour->SetTuple3(i, 127.5 + 127.5 * p[0], 127.5 + 127.5 * p[1], 127.5 + 127.5 * p[2]);
-  }
-  sphere->GetPointData()->AddArray(colour);
-  vtkNew<vtkAlgebraicSplatFitter> fitter;
-  fitter->SetInputData(sphere);
-  fitter->SetNumberOfLevels(3);
-  const std::string path = Temp("TestStreamingSplatMapper.psplat");
-  vtkNew<vtkSplatFileWriter> writer;
-  writer->SetInputConnection(fitter->GetOutputPort());
-  writer->SetFileName(path.c_str());
-  writer->SetPageSize(128);
-  writer->Write();
-  const vtkIdType total = writer->GetNumberOfSplats();
+  const std::string path = psScratchPath("TestStreamingSplatMapper.psplat");
+  const vtkIdType total = psWriteSphereSplatFile(path, 20000, 255.0, 128);
 
   const std::vector<unsigned char> whole = Reference(path, 1.0);
   const long long wholeCover = Covered(whole);
@@ -300,8 +269,8 @@ int TestStreamingSplatMapper(int, char*[])
   // A truncated file; no file name.
   {
     const std::string bytes = Slurp(path);
-    const std::string cut =
-      Write(Temp("TestStreamingSplatMapper-cut.psplat"), bytes.substr(0, bytes.size() / 3));
+    const std::string cut = Write(
+      psScratchPath("TestStreamingSplatMapper-cut.psplat"), bytes.substr(0, bytes.size() / 3));
     auto mapper = Streaming(cut, 0.0, true);
     Messages messages(mapper);
     const int before = Errors;
