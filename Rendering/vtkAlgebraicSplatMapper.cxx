@@ -53,31 +53,6 @@
 
 vtkStandardNewMacro(vtkAlgebraicSplatMapper);
 
-namespace
-{
-// Is this the light's view of a vtkShadowMapBakerPass? It needs the hits'
-// depth, drawn opaque in one pass.
-bool IsShadowMapBake(vtkActor* act)
-{
-  vtkInformation* info = act->GetPropertyKeys();
-  if (!info || !info->Has(vtkOpenGLRenderPass::RenderPasses()))
-  {
-    return false;
-  }
-  const int n = info->Length(vtkOpenGLRenderPass::RenderPasses());
-  for (int i = 0; i < n; ++i)
-  {
-    vtkObjectBase* pass = info->Get(vtkOpenGLRenderPass::RenderPasses(), i);
-    if (pass && pass->IsA("vtkShadowMapBakerPass"))
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
-} // namespace
-
 //------------------------------------------------------------------------------
 vtkAlgebraicSplatMapper::vtkAlgebraicSplatMapper()
 {
@@ -522,6 +497,26 @@ void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
   }
   this->Nodes = std::make_unique<pointsurfaces::LODOctree>(
     pointsurfaces::MakeLODOctree(std::move(tree), std::move(quality), radii.data(), levels.data()));
+}
+
+//------------------------------------------------------------------------------
+bool vtkAlgebraicSplatMapper::IsShadowMapBake(vtkActor* act)
+{
+  vtkInformation* info = act->GetPropertyKeys();
+  if (!info || !info->Has(vtkOpenGLRenderPass::RenderPasses()))
+  {
+    return false;
+  }
+  const int n = info->Length(vtkOpenGLRenderPass::RenderPasses());
+  for (int i = 0; i < n; ++i)
+  {
+    vtkObjectBase* pass = info->Get(vtkOpenGLRenderPass::RenderPasses(), i);
+    if (pass && pass->IsA("vtkShadowMapBakerPass"))
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 //------------------------------------------------------------------------------

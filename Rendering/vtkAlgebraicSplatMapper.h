@@ -213,6 +213,8 @@ protected:
    * `act`'s matrix, Culling and LODPixelError.
    */
   void MakeLODView(vtkRenderer* ren, vtkActor* act, pointsurfaces::LODView& view);
+  /** Is this the light's view of a vtkShadowMapBakerPass (drawn opaque, in one pass)? */
+  static bool IsShadowMapBake(vtkActor* act);
   void DrawSplats(vtkRenderer* ren, vtkActor* act, bool useOctree);
   void DrawOctree(vtkRenderer* ren, vtkActor* act);
 

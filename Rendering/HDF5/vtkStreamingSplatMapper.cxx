@@ -306,6 +306,15 @@ void vtkStreamingSplatMapper::Render(vtkRenderer* ren, vtkActor* act)
   }
   pointsurfaces::SplatPageCache& cache = *P->Cache;
   const pointsurfaces::SplatFileInfo& info = cache.Info();
+  // The light's view of a shadow map draws what the camera's view loaded.
+  if (IsShadowMapBake(act))
+  {
+    if (P->Resident->GetNumberOfPoints() > 0)
+    {
+      this->Superclass::Render(ren, act);
+    }
+    return;
+  }
 
   // What this view wants, within the budget.
   pointsurfaces::LODView view;

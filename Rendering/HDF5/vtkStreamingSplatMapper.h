@@ -31,7 +31,8 @@
  * each render reads what it needs first (batch pictures, tests).
  *
  * The bounds are the file's, whatever is loaded, so that cameras and
- * cullers see the whole model. Every vtkAlgebraicSplatMapper setting
+ * cullers see the whole model. The light's view of a shadow map
+ * (vtkShadowMapBakerPass) draws the pages the camera's view loaded. Every vtkAlgebraicSplatMapper setting
  * (blending, anti-aliasing, LODPixelError, colouring by the file's
  * attributes) applies. The input is the mapper's own: a connection set
  * by hand is replaced, with a warning.

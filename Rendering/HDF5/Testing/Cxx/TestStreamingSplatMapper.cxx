@@ -11,7 +11,8 @@
 //   budget in memory, fewer splats, and no holes (the coarse splats keep
 //   their size): the sphere covers as many pixels as the whole file;
 // - a close view within a budget of a third of the file: only pages in
-//   view are loaded, and the picture is the whole file's;
+//   view are loaded, and the picture is the whole file's; with shadows, the
+//   light's view loads nothing of its own;
 // - the bounds are the file's before anything is drawn;
 // - a budget smaller than one page (a warning, nothing drawn), a truncated
 //   file (one error naming it) and no FileName (one error): no crash.
@@ -21,7 +22,14 @@
 #include "vtkActor.h"
 #include "vtkAlgebraicSplatMapper.h"
 #include "vtkCamera.h"
+#include "vtkCameraPass.h"
+#include "vtkLight.h"
+#include "vtkOpenGLRenderer.h"
 #include "vtkPointData.h"
+#include "vtkRenderPassCollection.h"
+#include "vtkSequencePass.h"
+#include "vtkShadowMapBakerPass.h"
+#include "vtkShadowMapPass.h"
 #include "vtkSplatDataModel.h"
 #include "vtkSplatFileReader.h"
 #include "vtkStreamingSplatMapper.h"
@@ -249,6 +257,26 @@ int TestStreamingSplatMapper(int, char*[])
         mapper->GetNumberOfResidentSplats() == mapper->GetNumberOfWantedSplats(),
       "a close view loads only what it wants, within the budget");
     Check(Differ(pixels, close) < 0.005, "the close view is the whole file's");
+
+    // With shadows: the light's view (vtkShadowMapBakerPass) loads nothing of its own.
+    const vtkIdType resident = mapper->GetNumberOfResidentSplats();
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->SetPosition(5, 0, 0);
+    light->SetFocalPoint(0, 0, 0);
+    scene.Renderer->AddLight(light);
+    vtkNew<vtkShadowMapPass> shadows;
+    vtkNew<vtkSequencePass> sequence;
+    vtkNew<vtkRenderPassCollection> passes;
+    passes->AddItem(shadows->GetShadowMapBakerPass());
+    passes->AddItem(shadows);
+    sequence->SetPasses(passes);
+    vtkNew<vtkCameraPass> cameraPass;
+    cameraPass->SetDelegatePass(sequence);
+    vtkOpenGLRenderer::SafeDownCast(scene.Renderer)->SetPass(cameraPass);
+    const std::vector<unsigned char> shadowed = scene.Pixels();
+    Check(mapper->GetNumberOfResidentSplats() == resident && Covered(shadowed) > 0,
+      "with shadows, the pages of the camera's view only");
   }
 
   // A budget below one page: a warning, nothing drawn.
