@@ -160,6 +160,12 @@ vtkMTimeType vtkSplatFileReader::GetMTime()
 }
 
 //------------------------------------------------------------------------------
+double vtkSplatFileReader::GetBytesPerSplat()
+{
+  return P->Open ? P->File.BytesPerSplat() : 0.0;
+}
+
+//------------------------------------------------------------------------------
 bool vtkSplatFileReader::CanReadFile(const char* fileName)
 {
   pointsurfaces::SplatFileReader file;

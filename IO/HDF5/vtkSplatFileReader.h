@@ -86,6 +86,13 @@ public:
   vtkGetMacro(NumberOfLoadedSplats, vtkIdType);
   ///@}
 
+  /**
+   * Bytes a loaded splat of the open file takes in the output (the budget's
+   * unit: double arrays, the LOD, a vertex cell, the attributes); 0 before
+   * a file was opened.
+   */
+  double GetBytesPerSplat();
+
   /** True when the file opens as a splat file. */
   static bool CanReadFile(const char* fileName);
 
