@@ -73,9 +73,14 @@ void Assemble(const pointsurfaces::SplatColumns& c,
   lod->SetName(vtkSplatDataModel::LODName());
   lod->SetNumberOfTuples(n);
   output->GetPointData()->AddArray(lod);
-  std::vector<vtkFloatArray*> attributes;
+  std::vector<vtkFloatArray*> attributes; // null: named like a model array, left out
   for (size_t a = 0; a < info.AttributeNames.size(); ++a)
   {
+    if (output->GetPointData()->HasArray(info.AttributeNames[a].c_str()))
+    {
+      attributes.push_back(nullptr);
+      continue;
+    }
     vtkNew<vtkFloatArray> array;
     array->SetName(info.AttributeNames[a].c_str());
     array->SetNumberOfComponents(info.AttributeComponents[a]);
@@ -105,7 +110,7 @@ void Assemble(const pointsurfaces::SplatColumns& c,
     for (size_t a = 0; a < attributes.size(); ++a)
     {
       const int comps = info.AttributeComponents[a];
-      for (int j = 0; j < comps; ++j)
+      for (int j = 0; attributes[a] && j < comps; ++j)
       {
         attributes[a]->SetTypedComponent(k, j, c.Attributes[a][static_cast<size_t>(comps) * i + j]);
       }

@@ -40,6 +40,7 @@ struct SplatPageCache::Impl
   std::thread Loader;
   bool Stop = false;
 
+  long long Opens = 0;       // Open calls: a read from an earlier file is dropped
   std::map<int, Page> Pages; // by page node
   std::vector<PageWant> Wants;
   std::map<int, int> WantLevels;
@@ -125,7 +126,7 @@ struct SplatPageCache::Impl
       auto victim = this->Pages.end();
       for (auto it = this->Pages.begin(); it != this->Pages.end(); ++it)
       {
-        if (!this->WantLevels.count(it->first) &&
+        if (it->first != this->InFlight && !this->WantLevels.count(it->first) &&
           (victim == this->Pages.end() || it->second.LastWanted < victim->second.LastWanted))
         {
           victim = it;
@@ -140,6 +141,10 @@ struct SplatPageCache::Impl
       int excess = 0;
       for (auto it = this->Pages.begin(); it != this->Pages.end(); ++it)
       {
+        if (it->first == this->InFlight)
+        {
+          continue;
+        }
         auto want = this->WantLevels.find(it->first);
         const int extra = static_cast<int>(it->second.Blocks.size()) -
           (want == this->WantLevels.end() ? 0 : want->second);
@@ -181,6 +186,7 @@ struct SplatPageCache::Impl
       return 0;
     }
     this->InFlight = node;
+    const long long opens = this->Opens;
     const SplatFileInfo& info = this->File.Info();
     auto block = std::make_shared<SplatColumns>();
     block->Resize(0, info.Degree, info.AttributeComponents);
@@ -198,10 +204,17 @@ struct SplatPageCache::Impl
       }
       return -1;
     }
+    if (opens != this->Opens || this->PresentLevels(node) != level)
+    {
+      return 1; // the page changed meanwhile: this level no longer follows what it holds
+    }
     Page& page = this->Pages[node];
     page.Blocks.push_back(std::move(block));
     page.Splats += end - begin;
-    page.LastWanted = std::max(page.LastWanted, this->RequestId);
+    if (this->WantLevels.count(node))
+    {
+      page.LastWanted = this->RequestId;
+    }
     this->ResidentSplats += end - begin;
     ++this->Stats.Reads;
     this->Stats.SplatsRead += end - begin;
@@ -236,6 +249,7 @@ struct SplatPageCache::Impl
       this->Loader.join();
     }
     this->Stop = false;
+    this->Done.notify_all();
   }
 };
 
@@ -262,11 +276,13 @@ bool SplatPageCache::Open(const std::string& path, std::string& error)
   P->Stats = PageCacheStatistics();
   P->Error.clear();
   ++P->Generation;
+  ++P->Opens;
   P->Opened = P->File.Open(path, error);
   if (P->Opened && P->Asynchronous)
   {
     P->Loader = std::thread([this] { P->Run(); });
   }
+  P->Done.notify_all();
   return P->Opened;
 }
 
@@ -303,6 +319,12 @@ void SplatPageCache::Request(const std::vector<PageWant>& wants, long long budge
       }
       PageWant w = want;
       w.Levels = std::min(want.Levels, levels);
+      auto known = P->WantLevels.find(w.Node);
+      if (known != P->WantLevels.end())
+      {
+        known->second = std::max(known->second, w.Levels); // named twice: the most levels
+        continue;
+      }
       P->Wants.push_back(w);
       P->WantLevels[w.Node] = w.Levels;
       auto it = P->Pages.find(w.Node);
@@ -311,8 +333,14 @@ void SplatPageCache::Request(const std::vector<PageWant>& wants, long long budge
         it->second.LastWanted = P->RequestId;
       }
     }
+    for (PageWant& w : P->Wants)
+    {
+      w.Levels = P->WantLevels[w.Node];
+    }
     P->Budget = budgetSplats;
     P->Blocked = false;
+    // A smaller budget: what is no longer wanted goes now, not at the next read.
+    P->MakeRoom(0);
   }
   P->Work.notify_all();
 }
@@ -321,12 +349,20 @@ bool SplatPageCache::Wait(double seconds)
 {
   using Clock = std::chrono::steady_clock;
   const auto deadline = Clock::now() +
-    std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+    std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(std::min(seconds, 1e8))); // about three years
   std::unique_lock<std::mutex> lock(P->Mutex);
+  if (!P->Opened)
+  {
+    return false;
+  }
   if (!P->Asynchronous)
   {
+    // Another caller's read first (a second Wait on another thread).
+    P->Done.wait(lock, [this] { return P->InFlight < 0; });
     while (P->Step(lock) > 0)
     {
+      P->Done.notify_all();
       if (seconds >= 0.0 && Clock::now() > deadline)
       {
         return false;

@@ -85,14 +85,16 @@ public:
   /**
    * Want the first Levels levels of each page of `wants` (other pages:
    * none), with at most `budgetSplats` splats resident (<= 0: no limit).
-   * Replaces the previous request; returns at once.
+   * Replaces the previous request (a page named twice wants the most
+   * levels named); what it no longer wants is evicted at once as far as the
+   * budget needs; returns without reading.
    */
   void Request(const std::vector<PageWant>& wants, long long budgetSplats);
 
   /**
    * Until what the last request wants and the budget holds is resident, or
    * `seconds` have passed (< 0: no limit); without a thread, reads it here.
-   * False on a read error or a timeout.
+   * False on a read error, a timeout, or without an open file.
    */
   bool Wait(double seconds = -1.0);
 
@@ -107,7 +109,7 @@ public:
 
   PageCacheStatistics Statistics() const;
 
-  /** The first read error since the last call ("" when none); the file is then closed. */
+  /** The first read error since the last call ("" when none); nothing more is read until Open. */
   std::string TakeError();
 
 private:

@@ -83,10 +83,12 @@ void Gather(const std::vector<pointsurfaces::ResidentPage>& pages,
   lod->SetName(vtkSplatDataModel::LODName());
   lod->SetNumberOfTuples(n);
   out->GetPointData()->AddArray(lod);
-  std::vector<vtkFloatArray*> attributes;
+  std::vector<vtkFloatArray*> attributes; // null: named like a model array, left out
   for (size_t a = 0; a < info.AttributeNames.size(); ++a)
   {
-    attributes.push_back(make(info.AttributeNames[a].c_str(), info.AttributeComponents[a]));
+    const char* name = info.AttributeNames[a].c_str();
+    attributes.push_back(
+      out->GetPointData()->HasArray(name) ? nullptr : make(name, info.AttributeComponents[a]));
   }
 
   // The page octree, its leaves re-indexed to what is resident.
@@ -166,7 +168,10 @@ void Gather(const std::vector<pointsurfaces::ResidentPage>& pages,
       Put(lod.GetPointer(), row, block->LOD, c, 1);
       for (size_t a = 0; a < attributes.size(); ++a)
       {
-        Put(attributes[a], row, block->Attributes[a], c, info.AttributeComponents[a]);
+        if (attributes[a])
+        {
+          Put(attributes[a], row, block->Attributes[a], c, info.AttributeComponents[a]);
+        }
       }
       row += c;
     }
@@ -219,18 +224,19 @@ double vtkStreamingSplatMapper::GetBytesPerSplat()
 bool vtkStreamingSplatMapper::GetLoading()
 {
   // Still reading, or read since the last render gathered the pages.
-  return P->Cache && (P->Cache->Loading() || P->Cache->Generation() != P->Drawn);
+  return P->Cache && !P->Failed && (P->Cache->Loading() || P->Cache->Generation() != P->Drawn);
 }
 
 bool vtkStreamingSplatMapper::WaitForPages(double seconds)
 {
-  return P->Cache && P->Cache->Wait(seconds);
+  return P->Cache && !P->Failed && P->Cache->Wait(seconds);
 }
 
 //------------------------------------------------------------------------------
 void vtkStreamingSplatMapper::ComputeBounds()
 {
-  if (P->Cache && P->Cache->IsOpen() && !P->Cache->Info().Pages.Tree.Nodes.empty())
+  // The file's header stays readable after a read error (the pages in memory are still drawn).
+  if (P->Cache && !P->Cache->Info().Pages.Tree.Nodes.empty())
   {
     const double* b = P->Cache->Info().Pages.Tree.Nodes[0].Bounds;
     std::copy(b, b + 6, this->Bounds);
@@ -354,7 +360,7 @@ void vtkStreamingSplatMapper::Render(vtkRenderer* ren, vtkActor* act)
     want.Distance = std::sqrt(vtkMath::Distance2BetweenPoints(c, view.Eye));
     wants.push_back(want);
   }
-  cache.Request(wants, budget > 0.0 ? static_cast<long long>(budget / perSplat) : 0);
+  cache.Request(wants, budget > 0.0 ? std::max(1LL, static_cast<long long>(budget / perSplat)) : 0);
   if (!this->Asynchronous)
   {
     cache.Wait();

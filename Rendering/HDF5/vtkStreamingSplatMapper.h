@@ -42,6 +42,12 @@
  * of every page in view gives a warning with the budget that would hold
  * one, and nothing is drawn.
  *
+ * The loading thread reads through the splat file's reader, whose HDF5
+ * calls hold one lock with every other HDF5 call of PointSurfaces::IOHDF5;
+ * VTK's own HDF5 readers do not take it, so with an HDF5 library built
+ * without thread safety (Debian's serial one is thread-safe) another reader
+ * must not run while pages load.
+ *
  * GPU memory holds at most MemoryBudget MB of splat buffers; host memory
  * holds the resident pages twice (the page cache and the mapper's input),
  * in float, about 2 x 94 bytes a cubic splat. Each time pages arrive, the

@@ -40,8 +40,8 @@ struct Octree
   std::vector<long long> Order;  ///< output position -> input splat index
   int Levels = 1;
   std::vector<long long> LevelEnds; ///< per node, Levels values: end of each level's prefix
-  /// Per node, or empty (every level present): how many levels, coarsest first, a node's
-  /// splats hold (a splat file's pages loaded in part); the levels past them are empty.
+  /// Per node, or empty (every level present; any other size is ignored): how many levels,
+  /// coarsest first, a node's splats hold (a splat file's pages loaded in part).
   std::vector<int> PresentLevels;
 };
 

@@ -117,7 +117,7 @@ std::vector<DrawRange> SelectDrawRanges(const LODOctree& lod, const LODView& vie
     }
     // A partly loaded node draws its finest level present, with that level's s
     // (a coarser splat drawn with a finer level's s would shrink and leave holes).
-    if (!tree.PresentLevels.empty())
+    if (tree.PresentLevels.size() == tree.Nodes.size())
     {
       level = std::min(level, tree.PresentLevels[id] - 1);
       if (level < 0)

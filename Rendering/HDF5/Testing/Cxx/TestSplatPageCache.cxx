@@ -10,6 +10,8 @@
 // - a second request for other pages within the budget evicts the first
 //   ones, never more than the budget is resident, and none of the wanted
 //   ones are evicted;
+// - a smaller budget with a coarser request evicts the finer levels at
+//   once (before any read); a page named twice wants the most levels named;
 // - a budget of one splat: at most that is read, Wait returns and
 //   Loading is false;
 // - a truncated file is refused at Open with one line.
@@ -162,6 +164,28 @@ void Run(const std::string& path, bool asynchronous)
   Check(after.Resident == secondSplats && after.Missing == 0 && after.Evicted == before,
     "the second half replaces the first within the budget" + mode);
 
+  // A smaller budget evicts at once what the request no longer wants; a page
+  // named twice wants the most levels named.
+  pointsurfaces::SplatPageCache shrinking(asynchronous);
+  shrinking.Open(path, error);
+  shrinking.Request(all, 0);
+  shrinking.Wait(60.0);
+  std::vector<pointsurfaces::PageWant> coarseTwice;
+  for (int node : pages)
+  {
+    coarseTwice.push_back({ node, 1, 0.0 });
+  }
+  coarseTwice.push_back({ pages[0], 2, 0.0 });
+  const long long coarseBudget =
+    level0 + LevelSplats(info, pages[0], 2) - LevelSplats(info, pages[0], 1);
+  shrinking.Request(coarseTwice, coarseBudget);
+  const pointsurfaces::PageCacheStatistics shrunk = shrinking.Statistics();
+  Check(shrunk.Resident <= coarseBudget && shrunk.Missing == 0 && shrunk.Wanted == coarseBudget,
+    "a smaller budget evicts the levels no longer wanted at once, a page named twice wants the "
+    "most levels" +
+      mode + " (" + std::to_string(shrunk.Resident) + " resident, " +
+      std::to_string(shrunk.Wanted) + " wanted, budget " + std::to_string(coarseBudget) + ")");
+
   // A budget of one splat.
   pointsurfaces::SplatPageCache tiny(asynchronous);
   tiny.Open(path, error);
@@ -189,7 +213,8 @@ int TestSplatPageCache(int, char*[])
       !cache.IsOpen(),
     "a truncated file is refused with one line (got '" + error + "')");
   cache.Request({ { 0, 1, 0.0 } }, 0);
-  Check(cache.Wait(1.0) && cache.Resident().empty(), "a cache without a file reads nothing");
+  Check(!cache.Wait(1.0) && !cache.Loading() && cache.Resident().empty(),
+    "a cache without a file reads nothing, and Wait says so");
 
   std::remove(path.c_str());
   std::remove(cut.c_str());

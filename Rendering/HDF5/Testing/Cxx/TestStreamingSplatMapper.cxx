@@ -309,6 +309,8 @@ int TestStreamingSplatMapper(int, char*[])
       Errors - before == 1 && messages.Observer->GetErrorMessage().find(cut) != std::string::npos,
       "one error naming a truncated file (got '" + messages.Observer->GetErrorMessage() + "')");
     Check(Covered(pixels) == 0, "nothing drawn from a truncated file");
+    Check(!mapper->GetLoading() && !mapper->WaitForPages(1.0),
+      "a truncated file: nothing loading, WaitForPages says so");
     std::remove(cut.c_str());
 
     vtkNew<vtkStreamingSplatMapper> empty;
