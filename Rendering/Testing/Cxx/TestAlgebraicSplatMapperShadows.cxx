@@ -15,20 +15,14 @@
 #include "vtkAlgebraicSplatFitter.h"
 #include "vtkAlgebraicSplatMapper.h"
 #include "vtkCamera.h"
-#include "vtkCameraPass.h"
 #include "vtkFloatArray.h"
 #include "vtkLight.h"
 #include "vtkNew.h"
-#include "vtkOpenGLRenderer.h"
 #include "vtkPlaneSource.h"
 #include "vtkPolyDataMapper.h"
 #include "vtkProperty.h"
 #include "vtkRegressionTestImage.h"
-#include "vtkRenderPassCollection.h"
 #include "vtkRenderWindow.h"
-#include "vtkSequencePass.h"
-#include "vtkShadowMapBakerPass.h"
-#include "vtkShadowMapPass.h"
 #include "vtkTestUtilities.h"
 #include "vtkXMLPolyDataReader.h"
 
@@ -97,15 +91,7 @@ int TestAlgebraicSplatMapperShadows(int argc, char* argv[])
   std::vector<double> lit, shadowed;
   grab(lit);
 
-  vtkNew<vtkShadowMapPass> shadows;
-  vtkNew<vtkSequencePass> sequence;
-  vtkNew<vtkRenderPassCollection> passes;
-  passes->AddItem(shadows->GetShadowMapBakerPass());
-  passes->AddItem(shadows);
-  sequence->SetPasses(passes);
-  vtkNew<vtkCameraPass> cameraPass;
-  cameraPass->SetDelegatePass(sequence);
-  vtkOpenGLRenderer::SafeDownCast(renderer)->SetPass(cameraPass);
+  psUseShadowMapPasses(renderer);
   grab(shadowed);
 
   int bunnyPixels = 0, bunnyDark = 0, floorPixels = 0, floorDark = 0;

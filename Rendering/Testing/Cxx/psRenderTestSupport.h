@@ -2,15 +2,22 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // What several render tests share: points spread evenly over the unit
 // sphere, the exact surface most splat tests check against, the world point
-// behind a pixel of the rendered image, and a rendered image's luminance.
+// behind a pixel of the rendered image, a rendered image's luminance, and
+// VTK's shadow map passes.
 #ifndef psRenderTestSupport_h
 #define psRenderTestSupport_h
 
+#include "vtkCameraPass.h"
 #include "vtkNew.h"
+#include "vtkOpenGLRenderer.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkRenderPassCollection.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkSequencePass.h"
+#include "vtkShadowMapBakerPass.h"
+#include "vtkShadowMapPass.h"
 #include "vtkSmartPointer.h"
 #include "vtkUnsignedCharArray.h"
 
@@ -61,6 +68,21 @@ inline std::vector<double> psRenderLuminance(vtkRenderWindow* window, int size)
       (rgb->GetValue(3 * k) + rgb->GetValue(3 * k + 1) + rgb->GetValue(3 * k + 2)) / (3.0 * 255.0);
   }
   return luminance;
+}
+
+// Draw `renderer` with shadows through VTK's passes: the lights' depth maps
+// (vtkShadowMapBakerPass), then the frame that looks them up.
+inline void psUseShadowMapPasses(vtkRenderer* renderer)
+{
+  vtkNew<vtkShadowMapPass> shadows;
+  vtkNew<vtkSequencePass> sequence;
+  vtkNew<vtkRenderPassCollection> passes;
+  passes->AddItem(shadows->GetShadowMapBakerPass());
+  passes->AddItem(shadows);
+  sequence->SetPasses(passes);
+  vtkNew<vtkCameraPass> cameraPass;
+  cameraPass->SetDelegatePass(sequence);
+  vtkOpenGLRenderer::SafeDownCast(renderer)->SetPass(cameraPass);
 }
 
 #endif

@@ -22,14 +22,8 @@
 #include "vtkActor.h"
 #include "vtkAlgebraicSplatMapper.h"
 #include "vtkCamera.h"
-#include "vtkCameraPass.h"
 #include "vtkLight.h"
-#include "vtkOpenGLRenderer.h"
 #include "vtkPointData.h"
-#include "vtkRenderPassCollection.h"
-#include "vtkSequencePass.h"
-#include "vtkShadowMapBakerPass.h"
-#include "vtkShadowMapPass.h"
 #include "vtkSplatDataModel.h"
 #include "vtkSplatFileReader.h"
 #include "vtkStreamingSplatMapper.h"
@@ -265,15 +259,7 @@ int TestStreamingSplatMapper(int, char*[])
     light->SetPosition(5, 0, 0);
     light->SetFocalPoint(0, 0, 0);
     scene.Renderer->AddLight(light);
-    vtkNew<vtkShadowMapPass> shadows;
-    vtkNew<vtkSequencePass> sequence;
-    vtkNew<vtkRenderPassCollection> passes;
-    passes->AddItem(shadows->GetShadowMapBakerPass());
-    passes->AddItem(shadows);
-    sequence->SetPasses(passes);
-    vtkNew<vtkCameraPass> cameraPass;
-    cameraPass->SetDelegatePass(sequence);
-    vtkOpenGLRenderer::SafeDownCast(scene.Renderer)->SetPass(cameraPass);
+    psUseShadowMapPasses(scene.Renderer);
     const std::vector<unsigned char> shadowed = scene.Pixels();
     Check(mapper->GetNumberOfResidentSplats() == resident && Covered(shadowed) > 0,
       "with shadows, the pages of the camera's view only");
