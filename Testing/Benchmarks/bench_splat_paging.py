@@ -48,7 +48,6 @@ import bench_splat_stream as stream  # noqa: E402
 from bench_csv import TEST_DATA, write_rows  # noqa: E402
 
 import pointsurfaces  # noqa: E402
-from vtkmodules.vtkRenderingCore import vtkActor  # noqa: E402
 
 
 def make_file(mesh, n, path):
@@ -74,12 +73,7 @@ def streaming(scene, model, path, budget, frames):
     mapper = pointsurfaces.vtkStreamingSplatMapper()
     mapper.SetFileName(path)
     mapper.SetMemoryBudget(budget)
-    mapper.SetLODPixelError(1.0)
-    mapper.ScalarVisibilityOff()
-    actor = quality.material(vtkActor())
-    actor.SetMapper(mapper)
-    scene.renderer.RemoveAllViewProps()
-    scene.renderer.AddActor(actor)
+    stream.show(scene, mapper)
     scene.use(model["cameras"][0])
     start = time.perf_counter()
     scene.window.Render()

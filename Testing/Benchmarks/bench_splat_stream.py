@@ -149,6 +149,16 @@ def reader_for(path, budget):
     return reader
 
 
+def show(scene, mapper):
+    """`mapper` as the scene's only actor, in the shared material, LOD at 1 pixel, no scalars."""
+    mapper.SetLODPixelError(1.0)
+    mapper.ScalarVisibilityOff()
+    actor = quality.material(vtkActor())
+    actor.SetMapper(mapper)
+    scene.renderer.RemoveAllViewProps()
+    scene.renderer.AddActor(actor)
+
+
 def picture_and_orbit(scene, model, path, first_budget, budget, frames=12):
     """Seconds to the first picture from a fresh reader, and the orbit's median frame ms."""
     start = time.perf_counter()
@@ -161,12 +171,7 @@ def picture_and_orbit(scene, model, path, first_budget, budget, frames=12):
     reader.SetPixelError(1.0)
     mapper = pointsurfaces.vtkAlgebraicSplatMapper()
     mapper.SetInputConnection(reader.GetOutputPort())
-    mapper.SetLODPixelError(1.0)
-    mapper.ScalarVisibilityOff()
-    actor = quality.material(vtkActor())
-    actor.SetMapper(mapper)
-    scene.renderer.RemoveAllViewProps()
-    scene.renderer.AddActor(actor)
+    show(scene, mapper)
     scene.window.Render()
     first = time.perf_counter() - start
     loaded = reader.GetNumberOfLoadedSplats()
