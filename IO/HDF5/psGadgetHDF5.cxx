@@ -100,8 +100,12 @@ constexpr long long MaximumValues = 100000000000LL;
 // The array's type for the HDF5 type `type`; false when it is not numeric.
 bool NumericType(hid_t type, SnapshotArray& array)
 {
-  const H5T_class_t kind = type >= 0 ? H5Tget_class(type) : H5T_NO_CLASS;
-  const size_t size = type >= 0 ? H5Tget_size(type) : 0;
+  if (!SaneNumberType(type))
+  {
+    return false;
+  }
+  const H5T_class_t kind = H5Tget_class(type);
+  const size_t size = H5Tget_size(type);
   if (kind == H5T_FLOAT)
   {
     array.Type = size <= 4 ? SnapshotArray::Float32 : SnapshotArray::Float64;
@@ -198,14 +202,15 @@ bool ReadPart(hid_t file,
     SnapshotArray array;
     array.Name = member;
     array.Components = static_cast<int>(components);
-    if (!NumericType(type.Id, array))
+    if (!NumericType(type.Id, array) || !SaneDataset(dataset.Id))
     {
       if (first)
       {
-        out.Error = path + ": " + what + " is not numeric.";
+        out.Error = path + ": " + what + " is not numeric (or its type or layout is damaged).";
         return false;
       }
-      out.Warnings.push_back(path + ": " + what + " is not numeric: skipped.");
+      out.Warnings.push_back(
+        path + ": " + what + " is not numeric (or its type or layout is damaged): skipped.");
       continue;
     }
     try

@@ -25,6 +25,16 @@ inline std::recursive_mutex& HDF5Mutex()
   return mutex;
 }
 
+// True in a child process forked to check a file (psSplatFile.cxx): the
+// parent forked while holding HDF5Mutex, and the child, alone, must not
+// take it again (a recursive mutex locked by the parent's thread is not
+// the child's to relock).
+inline bool& InCheckingChild()
+{
+  static bool child = false;
+  return child;
+}
+
 // HDF5 prints its error stack by default: quiet while we read (our errors
 // say what went wrong), restored after. Holds HDF5Mutex meanwhile, so that
 // every entry point that quiets the stack is also serialised.
@@ -32,8 +42,12 @@ class QuietHDF5
 {
 public:
   QuietHDF5()
-    : Lock(HDF5Mutex())
+    : Lock(HDF5Mutex(), std::defer_lock)
   {
+    if (!InCheckingChild())
+    {
+      this->Lock.lock();
+    }
     H5Eget_auto2(H5E_DEFAULT, &this->Function, &this->Data);
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   }
@@ -42,7 +56,7 @@ public:
   QuietHDF5& operator=(const QuietHDF5&) = delete;
 
 private:
-  std::lock_guard<std::recursive_mutex> Lock;
+  std::unique_lock<std::recursive_mutex> Lock;
   H5E_auto2_t Function = nullptr;
   void* Data = nullptr;
 };
@@ -71,6 +85,61 @@ private:
   herr_t (*Close)(hid_t);
 };
 
+// Whether `type` is an integer or floating-point type that HDF5 can convert
+// safely: an integer of 1, 2, 4 or 8 bytes, or a float of 2, 4 or 8 bytes,
+// whose bits (precision, offset, and a float's sign, exponent and mantissa)
+// lie within its size. A damaged file can declare, say, a 36-byte float;
+// Debian 12's HDF5 1.10 then reads past its conversion buffer (found by
+// FuzzSplatFileReader), so such types count as not numeric.
+inline bool SaneNumberType(hid_t type)
+{
+  if (type < 0)
+  {
+    return false;
+  }
+  const H5T_class_t kind = H5Tget_class(type);
+  const size_t size = H5Tget_size(type);
+  const size_t bits = 8 * size;
+  const size_t precision = H5Tget_precision(type);
+  const int offset = H5Tget_offset(type);
+  if (precision == 0 || offset < 0 || precision + static_cast<size_t>(offset) > bits)
+  {
+    return false;
+  }
+  if (kind == H5T_INTEGER)
+  {
+    return size == 1 || size == 2 || size == 4 || size == 8;
+  }
+  if (kind != H5T_FLOAT || (size != 2 && size != 4 && size != 8))
+  {
+    return false;
+  }
+  size_t spos = 0, epos = 0, esize = 0, mpos = 0, msize = 0;
+  return H5Tget_fields(type, &spos, &epos, &esize, &mpos, &msize) >= 0 && esize > 0 && msize > 0 &&
+    spos < bits && epos + esize <= bits && mpos + msize <= bits;
+}
+
+// Whether dataset `dataset` can be read safely: its type passes
+// SaneNumberType, and when its layout is compact (values kept in the object
+// header) it holds as many bytes as its dataspace says. HDF5 1.10 reads past
+// the end of a compact dataset's buffer that a damaged layout message made
+// too short.
+inline bool SaneDataset(hid_t dataset)
+{
+  Handle plist(H5Dget_create_plist(dataset), H5Pclose);
+  Handle type(H5Dget_type(dataset), H5Tclose);
+  Handle space(H5Dget_space(dataset), H5Sclose);
+  if (plist.Id < 0 || space.Id < 0 || !SaneNumberType(type.Id))
+  {
+    return false;
+  }
+  const hssize_t values = H5Sget_simple_extent_npoints(space.Id);
+  return values >= 0 &&
+    (H5Pget_layout(plist.Id) != H5D_COMPACT ||
+      static_cast<double>(H5Dget_storage_size(dataset)) >=
+        static_cast<double>(values) * static_cast<double>(H5Tget_size(type.Id)));
+}
+
 // Up to `size` numbers of a numeric attribute, as doubles; how many it has
 // (0: none, not numeric, or unreadable).
 inline int ReadNumbers(hid_t location, const char* name, double* out, int size)
@@ -90,9 +159,8 @@ inline int ReadNumbers(hid_t location, const char* name, double* out, int size)
   {
     return 0;
   }
-  const H5T_class_t kind = H5Tget_class(type.Id);
   const hssize_t count = H5Sget_simple_extent_npoints(space.Id);
-  if ((kind != H5T_INTEGER && kind != H5T_FLOAT) || count < 1 || count > 1024)
+  if (!SaneNumberType(type.Id) || count < 1 || count > 1024)
   {
     return 0;
   }

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "psSplatFile.h"
 
+#include "psChildProcess.h"
 #include "psHDF5.h"
 #include "psLocalFit.h" // For MonomialCount
 #include "psOctree.h"
@@ -12,6 +13,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <set>
+#include <unistd.h> // For write in the checking child
 
 namespace pointsurfaces
 {
@@ -144,6 +147,10 @@ void Shape(hid_t group, const char* name, long long& rows, int& components)
   hsize_t dims[2] = { 0, 1 };
   const int rank = H5Sget_simple_extent_ndims(space.Id);
   if (rank < 1 || rank > 2 || H5Sget_simple_extent_dims(space.Id, dims, nullptr) < 0)
+  {
+    return;
+  }
+  if (!SaneDataset(dataset.Id)) // a damaged type or compact layout
   {
     return;
   }
@@ -481,7 +488,90 @@ struct SplatFileReader::Impl
     }
   }
   bool Check(std::string& error);
+  bool WalkChunks(std::string& error);
+  bool CheckInChildProcess = ChildProcess::Supported();
 };
+
+// Walks the chunk index (a B-tree) of every dataset that Check opened, so
+// that a damaged index shows in the checking child rather than at a read.
+bool SplatFileReader::Impl::WalkChunks(std::string& error)
+{
+  for (hid_t dataset : this->Datasets)
+  {
+    Handle plist(H5Dget_create_plist(dataset), H5Pclose);
+    hsize_t chunks = 0;
+    if (plist.Id < 0 ||
+      (H5Pget_layout(plist.Id) == H5D_CHUNKED && H5Dget_num_chunks(dataset, H5S_ALL, &chunks) < 0))
+    {
+      error = "damaged: a column's chunk index cannot be read";
+      return false;
+    }
+  }
+  return true;
+}
+
+namespace
+{
+// The files (path, modification stamp, size) that a checking child has
+// opened, checked and walked without crashing, in this process. Guarded by
+// HDF5Mutex.
+std::set<std::string>& CheckedFiles()
+{
+  static std::set<std::string> files;
+  return files;
+}
+
+// Opens and checks `path` in a forked child (see SplatFileReader::Open);
+// false with `error` set when HDF5 crashed or ended the child otherwise.
+// The caller holds HDF5Mutex, so no other thread is inside HDF5 when the
+// child is forked. A file that the child found unusable without crashing
+// passes: the caller's own check then says why.
+bool CheckInChild(const std::string& path, std::string& error)
+{
+  struct stat s;
+  const std::string key = path + '\n' + std::to_string(FileModificationStamp(path)) + '\n' +
+    std::to_string(::stat(path.c_str(), &s) == 0 ? static_cast<long long>(s.st_size) : -1);
+  if (CheckedFiles().count(key))
+  {
+    return true;
+  }
+  ChildProcess child;
+  const bool ran = child.Run(
+    [&path](int fd)
+    {
+      InCheckingChild() = true;
+      SplatFileReader probe;
+      probe.SetCheckInChildProcess(false);
+      std::string why;
+      // "0": usable; "1": unusable, the caller's check says why. No output:
+      // the child ended some other way (a sanitizer's report, exit()).
+      const char* verdict = probe.Open(path, why) ? "0" : "1";
+      return ::write(fd, verdict, 1) == 1 ? 0 : 1;
+    });
+  if (!ran)
+  {
+    return true; // no child could be made: check in process, as without
+  }
+  if (child.Signal() != 0 || child.Size() != 1)
+  {
+    error = "damaged: HDF5 crashed while a child process checked it (" +
+      (child.Signal() != 0 ? DescribeSignal(child.Signal())
+                           : "exit status " + std::to_string(child.ExitStatus())) +
+      ")";
+    return false;
+  }
+  if (child.Data()[0] == '0')
+  {
+    CheckedFiles().insert(key);
+  }
+  return true;
+}
+} // namespace
+
+void SplatFileReader::SetCheckInChildProcess(bool check)
+{
+  P->CheckInChildProcess = check && ChildProcess::Supported();
+}
 
 SplatFileReader::SplatFileReader()
   : P(new Impl)
@@ -724,13 +814,17 @@ bool SplatFileReader::Open(const std::string& path, std::string& error)
     }
     return false;
   }
+  if (P->CheckInChildProcess && !CheckInChild(path, error))
+  {
+    return false;
+  }
   P->File = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (P->File < 0)
   {
     error = "cannot be opened as HDF5 (truncated or damaged)";
     return false;
   }
-  if (!P->Check(error))
+  if (!P->Check(error) || (InCheckingChild() && !P->WalkChunks(error)))
   {
     P->CloseAll();
     return false;

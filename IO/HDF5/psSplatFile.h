@@ -136,8 +136,17 @@ class POINTSURFACESIOHDF5_EXPORT SplatFileReader
 public:
   SplatFileReader();
   ~SplatFileReader();
-  /** Open and check `path`; false with `error` set (one line) for a file it cannot use. */
+  /**
+   * Open and check `path`; false with `error` set (one line) for a file it
+   * cannot use. With CheckInChildProcess (the default where supported,
+   * Linux), a file is first opened and checked, and its chunk indexes
+   * walked, in a forked child process, once per file version in this
+   * process: HDF5 1.10 (Debian 12) can crash on a damaged file's metadata
+   * (a use after free in its object header cache, found by fuzzing), and
+   * then only the child ends, and the file is reported as damaged.
+   */
   bool Open(const std::string& path, std::string& error);
+  void SetCheckInChildProcess(bool check);
   const SplatFileInfo& Info() const;
   /** Rows [first, first + count), appended to `out` (Resize'd to hold them). */
   bool Read(long long first, long long count, SplatColumns& out, std::string& error);

@@ -194,6 +194,7 @@ int vtkSplatFileReader::RequestData(vtkInformation*,
   if (!P->Open || P->Path != this->FileName || P->Stamp != stamp)
   {
     std::string error;
+    P->File.SetCheckInChildProcess(this->CheckInChildProcess);
     P->Open = P->File.Open(this->FileName, error);
     P->Path = this->FileName;
     P->Stamp = stamp;
@@ -270,6 +271,7 @@ void vtkSplatFileReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "MemoryBudget: " << this->MemoryBudget << " MB\n";
+  os << indent << "CheckInChildProcess: " << (this->CheckInChildProcess ? "on" : "off") << "\n";
   os << indent << "PixelError: " << this->PixelError << "\n";
   os << indent << "Camera: " << this->Camera.GetPointer() << "\n";
   os << indent << "ViewportSize: " << this->ViewportSize[0] << " x " << this->ViewportSize[1]

@@ -28,7 +28,10 @@
  *
  * A missing, truncated, damaged, foreign or unfinished file gives one
  * vtkErrorMacro line that starts with the file's name, and an empty
- * output. A budget that holds no page's coarsest level gives a warning
+ * output. HDF5 1.10 (Debian 12) can crash on a damaged file's metadata
+ * (found by fuzzing), so each file version is first opened and checked in
+ * a child process (CheckInChildProcess, on by default on Linux): if HDF5
+ * crashes there, the file is reported as damaged and this program goes on. A budget that holds no page's coarsest level gives a warning
  * with the budget that would, and an empty output.
  */
 #ifndef vtkSplatFileReader_h
@@ -93,6 +96,19 @@ public:
    */
   double GetBytesPerSplat();
 
+  ///@{
+  /**
+   * Open and check each file version first in a child process (fork), so
+   * that a damaged file on which HDF5 crashes cannot take this program with
+   * it; once per file version in a process, a few milliseconds. Default:
+   * on. Ignored where child processes are not supported (not Linux). Turn
+   * it off in a program that must not fork.
+   */
+  vtkSetMacro(CheckInChildProcess, vtkTypeBool);
+  vtkGetMacro(CheckInChildProcess, vtkTypeBool);
+  vtkBooleanMacro(CheckInChildProcess, vtkTypeBool);
+  ///@}
+
   /** True when the file opens as a splat file. */
   static bool CanReadFile(const char* fileName);
 
@@ -107,6 +123,7 @@ protected:
 
   std::string FileName;
   double MemoryBudget = 1024.0;
+  vtkTypeBool CheckInChildProcess = true;
   double PixelError = 0.0;
   int ViewportSize[2] = { 1920, 1080 };
   vtkSmartPointer<vtkCamera> Camera;

@@ -10,12 +10,14 @@
 //   PixelError only the levels its pixels need; a budget smaller than one
 //   page gives a warning and an empty output;
 // - bad files (missing, empty, truncated, foreign HDF5, unfinished,
-//   damaged octree): one error each, naming the file, and an empty output;
+//   damaged octree, a column of a damaged number type): one error each,
+//   naming the file, and an empty output; the number type check alone;
 // - vtkStreamingSplatFitter on a binary PLY read in 7 pieces
 //   (vtkPLYScanReader SplitPoints) across chunks: the in-memory fit's count
 //   within 3 %, every splat in the file, the colours carried; on a source
 //   that does not split (the whole input in piece 0) the same; no FileName
 //   and FixedCount refused with one error.
+#include "psHDF5.h"
 #include "psIOTestSupport.h"
 #include "psSplatFile.h"
 
@@ -216,6 +218,15 @@ void WriteAndReadBack()
   Check(vtkSplatDataModel::GetSplatDegree(whole) == 3, "the degree survives");
   vtkDataArray* q = whole->GetFieldData()->GetArray(vtkSplatDataModel::LODQualityName());
   Check(q && q->GetNumberOfTuples() == 3 && q->GetTuple1(0) == 4.0, "the levels' s survive");
+  {
+    // Checked in process instead of in a child first: the same splats.
+    vtkNew<vtkSplatFileReader> inProcess;
+    inProcess->SetFileName(path.c_str());
+    inProcess->CheckInChildProcessOff();
+    inProcess->Update();
+    Check(inProcess->GetOutput()->GetNumberOfPoints() == n,
+      "without the child's check the file reads the same splats");
+  }
   Check(whole->GetPointData()->GetArray("Colour") &&
       whole->GetPointData()->GetArray("Colour")->GetNumberOfComponents() == 3,
     "the carried colour is stored with its components");
@@ -342,6 +353,43 @@ void BadFiles()
     H5Fclose(f);
   }
   ExpectReadError<vtkSplatFileReader>(damaged, "damaged");
+
+  // A column whose float type is damaged (36 bytes wide, as the fuzzer
+  // made it): HDF5 1.10 reads past its conversion buffer on such a type,
+  // so the reader refuses the column before it reads a value.
+  const std::string badType = Write(Temp("TestSplatFile-bad-type.psplat"), bytes);
+  {
+    const hid_t f = H5Fopen(badType.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t old = H5Dopen2(f, "Splats/Radius", H5P_DEFAULT);
+    const hid_t space = H5Dget_space(old);
+    H5Dclose(old);
+    H5Ldelete(f, "Splats/Radius", H5P_DEFAULT);
+    const hid_t wide = H5Tcopy(H5T_IEEE_F32LE);
+    H5Tset_size(wide, 36);
+    const hid_t d =
+      H5Dcreate2(f, "Splats/Radius", wide, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    Check(d >= 0, "a dataset of a 36-byte float type written");
+    H5Dclose(d);
+    H5Tclose(wide);
+    H5Sclose(space);
+    H5Fclose(f);
+  }
+  ExpectReadError<vtkSplatFileReader>(badType, "Splats/Radius");
+  // The type check itself: standard types pass, odd widths and bits do not.
+  for (const hid_t t : { H5T_IEEE_F32LE, H5T_IEEE_F64BE, H5T_STD_I8LE, H5T_STD_U64BE })
+  {
+    Check(pointsurfaces::SaneNumberType(t), "a standard HDF5 number type is sane");
+  }
+  Check(!pointsurfaces::SaneNumberType(H5T_C_S1), "a string type is not a number type");
+  const hid_t odd = H5Tcopy(H5T_IEEE_F64LE);
+  H5Tset_size(odd, 36);
+  Check(!pointsurfaces::SaneNumberType(odd), "a 36-byte float is refused");
+  H5Tclose(odd);
+  const hid_t shifted = H5Tcopy(H5T_STD_I32LE);
+  H5Tset_precision(shifted, 16);
+  H5Tset_offset(shifted, 16);
+  Check(pointsurfaces::SaneNumberType(shifted), "16 bits at offset 16 of an int32 are sane");
+  H5Tclose(shifted);
 }
 
 void Streaming()
