@@ -207,7 +207,10 @@ protected:
    * false, with an error when it has points, when it is not a splat set.
    */
   bool ResetForInput(vtkPolyData* poly);
-  void ReadOctree(vtkPolyData* poly);
+  /** Nodes from the input's octree (none when it has none or it is unusable, with a warning). */
+  virtual void ReadOctree(vtkPolyData* poly);
+  /** Those nodes (null when none), for a subclass's ReadOctree to adjust. */
+  pointsurfaces::LODOctree* GetLODNodes() { return this->Nodes.get(); }
   /**
    * The view that culls and picks levels: `ren`'s camera and tiled viewport,
    * `act`'s matrix, Culling and LODPixelError.

@@ -294,6 +294,21 @@ bool vtkStreamingSplatMapper::OpenFile()
 }
 
 //------------------------------------------------------------------------------
+void vtkStreamingSplatMapper::ReadOctree(vtkPolyData* poly)
+{
+  this->Superclass::ReadOctree(poly);
+  pointsurfaces::LODOctree* nodes = this->GetLODNodes();
+  if (nodes && P->Cache && P->Cache->IsOpen())
+  {
+    const std::vector<double>& file = P->Cache->Info().Pages.MeanScale;
+    if (file.size() == nodes->MeanScale.size())
+    {
+      nodes->MeanScale = file;
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkStreamingSplatMapper::Render(vtkRenderer* ren, vtkActor* act)
 {
   if (!this->OpenFile())

@@ -126,6 +126,14 @@ protected:
   ~vtkStreamingSplatMapper() override;
 
   void ComputeBounds() override;
+  /**
+   * The superclass's nodes, with each node's mean splat scale (MeanScale,
+   * which picks the level to draw) as the file states it, over all its
+   * levels, instead of over the levels resident: so that the level drawn
+   * is the level SelectPages wanted for the view, not a finer one that an
+   * earlier, closer view left in memory.
+   */
+  void ReadOctree(vtkPolyData* poly) override;
   /** Open FileName when it is new or changed (one error when it cannot be); false when not open. */
   bool OpenFile();
 

@@ -10,6 +10,8 @@
 // - a budget that holds the coarsest level and little more: at most the
 //   budget in memory, fewer splats, and no holes (the coarse splats keep
 //   their size): the sphere covers as many pixels as the whole file;
+// - with a PixelError, the splats drawn are those the view wants, also
+//   after a close view left finer levels in memory;
 // - a close view within a budget of a third of the file: only pages in
 //   view are loaded, and the picture is the whole file's; with shadows, the
 //   light's view loads nothing of its own;
@@ -232,6 +234,36 @@ int TestStreamingSplatMapper(int, char*[])
       "a coarse budget: level 0 everywhere, within the budget");
     Check(Covered(pixels) >= 0.99 * wholeCover && Covered(pixels) <= 1.01 * wholeCover,
       "the coarsest levels cover the sphere without holes");
+  }
+
+  // With a PixelError, the splats drawn are the levels the view wants
+  // (SelectPages, from the file's mean splat scale per page): before and
+  // after a close view that loaded finer levels of the pages in view. The
+  // mapper's level choice once took its scale from the resident splats
+  // only, and drew 450 and 504 of the 530 wanted at PixelError 32: coarser
+  // than what was loaded for the view.
+  for (const double pixelError : { 0.5, 32.0, 64.0 })
+  {
+    auto mapper = Streaming(path, 0.0, false);
+    mapper->SetLODPixelError(pixelError);
+    Scene scene(mapper, 1.0);
+    scene.Pixels();
+    const vtkIdType farWanted = mapper->GetNumberOfWantedSplats();
+    const vtkIdType farDrawn = mapper->GetNumberOfRenderedSplats();
+    scene.Renderer->GetActiveCamera()->Zoom(4.0);
+    scene.Pixels();
+    const vtkIdType closeResident = mapper->GetNumberOfResidentSplats();
+    scene.Renderer->GetActiveCamera()->Zoom(0.25);
+    scene.Pixels();
+    std::cout << "PixelError " << pixelError << ": far view wants " << farWanted << ", draws "
+              << farDrawn << "; after a close view (" << closeResident << " resident) wants "
+              << mapper->GetNumberOfWantedSplats() << ", draws "
+              << mapper->GetNumberOfRenderedSplats() << "\n";
+    Check(farDrawn == farWanted && mapper->GetNumberOfRenderedSplats() == farWanted &&
+        mapper->GetNumberOfWantedSplats() == farWanted,
+      "the levels drawn are the levels the view wants, before and after a close view");
+    Check(pixelError > 1.0 ? closeResident > farWanted : farWanted == total,
+      "a PixelError leaves finer levels for closer views");
   }
 
   // A close view within a third of the file: only the pages in view.
