@@ -3,6 +3,7 @@
 #include "psChildProcess.h"
 
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstring>
 
@@ -52,11 +53,12 @@ void ChildProcess::Release()
 
 #if defined(__linux__)
 //------------------------------------------------------------------------------
-bool ChildProcess::Run(const std::function<int(int fd)>& job)
+bool ChildProcess::Run(const std::function<int(int fd)>& job, double timeout)
 {
   this->Release();
   this->Status = -1;
   this->EndSignal = 0;
+  this->Killed = false;
   this->Message.clear();
   this->File = ::memfd_create("pointsurfaces-child", MFD_CLOEXEC);
   if (this->File < 0)
@@ -96,10 +98,35 @@ bool ChildProcess::Run(const std::function<int(int fd)>& job)
   }
   int waited = 0;
   pid_t ended = -1;
-  do
+  bool reaped = false;
+  if (timeout > 0.0)
   {
-    ended = ::waitpid(pid, &waited, 0);
-  } while (ended < 0 && errno == EINTR);
+    // Poll every 5 ms; at the timeout, kill the child and reap it below.
+    const auto start = std::chrono::steady_clock::now();
+    for (;;)
+    {
+      ended = ::waitpid(pid, &waited, WNOHANG);
+      if (ended > 0 || (ended < 0 && errno != EINTR))
+      {
+        reaped = true;
+        break;
+      }
+      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > timeout)
+      {
+        ::kill(pid, SIGKILL);
+        this->Killed = true;
+        break;
+      }
+      ::usleep(5000);
+    }
+  }
+  if (!reaped)
+  {
+    do
+    {
+      ended = ::waitpid(pid, &waited, 0);
+    } while (ended < 0 && errno == EINTR);
+  }
   if (ended < 0)
   {
     // ECHILD: the program ignores SIGCHLD, so the child was reaped unseen.
@@ -134,7 +161,7 @@ bool ChildProcess::Run(const std::function<int(int fd)>& job)
 }
 #else
 //------------------------------------------------------------------------------
-bool ChildProcess::Run(const std::function<int(int fd)>&)
+bool ChildProcess::Run(const std::function<int(int fd)>&, double)
 {
   this->Message = "child processes are supported on Linux only";
   return false;

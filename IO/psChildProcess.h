@@ -43,10 +43,15 @@ public:
   /**
    * Runs `job(fd)` in a child process, where `fd` is the memory file to
    * write the result to; the job's return value is the child's exit status.
-   * Waits for the child. False when no child could be started (Error()
-   * says why); true once it has ended, however it ended.
+   * Waits for the child: with a `timeout` above 0 seconds, at most that
+   * long, then kills it (SIGKILL; TimedOut() is true). False when no child
+   * could be started (Error() says why); true once it has ended, however
+   * it ended.
    */
-  bool Run(const std::function<int(int fd)>& job);
+  bool Run(const std::function<int(int fd)>& job, double timeout = 0.0);
+
+  /** Whether the last Run killed its child at the timeout. */
+  bool TimedOut() const { return this->Killed; }
 
   /** The child's exit status, or -1 when it did not exit (a signal ended it). */
   int ExitStatus() const { return this->Status; }
@@ -65,6 +70,7 @@ private:
   int File = -1;
   int Status = -1;
   int EndSignal = 0;
+  bool Killed = false;
   std::string Message;
   const char* Bytes = nullptr;
   size_t Length = 0;

@@ -521,6 +521,10 @@ std::set<std::string>& CheckedFiles()
   return files;
 }
 
+// The longest a checking child may take (seconds); a header, an octree and
+// the chunk indexes of a file of 10^8 points take well under a second.
+constexpr double CheckTimeout = 60.0;
+
 // Opens and checks `path` in a forked child (see SplatFileReader::Open);
 // false with `error` set when HDF5 crashed or ended the child otherwise.
 // The caller holds HDF5Mutex, so no other thread is inside HDF5 when the
@@ -547,10 +551,14 @@ bool CheckInChild(const std::string& path, std::string& error)
       // the child ended some other way (a sanitizer's report, exit()).
       const char* verdict = probe.Open(path, why) ? "0" : "1";
       return ::write(fd, verdict, 1) == 1 ? 0 : 1;
-    });
-  if (!ran)
+    },
+    CheckTimeout);
+  if (!ran || child.TimedOut())
   {
-    return true; // no child could be made: check in process, as without
+    // No child could be made, or it did not finish within the timeout (a
+    // slow disk, or an HDF5 that another thread, outside HDF5Mutex, held at
+    // the fork): check in process, as without.
+    return true;
   }
   if (child.Signal() != 0 || child.Size() != 1)
   {
