@@ -98,15 +98,11 @@ def main():
         sys.exit("view_splat_file.py: %s" % (errors[0] if errors else path + ": nothing to draw"))
     first = None
     if not headless:
+        # The mapper renders again by itself while pages load
+        # (RenderWhileLoading): no timer of our own.
         interactor = vtkRenderWindowInteractor()
         interactor.SetRenderWindow(window)
-
-        def tick(caller, event):
-            if mapper.GetLoading():
-                window.Render()
         interactor.Initialize()
-        interactor.AddObserver(vtkCommand.TimerEvent, tick)
-        interactor.CreateRepeatingTimer(50)
         interactor.Start()
         return 0
 

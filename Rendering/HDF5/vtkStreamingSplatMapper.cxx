@@ -7,6 +7,7 @@
 #include "psSplatPageCache.h"
 #include "psSplatPages.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkIntArray.h"
@@ -16,7 +17,11 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
+#include "vtkRenderer.h"
 #include "vtkSplatDataModel.h"
+#include "vtkWeakPointer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -200,6 +205,26 @@ struct vtkStreamingSplatMapper::Impl
   double WarnedBudget = -1.0;
   bool WarnedInput = false;
   vtkNew<vtkPolyData> Resident;
+  // RenderWhileLoading: the interactor observed, and its pending timer (0: none).
+  vtkWeakPointer<vtkRenderWindowInteractor> Interactor;
+  vtkNew<vtkCallbackCommand> Callback;
+  unsigned long Observer = 0;
+  int TimerId = 0;
+  void Detach()
+  {
+    if (this->Interactor)
+    {
+      this->Interactor->RemoveObserver(this->Observer);
+      if (this->TimerId != 0)
+      {
+        this->Interactor->DestroyTimer(this->TimerId);
+      }
+    }
+    this->Interactor = nullptr;
+    this->Observer = 0;
+    this->TimerId = 0;
+  }
+  ~Impl() { this->Detach(); }
 };
 
 //------------------------------------------------------------------------------
@@ -311,6 +336,50 @@ void vtkStreamingSplatMapper::ReadOctree(vtkPolyData* poly)
 //------------------------------------------------------------------------------
 void vtkStreamingSplatMapper::Render(vtkRenderer* ren, vtkActor* act)
 {
+  this->RenderPages(ren, act);
+  if (this->RenderWhileLoading && this->Asynchronous && !IsShadowMapBake(act) && this->GetLoading())
+  {
+    this->ScheduleRender(ren);
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkStreamingSplatMapper::ScheduleRender(vtkRenderer* ren)
+{
+  vtkRenderWindow* window = ren ? ren->GetRenderWindow() : nullptr;
+  vtkRenderWindowInteractor* interactor = window ? window->GetInteractor() : nullptr;
+  if (!interactor || !interactor->GetInitialized())
+  {
+    return;
+  }
+  if (interactor != P->Interactor.GetPointer())
+  {
+    P->Detach();
+    P->Interactor = interactor;
+    P->Callback->SetClientData(P.get());
+    P->Callback->SetCallback(
+      [](vtkObject* caller, unsigned long, void* clientData, void* callData)
+      {
+        auto* impl = static_cast<Impl*>(clientData);
+        if (!callData || *static_cast<int*>(callData) != impl->TimerId || impl->TimerId == 0)
+        {
+          return; // another timer of the interactor
+        }
+        impl->TimerId = 0;
+        static_cast<vtkRenderWindowInteractor*>(caller)->Render();
+      });
+    P->Observer = interactor->AddObserver(vtkCommand::TimerEvent, P->Callback);
+  }
+  if (P->TimerId == 0)
+  {
+    P->TimerId =
+      interactor->CreateOneShotTimer(static_cast<unsigned long>(this->LoadingRenderInterval));
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkStreamingSplatMapper::RenderPages(vtkRenderer* ren, vtkActor* act)
+{
   if (!this->OpenFile())
   {
     return;
@@ -415,6 +484,8 @@ void vtkStreamingSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "MemoryBudget: " << this->MemoryBudget << " MB\n";
   os << indent << "Asynchronous: " << this->Asynchronous << "\n";
+  os << indent << "RenderWhileLoading: " << this->RenderWhileLoading << " (every "
+     << this->LoadingRenderInterval << " ms)\n";
   os << indent << "NumberOfSplats: " << this->NumberOfSplats << "\n";
   os << indent << "NumberOfResidentSplats: " << this->NumberOfResidentSplats << "\n";
   os << indent << "NumberOfWantedSplats: " << this->NumberOfWantedSplats << "\n";

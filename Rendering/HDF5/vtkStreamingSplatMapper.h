@@ -25,9 +25,10 @@
  *    while it sharpens.
  *
  * The first picture of a file of any size thus comes from its coarsest
- * levels, as soon as they are read; Loading() says that more is coming,
- * so an application renders again (a timer of its interactor, or
- * WaitForPages() in a script) until it is false. Without Asynchronous,
+ * levels, as soon as they are read; Loading() says that more is coming.
+ * With an initialized interactor the mapper renders again by itself while
+ * pages load (RenderWhileLoading); a script renders again until Loading()
+ * is false, or calls WaitForPages(). Without Asynchronous,
  * each render reads what it needs first (batch pictures, tests).
  *
  * The bounds are the file's, whatever is loaded, so that cameras and
@@ -92,6 +93,24 @@ public:
   vtkBooleanMacro(Asynchronous, bool);
   ///@}
 
+  ///@{
+  /**
+   * While pages load (Asynchronous), render again by itself through the
+   * render window's interactor, when it has one that is initialized: a
+   * one-shot timer of LoadingRenderInterval milliseconds after each render
+   * that left pages loading, whose TimerEvent calls the interactor's
+   * Render(). An application with an event loop (Start(), a Qt widget)
+   * thus sees the picture sharpen without a timer of its own. Default: on,
+   * every 100 ms. Off, or without an interactor (scripts, offscreen
+   * pictures), render again until GetLoading() is false, or WaitForPages().
+   */
+  vtkSetMacro(RenderWhileLoading, bool);
+  vtkGetMacro(RenderWhileLoading, bool);
+  vtkBooleanMacro(RenderWhileLoading, bool);
+  vtkSetClampMacro(LoadingRenderInterval, int, 1, 60000);
+  vtkGetMacro(LoadingRenderInterval, int);
+  ///@}
+
   /**
    * True while pages the last rendered view wants are still being read, or
    * were read after that render: render again for them.
@@ -136,10 +155,16 @@ protected:
   void ReadOctree(vtkPolyData* poly) override;
   /** Open FileName when it is new or changed (one error when it cannot be); false when not open. */
   bool OpenFile();
+  /** Render's work: choose, request and draw the pages of this view. */
+  void RenderPages(vtkRenderer* ren, vtkActor* act);
+  /** With RenderWhileLoading: a one-shot timer on `ren`'s interactor, unless one is pending. */
+  void ScheduleRender(vtkRenderer* ren);
 
   std::string FileName;
   double MemoryBudget = 512.0;
   bool Asynchronous = true;
+  bool RenderWhileLoading = true;
+  int LoadingRenderInterval = 100;
   vtkIdType NumberOfSplats = 0;
   vtkIdType NumberOfResidentSplats = 0;
   vtkIdType NumberOfWantedSplats = 0;

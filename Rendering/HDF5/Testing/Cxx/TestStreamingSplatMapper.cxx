@@ -6,7 +6,9 @@
 // - without a budget, reading before it draws: the same picture, coloured
 //   by the file's array;
 // - with its loading thread: the first render returns without waiting, and
-//   rendering until Loading is false ends on the same picture;
+//   rendering until Loading is false ends on the same picture; under an
+//   interactor's event loop (x11 variant), the mapper's own timer renders
+//   until every page is drawn (RenderWhileLoading);
 // - a budget that holds the coarsest level and little more: at most the
 //   budget in memory, fewer splats, and no holes (the coarse splats keep
 //   their size): the sphere covers as many pixels as the whole file;
@@ -26,9 +28,11 @@
 #include "vtkCamera.h"
 #include "vtkLight.h"
 #include "vtkPointData.h"
+#include "vtkRenderWindowInteractor.h"
 #include "vtkSplatDataModel.h"
 #include "vtkSplatFileReader.h"
 #include "vtkStreamingSplatMapper.h"
+#include "vtkXRenderWindowInteractor.h"
 
 #include <cstdlib>
 
@@ -206,6 +210,97 @@ int TestStreamingSplatMapper(int, char*[])
     Check(first < total || renders == 2, "the first render does not wait for every page");
     Check(mapper->GetNumberOfResidentSplats() == total && Differ(last, synchronous) < 0.001,
       "the loading thread ends on the whole picture");
+  }
+
+  // RenderWhileLoading, under an interactor's event loop (an X window: the
+  // x11 variant of this test): the mapper's own timer renders until every
+  // page is drawn, with no render asked for by the program after the first.
+  const char* windowKind = std::getenv("POINTSURFACES_RENDER_WINDOW");
+  if (windowKind && std::string(windowKind) == "x11" && std::getenv("DISPLAY"))
+  {
+    auto mapper = Streaming(path, 0.0, true);
+    mapper->SetLoadingRenderInterval(20);
+    Scene scene(mapper, 1.0);
+    // An X interactor as such: the test driver's object factory would give
+    // vtkTestingInteractor, whose Start() compares images instead of
+    // running an event loop.
+    vtkNew<vtkXRenderWindowInteractor> interactor;
+    interactor->SetRenderWindow(scene.Window);
+    int renders = 0;
+    vtkIdType first = -1;
+    bool timedOut = false;
+    vtkNew<vtkCallbackCommand> onRender;
+    struct Loop
+    {
+      vtkStreamingSplatMapper* Mapper;
+      vtkRenderWindowInteractor* Interactor;
+      int* Renders;
+      vtkIdType* First;
+    } loop{ mapper, interactor, &renders, &first };
+    onRender->SetClientData(&loop);
+    onRender->SetCallback(
+      [](vtkObject*, unsigned long, void* data, void*)
+      {
+        auto* l = static_cast<Loop*>(data);
+        if (++*l->Renders == 1)
+        {
+          *l->First = l->Mapper->GetNumberOfResidentSplats();
+        }
+        if (!l->Mapper->GetLoading())
+        {
+          l->Interactor->TerminateApp();
+        }
+      });
+    // The window mapped and its first exposures drawn with the actor
+    // hidden, so that the renders counted below are the program's first
+    // and the mapper's timer's, not the X server's.
+    scene.Actor->VisibilityOff();
+    interactor->Initialize();
+    for (int k = 0; k < 10; ++k)
+    {
+      interactor->ProcessEvents();
+    }
+    scene.Actor->VisibilityOn();
+    scene.Window->AddObserver(vtkCommand::EndEvent, onRender);
+    // A guard: a loop that never ends fails instead of hanging.
+    vtkNew<vtkCallbackCommand> onGuard;
+    const int guard = interactor->CreateOneShotTimer(60000);
+    int mapperTimers = 0; // timer events that are not the guard's: the mapper's
+    struct Guard
+    {
+      bool* TimedOut;
+      int Id;
+      vtkRenderWindowInteractor* Interactor;
+      int* Others;
+    } g{ &timedOut, guard, interactor, &mapperTimers };
+    onGuard->SetClientData(&g);
+    onGuard->SetCallback(
+      [](vtkObject*, unsigned long, void* data, void* callData)
+      {
+        auto* gd = static_cast<Guard*>(data);
+        if (callData && *static_cast<int*>(callData) == gd->Id)
+        {
+          *gd->TimedOut = true;
+          gd->Interactor->TerminateApp();
+        }
+        else
+        {
+          ++*gd->Others;
+        }
+      });
+    interactor->AddObserver(vtkCommand::TimerEvent, onGuard);
+    scene.Window->Render();
+    if (mapper->GetLoading())
+    {
+      interactor->Start();
+    }
+    std::cout << "render while loading: first render " << first << " splats, " << renders
+              << " renders (" << mapperTimers << " on the mapper's timer) to "
+              << mapper->GetNumberOfResidentSplats() << (timedOut ? " (timed out)" : "") << "\n";
+    Check(!timedOut && mapper->GetNumberOfResidentSplats() == total && !mapper->GetLoading(),
+      "the mapper's own timer renders until every page is drawn");
+    Check(first < total ? mapperTimers >= 1 : true, "renders came from the mapper's timer");
+    interactor->DestroyTimer(guard);
   }
 
   // A budget of the coarsest level and a little more: no holes.
