@@ -8,8 +8,8 @@
 #
 # Builds the `vtk` preset, then stages:
 #   bin/   the EGL render test driver (PointSurfacesRenderingCxxTests), the
-#          C++ benchmarks (BenchRender: splats and metaballs against their
-#          peers; BenchComputeTiles) and ctest;
+#          C++ benchmarks (BenchRender: splats, metaballs and a paged
+#          splat file against their peers; BenchComputeTiles) and ctest;
 #   lib/   the project's libraries and the ldd closure of all of them: the
 #          Debian libraries they load, without glibc and without any GL
 #          vendor library, plus the glvnd loaders (libEGL.so.1, libGL.so.1,

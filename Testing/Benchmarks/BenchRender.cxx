@@ -18,6 +18,16 @@
 //   and counts the read-backs of its frames. The peer: vtkOpenGLSphereMapper on the same balls at
 //   the radius of a lone ball's surface.
 //
+// - Paging (--paging C, with PointSurfaces::RenderingHDF5): the fitted
+//   splats (three levels) and their N points tiled C times in a grid of
+//   copies, the splats written as a splat file; vtkStreamingSplatMapper
+//   draws the file within --budget MB (LODPixelError 1) while the camera
+//   orbits the grid, the peer vtkPointGaussianMapper draws all C x N points
+//   from memory on the same orbit. Reported: the median orbit frame, the
+//   seconds to the first non-empty picture (in the note), the file's size
+//   per input point. A copy of the 1M-point Bunny tiled 100 times is the
+//   issue's 10^8 points; the file is deleted afterwards.
+//
 // A frame is Render() plus a one-pixel depth read-back (which waits for the
 // GPU); the median over the frames is reported. CSV goes to stdout and
 // <out>/render.csv, a picture of each scene to <out>/*.png, and the EGL
@@ -25,7 +35,7 @@
 //
 // Usage: BenchRender [--smoke] [--size WxH] [--frames N] [--points N]
 //                    [--balls N,N,...] [--degree D] [--quality s]
-//                    [--out DIR] mesh.vtp
+//                    [--paging C] [--budget MB] [--out DIR] mesh.vtp
 #include "psMetaball.h"
 #include "vtkAlgebraicSplatFitter.h"
 #include "vtkAlgebraicSplatMapper.h"
@@ -38,6 +48,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellArray.h"
+#include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkIdList.h"
 #include "vtkMath.h"
@@ -55,6 +66,13 @@
 #include "vtkStaticPointLocator.h"
 #include "vtkWindowToImageFilter.h"
 #include "vtkXMLPolyDataReader.h"
+#ifdef POINTSURFACES_BENCH_PAGING
+#include "vtkAppendPolyData.h"
+#include "vtkSplatFileWriter.h"
+#include "vtkStreamingSplatMapper.h"
+#include <cstdio> // For std::remove
+#include <thread> // For the first picture's wait
+#endif
 
 #include <algorithm>
 #include <chrono>
@@ -81,6 +99,8 @@ struct Options
   std::vector<long long> Balls{ 100000, 1000000, 10000000 };
   int Degree = 2;
   double Quality = 1.0;
+  int PagingCopies = 0; // 0: no paging scene
+  double PagingBudget = 2048.0;
   std::string Out = ".";
   std::string Mesh;
 };
@@ -361,6 +381,167 @@ struct Bench
     }
   }
 
+#ifdef POINTSURFACES_BENCH_PAGING
+  // `copies` copies of `data` in a grid, `step` apart: points moved, arrays
+  // shared, the field data of `data` kept (the splat set's degree and levels).
+  static vtkSmartPointer<vtkPolyData> Tile(vtkPolyData* data, int copies, double step)
+  {
+    const int side = static_cast<int>(std::ceil(std::cbrt(static_cast<double>(copies))));
+    vtkNew<vtkAppendPolyData> append;
+    for (int c = 0; c < copies; ++c)
+    {
+      const double shift[3] = {
+        step * (c % side), step * ((c / side) % side), step * (c / (side * side))
+      };
+      vtkNew<vtkPolyData> copy;
+      copy->ShallowCopy(data);
+      vtkNew<vtkPoints> points;
+      points->SetDataTypeToDouble();
+      points->SetNumberOfPoints(data->GetNumberOfPoints());
+      for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+      {
+        double p[3];
+        data->GetPoint(i, p);
+        points->SetPoint(i, p[0] + shift[0], p[1] + shift[1], p[2] + shift[2]);
+      }
+      copy->SetPoints(points);
+      append->AddInputData(copy);
+    }
+    append->Update();
+    auto out = vtkSmartPointer<vtkPolyData>::New();
+    out->ShallowCopy(append->GetOutput());
+    out->GetFieldData()->ShallowCopy(data->GetFieldData());
+    return out;
+  }
+
+  // Median orbit frame: `frames` renders, the camera turned 360 / frames
+  // degrees about the focal point before each.
+  double OrbitMs(int frames)
+  {
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    return MedianFrameMs(this->Window,
+      frames,
+      [this, camera, frames]()
+      {
+        camera->Azimuth(360.0 / frames);
+        this->Renderer->ResetCameraClippingRange();
+      });
+  }
+
+  void Paging()
+  {
+    const int copies = this->Opt.PagingCopies;
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName(this->Opt.Mesh.c_str());
+    reader->Update();
+    vtkPolyData* mesh = reader->GetOutput();
+    if (!mesh || mesh->GetNumberOfPolys() == 0)
+    {
+      ++this->Errors;
+      return;
+    }
+    vtkSmartPointer<vtkPolyData> cloud = SampleSurface(mesh, this->Opt.Points, 1);
+    const double spacing = MeanSpacing(cloud);
+    vtkNew<vtkAlgebraicSplatFitter> fitter;
+    fitter->SetInputData(cloud);
+    fitter->SetDegree(this->Opt.Degree);
+    fitter->SetQualityFactor(this->Opt.Quality);
+    fitter->SetNumberOfLevels(3);
+    fitter->Update();
+    double b[6];
+    mesh->GetBounds(b);
+    const double step =
+      1.2 * std::max(b[1] - b[0], std::max(b[3] - b[2], b[5] - b[4])); // a gap between copies
+    const std::string path = this->Opt.Out + "/paging.psplat";
+    {
+      vtkSmartPointer<vtkPolyData> splats = Tile(fitter->GetOutput(), copies, step);
+      vtkNew<vtkSplatFileWriter> writer;
+      writer->SetInputData(splats);
+      writer->SetFileName(path.c_str());
+      writer->Write();
+    }
+    std::ifstream file(path, std::ios::binary | std::ios::ate);
+    const double fileBytes = file ? static_cast<double>(file.tellg()) : 0.0;
+    const long long points = static_cast<long long>(copies) * this->Opt.Points;
+    std::ostringstream scene;
+    scene << "paging-" << points;
+
+    vtkNew<vtkStreamingSplatMapper> mapper;
+    mapper->SetFileName(path.c_str());
+    mapper->SetMemoryBudget(this->Opt.PagingBudget);
+    mapper->SetLODPixelError(1.0);
+    vtkNew<vtkActor> actor;
+    actor->SetMapper(mapper);
+    Material(actor);
+    this->Show(actor);
+    this->Renderer->ResetCamera(mapper->GetBounds());
+    const auto t0 = std::chrono::steady_clock::now();
+    this->Window->Render();
+    while (mapper->GetNumberOfResidentSplats() == 0 && mapper->GetLoading() &&
+      std::chrono::steady_clock::now() - t0 < std::chrono::seconds(120))
+    {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      this->Window->Render();
+    }
+    float depth = 0.0f;
+    this->Window->GetZbufferData(0, 0, 0, 0, &depth);
+    const double firstSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    mapper->WaitForPages(120.0);
+    this->Window->Render();
+    Row r;
+    r.Scene = scene.str();
+    r.Method = "streaming-splats";
+    std::ostringstream setting;
+    setting << "degree " << this->Opt.Degree << ", s = " << this->Opt.Quality << ", " << copies
+            << " copies, budget " << this->Opt.PagingBudget << " MB, LODPixelError 1, orbit";
+    r.Setting = setting.str();
+    r.Primitives = mapper->GetNumberOfSplats();
+    r.FrameMs = this->OrbitMs(this->Opt.Frames);
+    std::ostringstream note;
+    note << "first picture " << Fixed(firstSeconds, 3) << " s; file "
+         << Fixed(fileBytes / std::max(1LL, points), 2) << " bytes a point; "
+         << mapper->GetNumberOfResidentSplats() << " splats resident, "
+         << mapper->GetNumberOfWantedSplats() << " wanted and "
+         << mapper->GetNumberOfRenderedSplats() << " drawn in the last frame";
+    r.Note = note.str();
+    this->Record(r);
+    WritePicture(this->Window, this->Opt.Out + "/" + scene.str() + ".png");
+    this->Renderer->RemoveAllViewProps();
+    mapper->ReleaseGraphicsResources(this->Window);
+    std::remove(path.c_str());
+
+    // The peer: every point, in memory.
+    Row g;
+    g.Scene = scene.str();
+    g.Method = "point-gaussian";
+    g.Setting = "r = 1.5 mean spacings, all points, orbit";
+    g.Primitives = points;
+    try
+    {
+      vtkSmartPointer<vtkPolyData> all = Tile(cloud, copies, step);
+      vtkNew<vtkPointGaussianMapper> gaussian;
+      gaussian->SetInputData(all);
+      gaussian->SetScaleFactor(1.5 * spacing);
+      gaussian->SetSplatShaderCode(vtkBenchSphereSpriteFS);
+      gaussian->EmissiveOff();
+      vtkNew<vtkActor> peer;
+      peer->SetMapper(gaussian);
+      Material(peer);
+      this->Show(peer);
+      this->Window->Render();
+      g.FrameMs = this->OrbitMs(this->Opt.Frames);
+      this->Renderer->RemoveAllViewProps();
+      gaussian->ReleaseGraphicsResources(this->Window);
+    }
+    catch (const std::bad_alloc&)
+    {
+      g.Note = "not run: out of host memory";
+    }
+    this->Record(g);
+  }
+#endif
+
   void Metaballs(long long n)
   {
     std::ostringstream scene;
@@ -506,6 +687,8 @@ bool Parse(int argc, char* argv[], Options& opt)
       opt.Frames = 2;
       opt.Points = 20000;
       opt.Balls = { 500, 2000 };
+      opt.PagingCopies = 4;
+      opt.PagingBudget = 1.0;
     }
     else if (a == "--size")
     {
@@ -541,6 +724,14 @@ bool Parse(int argc, char* argv[], Options& opt)
     {
       opt.Quality = std::atof(next().c_str());
     }
+    else if (a == "--paging")
+    {
+      opt.PagingCopies = std::max(0, std::atoi(next().c_str()));
+    }
+    else if (a == "--budget")
+    {
+      opt.PagingBudget = std::max(0.0, std::atof(next().c_str()));
+    }
     else if (a == "--out")
     {
       opt.Out = next();
@@ -564,7 +755,8 @@ int main(int argc, char* argv[])
   if (!Parse(argc, argv, bench.Opt))
   {
     std::cerr << "usage: BenchRender [--smoke] [--size WxH] [--frames N] [--points N] "
-                 "[--balls N,N,...] [--degree D] [--quality s] [--out DIR] mesh.vtp\n";
+                 "[--balls N,N,...] [--degree D] [--quality s] [--paging C] [--budget MB] "
+                 "[--out DIR] mesh.vtp\n";
     return EXIT_FAILURE;
   }
   bench.Window->SetSize(bench.Opt.Width, bench.Opt.Height);
@@ -601,6 +793,17 @@ int main(int argc, char* argv[])
   {
     bench.Metaballs(n);
   }
+#ifdef POINTSURFACES_BENCH_PAGING
+  if (bench.Opt.PagingCopies > 0)
+  {
+    bench.Paging();
+  }
+#else
+  if (bench.Opt.PagingCopies > 0)
+  {
+    std::cout << "# paging: not built (PointSurfaces::RenderingHDF5 is missing)\n";
+  }
+#endif
   std::ofstream csv(bench.Opt.Out + "/render.csv");
   csv << header;
   for (const Row& r : bench.Rows)
