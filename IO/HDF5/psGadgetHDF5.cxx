@@ -332,10 +332,64 @@ bool WriteSnapshotFile(const std::string& path,
 }
 
 //------------------------------------------------------------------------------
+bool CheckSnapshotFile(const std::string& path, std::string& error)
+{
+  QuietHDF5 quiet;
+  return CheckInChild(
+    path,
+    "gadget snapshot",
+    [&path]()
+    {
+      if (H5Fis_hdf5(path.c_str()) <= 0)
+      {
+        return;
+      }
+      Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+      SnapshotHeader header;
+      if (file.Id < 0 || !ReadHeader(file.Id, header))
+      {
+        return;
+      }
+      H5Lexists(file.Id, "Code", H5P_DEFAULT);
+      for (int type = 0; type < 6; ++type)
+      {
+        const std::string name = "PartType" + std::to_string(type);
+        if (H5Lexists(file.Id, name.c_str(), H5P_DEFAULT) <= 0)
+        {
+          continue;
+        }
+        Handle group(H5Gopen2(file.Id, name.c_str(), H5P_DEFAULT), H5Gclose);
+        std::vector<std::string> members;
+        if (group.Id < 0 ||
+          H5Literate(group.Id, H5_INDEX_NAME, H5_ITER_INC, nullptr, CollectName, &members) < 0)
+        {
+          continue;
+        }
+        for (const std::string& member : members)
+        {
+          Handle dataset(H5Dopen2(group.Id, member.c_str(), H5P_DEFAULT), H5Dclose);
+          if (dataset.Id < 0 || !SaneDataset(dataset.Id))
+          {
+            continue;
+          }
+          Handle plist(H5Dget_create_plist(dataset.Id), H5Pclose);
+          hsize_t chunks = 0;
+          if (plist.Id >= 0 && H5Pget_layout(plist.Id) == H5D_CHUNKED)
+          {
+            H5Dget_num_chunks(dataset.Id, H5S_ALL, &chunks);
+          }
+        }
+      }
+    },
+    error);
+}
+
+//------------------------------------------------------------------------------
 bool IsGadgetSnapshot(const std::string& path)
 {
   QuietHDF5 quiet;
-  if (H5Fis_hdf5(path.c_str()) <= 0)
+  std::string error;
+  if (H5Fis_hdf5(path.c_str()) <= 0 || !CheckSnapshotFile(path, error))
   {
     return false;
   }
@@ -369,12 +423,21 @@ std::vector<std::string> SnapshotFiles(const std::string& path, int numFiles)
 }
 
 //------------------------------------------------------------------------------
-bool ReadSnapshotHeader(const std::string& path, SnapshotHeader& header, std::string& error)
+bool ReadSnapshotHeader(const std::string& path,
+  SnapshotHeader& header,
+  std::string& error,
+  bool check)
 {
   QuietHDF5 quiet;
   if (!std::ifstream(path).good())
   {
     error = path + ": the file cannot be opened.";
+    return false;
+  }
+  std::string why;
+  if (check && !CheckSnapshotFile(path, why))
+  {
+    error = path + ": " + why + ".";
     return false;
   }
   Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
@@ -392,7 +455,7 @@ bool ReadSnapshotHeader(const std::string& path, SnapshotHeader& header, std::st
 }
 
 //------------------------------------------------------------------------------
-Snapshot ReadSnapshot(const std::string& path, int type)
+Snapshot ReadSnapshot(const std::string& path, int type, bool check)
 {
   Snapshot out;
   QuietHDF5 quiet;
@@ -403,13 +466,19 @@ Snapshot ReadSnapshot(const std::string& path, int type)
   }
   const std::string group = "PartType" + std::to_string(type);
   // The snapshot's files, from the header of the one named.
-  if (!ReadSnapshotHeader(path, out.Header, out.Error))
+  if (!ReadSnapshotHeader(path, out.Header, out.Error, check))
   {
     return out;
   }
   const std::vector<std::string> files = SnapshotFiles(path, out.Header.NumFiles);
   for (const std::string& name : files)
   {
+    std::string why;
+    if (check && std::ifstream(name).good() && !CheckSnapshotFile(name, why))
+    {
+      out.Error = name + ": " + why + ".";
+      break;
+    }
     Handle file(H5Fopen(name.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
     if (file.Id < 0)
     {

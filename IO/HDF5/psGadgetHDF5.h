@@ -90,7 +90,16 @@ bool WriteSnapshotFile(const std::string& path,
   const std::vector<SnapshotPart>& parts,
   std::string& error);
 
-/** Is `path` an HDF5 file with a /Header group (a Gadget or SWIFT snapshot)? */
+/**
+ * Opens `path`, its header and every dataset of its PartType groups (type,
+ * layout, chunk index; no values) in a forked child process first, once per
+ * file version (CheckInChild, psHDF5.h): false with `error` set when HDF5
+ * crashed there. Where HDF5 1.10 crashes on a damaged file, the readers
+ * thus report it instead of ending the program.
+ */
+bool CheckSnapshotFile(const std::string& path, std::string& error);
+
+/** Is `path` an HDF5 file with a /Header group (a Gadget or SWIFT snapshot)? Checked first. */
 bool IsGadgetSnapshot(const std::string& path);
 
 /**
@@ -100,11 +109,21 @@ bool IsGadgetSnapshot(const std::string& path);
  */
 std::vector<std::string> SnapshotFiles(const std::string& path, int numFiles);
 
-/** The header of `path` into `header`; false with `error` said when it is no snapshot. */
-bool ReadSnapshotHeader(const std::string& path, SnapshotHeader& header, std::string& error);
+/**
+ * The header of `path` into `header`; false with `error` said when it is no
+ * snapshot. With `check`, the file is checked in a child first
+ * (CheckSnapshotFile).
+ */
+bool ReadSnapshotHeader(const std::string& path,
+  SnapshotHeader& header,
+  std::string& error,
+  bool check = true);
 
-/** Reads particle type `type` (0 to 5) of the snapshot of `path` (every file of it). */
-Snapshot ReadSnapshot(const std::string& path, int type);
+/**
+ * Reads particle type `type` (0 to 5) of the snapshot of `path` (every file
+ * of it). With `check`, each file is checked in a child first.
+ */
+Snapshot ReadSnapshot(const std::string& path, int type, bool check = true);
 } // namespace pointsurfaces
 
 #endif

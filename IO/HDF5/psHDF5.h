@@ -9,9 +9,11 @@
 
 #include "vtk_hdf5.h"
 
-#include <algorithm> // For std::copy_n
-#include <mutex>     // For the lock
-#include <vector>    // For values
+#include <algorithm>  // For std::copy_n
+#include <functional> // For the checking child's probe
+#include <mutex>      // For the lock
+#include <string>     // For paths and errors
+#include <vector>     // For values
 
 namespace pointsurfaces
 {
@@ -172,6 +174,23 @@ inline int ReadNumbers(hid_t location, const char* name, double* out, int size)
   std::copy_n(values.begin(), std::min<hssize_t>(count, size), out);
   return static_cast<int>(count);
 }
+
+// Runs `probe()` (which opens and reads `path`'s metadata with HDF5) in a
+// forked child process first, once per version of the file (path,
+// modification time, size) and kind of probe (`what`) in this process:
+// HDF5 1.10 (Debian 12) can crash on a damaged file's metadata (a use
+// after free in H5Aexists, found by fuzzing), and then only the child
+// ends. False, with `error` set, when the child crashed or ended without
+// a verdict; true when the probe ran to its end (whatever it found: the
+// caller's own reading then says what is wrong), when no child could be
+// made, or when the child did not finish within 60 s (it is killed). The
+// caller holds HDF5Mutex (QuietHDF5), so that no other thread of ours is
+// inside HDF5 at the fork; the child does not take it (InCheckingChild).
+// Where child processes are not supported (not Linux), true at once.
+bool CheckInChild(const std::string& path,
+  const char* what,
+  const std::function<void()>& probe,
+  std::string& error);
 
 } // namespace pointsurfaces
 

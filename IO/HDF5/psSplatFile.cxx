@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "psSplatFile.h"
 
-#include "psChildProcess.h"
+#include "psChildProcess.h" // For Supported
 #include "psHDF5.h"
 #include "psLocalFit.h" // For MonomialCount
 #include "psOctree.h"
@@ -13,8 +13,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <set>
-#include <unistd.h> // For write in the checking child
 
 namespace pointsurfaces
 {
@@ -510,72 +508,6 @@ bool SplatFileReader::Impl::WalkChunks(std::string& error)
   return true;
 }
 
-namespace
-{
-// The files (path, modification stamp, size) that a checking child has
-// opened, checked and walked without crashing, in this process. Guarded by
-// HDF5Mutex.
-std::set<std::string>& CheckedFiles()
-{
-  static std::set<std::string> files;
-  return files;
-}
-
-// The longest a checking child may take (seconds); a header, an octree and
-// the chunk indexes of a file of 10^8 points take well under a second.
-constexpr double CheckTimeout = 60.0;
-
-// Opens and checks `path` in a forked child (see SplatFileReader::Open);
-// false with `error` set when HDF5 crashed or ended the child otherwise.
-// The caller holds HDF5Mutex, so no other thread is inside HDF5 when the
-// child is forked. A file that the child found unusable without crashing
-// passes: the caller's own check then says why.
-bool CheckInChild(const std::string& path, std::string& error)
-{
-  struct stat s;
-  const std::string key = path + '\n' + std::to_string(FileModificationStamp(path)) + '\n' +
-    std::to_string(::stat(path.c_str(), &s) == 0 ? static_cast<long long>(s.st_size) : -1);
-  if (CheckedFiles().count(key))
-  {
-    return true;
-  }
-  ChildProcess child;
-  const bool ran = child.Run(
-    [&path](int fd)
-    {
-      InCheckingChild() = true;
-      SplatFileReader probe;
-      probe.SetCheckInChildProcess(false);
-      std::string why;
-      // "0": usable; "1": unusable, the caller's check says why. No output:
-      // the child ended some other way (a sanitizer's report, exit()).
-      const char* verdict = probe.Open(path, why) ? "0" : "1";
-      return ::write(fd, verdict, 1) == 1 ? 0 : 1;
-    },
-    CheckTimeout);
-  if (!ran || child.TimedOut())
-  {
-    // No child could be made, or it did not finish within the timeout (a
-    // slow disk, or an HDF5 that another thread, outside HDF5Mutex, held at
-    // the fork): check in process, as without.
-    return true;
-  }
-  if (child.Signal() != 0 || child.Size() != 1)
-  {
-    error = "damaged: HDF5 crashed while a child process checked it (" +
-      (child.Signal() != 0 ? DescribeSignal(child.Signal())
-                           : "exit status " + std::to_string(child.ExitStatus())) +
-      ")";
-    return false;
-  }
-  if (child.Data()[0] == '0')
-  {
-    CheckedFiles().insert(key);
-  }
-  return true;
-}
-} // namespace
-
 void SplatFileReader::SetCheckInChildProcess(bool check)
 {
   P->CheckInChildProcess = check && ChildProcess::Supported();
@@ -822,7 +754,18 @@ bool SplatFileReader::Open(const std::string& path, std::string& error)
     }
     return false;
   }
-  if (P->CheckInChildProcess && !CheckInChild(path, error))
+  if (P->CheckInChildProcess &&
+    !CheckInChild(
+      path,
+      "splat file",
+      [&path]()
+      {
+        SplatFileReader probe;
+        probe.SetCheckInChildProcess(false);
+        std::string why;
+        probe.Open(path, why); // in the child: also walks the chunk indexes
+      },
+      error))
   {
     return false;
   }

@@ -98,7 +98,8 @@ int vtkGadgetHDF5Reader::RequestInformation(vtkInformation*,
   // The header alone: its time is the one time step.
   pointsurfaces::SnapshotHeader header;
   std::string error;
-  if (!pointsurfaces::ReadSnapshotHeader(this->FileName, header, error))
+  if (!pointsurfaces::ReadSnapshotHeader(
+        this->FileName, header, error, this->CheckInChildProcess != 0))
   {
     return 1; // RequestData says why
   }
@@ -126,7 +127,7 @@ int vtkGadgetHDF5Reader::RequestData(vtkInformation*,
     return 1;
   }
   const pointsurfaces::Snapshot snapshot =
-    pointsurfaces::ReadSnapshot(this->FileName, this->ParticleType);
+    pointsurfaces::ReadSnapshot(this->FileName, this->ParticleType, this->CheckInChildProcess != 0);
   if (!snapshot.Error.empty())
   {
     vtkErrorMacro(<< "Cannot read the snapshot " << this->FileName << ": " << snapshot.Error);
@@ -195,4 +196,5 @@ void vtkGadgetHDF5Reader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "ParticleType: " << this->ParticleType << "\n";
+  os << indent << "CheckInChildProcess: " << (this->CheckInChildProcess ? "on" : "off") << "\n";
 }
