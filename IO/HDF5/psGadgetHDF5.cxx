@@ -166,7 +166,15 @@ bool ReadPart(hid_t file,
         out.Error = path + ": /" + name + "/Coordinates is not a readable dataset.";
         return false;
       }
-      continue; // a subgroup or a link to nothing
+      Handle subgroup(H5Gopen2(group.Id, member.c_str(), H5P_DEFAULT), H5Gclose);
+      if (subgroup.Id < 0)
+      {
+        // Not a group either: a link to nothing, or a dataset that HDF5 will
+        // not open (damaged; HDF5 1.14 refuses numeric types with unused bits).
+        out.Warnings.push_back(
+          path + ": /" + name + "/" + member + " cannot be opened as a dataset: skipped.");
+      }
+      continue;
     }
     Handle space(H5Dget_space(dataset.Id), H5Sclose);
     Handle type(H5Dget_type(dataset.Id), H5Tclose);
