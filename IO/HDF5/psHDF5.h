@@ -142,6 +142,17 @@ inline bool SaneDataset(hid_t dataset)
         static_cast<double>(values) * static_cast<double>(H5Tget_size(type.Id)));
 }
 
+// Whether `dataset`'s chunk index (a B-tree) can be walked: true for a
+// dataset that is not chunked. The checking children walk it, so that a
+// damaged index shows there rather than at a read.
+inline bool ChunkIndexReadable(hid_t dataset)
+{
+  Handle plist(H5Dget_create_plist(dataset), H5Pclose);
+  hsize_t chunks = 0;
+  return plist.Id >= 0 &&
+    (H5Pget_layout(plist.Id) != H5D_CHUNKED || H5Dget_num_chunks(dataset, H5S_ALL, &chunks) >= 0);
+}
+
 // Up to `size` numbers of a numeric attribute, as doubles; how many it has
 // (0: none, not numeric, or unreadable).
 inline int ReadNumbers(hid_t location, const char* name, double* out, int size)

@@ -496,10 +496,7 @@ bool SplatFileReader::Impl::WalkChunks(std::string& error)
 {
   for (hid_t dataset : this->Datasets)
   {
-    Handle plist(H5Dget_create_plist(dataset), H5Pclose);
-    hsize_t chunks = 0;
-    if (plist.Id < 0 ||
-      (H5Pget_layout(plist.Id) == H5D_CHUNKED && H5Dget_num_chunks(dataset, H5S_ALL, &chunks) < 0))
+    if (!ChunkIndexReadable(dataset))
     {
       error = "damaged: a column's chunk index cannot be read";
       return false;

@@ -224,6 +224,21 @@ struct vtkStreamingSplatMapper::Impl
     this->Observer = 0;
     this->TimerId = 0;
   }
+  Impl()
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback(
+      [](vtkObject* caller, unsigned long, void* clientData, void* callData)
+      {
+        auto* impl = static_cast<Impl*>(clientData);
+        if (!callData || *static_cast<int*>(callData) != impl->TimerId || impl->TimerId == 0)
+        {
+          return; // another timer of the interactor
+        }
+        impl->TimerId = 0;
+        static_cast<vtkRenderWindowInteractor*>(caller)->Render();
+      });
+  }
   ~Impl() { this->Detach(); }
 };
 
@@ -356,18 +371,6 @@ void vtkStreamingSplatMapper::ScheduleRender(vtkRenderer* ren)
   {
     P->Detach();
     P->Interactor = interactor;
-    P->Callback->SetClientData(P.get());
-    P->Callback->SetCallback(
-      [](vtkObject* caller, unsigned long, void* clientData, void* callData)
-      {
-        auto* impl = static_cast<Impl*>(clientData);
-        if (!callData || *static_cast<int*>(callData) != impl->TimerId || impl->TimerId == 0)
-        {
-          return; // another timer of the interactor
-        }
-        impl->TimerId = 0;
-        static_cast<vtkRenderWindowInteractor*>(caller)->Render();
-      });
     P->Observer = interactor->AddObserver(vtkCommand::TimerEvent, P->Callback);
   }
   if (P->TimerId == 0)
