@@ -15,7 +15,8 @@ pointsurfaces_add_render_tests(<exe> <varname> <TestX.cxx[,OPTIONS]>...)
 
 pointsurfaces_add_unit_tests(<exe> <varname> <TestX.cxx>...)
 
-  Declares tests that open no window (label: unit).
+  Declares tests that open no window (label: unit); the target
+  pointsurfaces-unit-tests builds their executables.
 #]==]
 
 find_program(POINTSURFACES_XVFB_RUN xvfb-run)
@@ -73,6 +74,9 @@ function (pointsurfaces_add_unit_tests exe varname)
   foreach (name IN LISTS names)
     set_property(TEST "${_vtk_build_test}Cxx-${name}" APPEND PROPERTY LABELS unit)
   endforeach ()
+  # The executables that the unit tests need: the target
+  # pointsurfaces-unit-tests builds them alone (the asan preset).
+  set_property(GLOBAL APPEND PROPERTY POINTSURFACES_UNIT_TEST_EXECUTABLES "${exe}")
   set("${varname}" ${${varname}} ${unit_tests} PARENT_SCOPE)
 endfunction ()
 
