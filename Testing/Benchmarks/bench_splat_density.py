@@ -17,9 +17,12 @@ three views (masked SSIM, masked RMSE, coverage IoU, as there).
 Variants (fitter settings on top of the defaults):
 
 - default: the defaults (bound 0.5 local spacings);
-- scale4, scale8: MaximumFeatureScale 4 or 8 (adaptive feature size);
+- scaleN: MaximumFeatureScale N (adaptive feature size), e.g. scale4;
 - noise: ToleranceUnit NOISE (the bound at least 3 noise scales);
-- noise+scale4: both.
+- absolute: ToleranceUnit ABSOLUTE (the bound in world units);
+- tolX: MaximumDeviation X (in the tolerance's unit);
+- words joined by '+' combine, e.g. noise+scale16.
+The default list: default, scale4, scale8, noise, noise+scale4.
 
 Density independence is what the issue asks of the fitter: above the
 sampling that resolves the surface, the splat count should stop growing with
@@ -46,13 +49,28 @@ from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E4
 from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkPolyData  # noqa: E402
 
-VARIANTS = {
-    "default": {},
-    "scale4": dict(MaximumFeatureScale=4),
-    "scale8": dict(MaximumFeatureScale=8),
-    "noise": dict(ToleranceUnit=1),
-    "noise+scale4": dict(ToleranceUnit=1, MaximumFeatureScale=4),
-}
+VARIANTS = ["default", "scale4", "scale8", "noise", "noise+scale4"]
+
+
+def settings_of(variant):
+    """The fitter settings a variant names: words joined by '+', each one of
+    default, noise (ToleranceUnit NOISE), absolute (ToleranceUnit ABSOLUTE),
+    scaleN (MaximumFeatureScale N) or tolX (MaximumDeviation X)."""
+    settings = {}
+    for word in variant.split("+"):
+        if word == "default":
+            continue
+        if word == "noise":
+            settings["ToleranceUnit"] = 1
+        elif word == "absolute":
+            settings["ToleranceUnit"] = 2
+        elif word.startswith("scale") and word[5:].isdigit():
+            settings["MaximumFeatureScale"] = int(word[5:])
+        elif word.startswith("tol"):
+            settings["MaximumDeviation"] = float(word[3:])
+        else:
+            raise ValueError("unknown variant word %r in %r" % (word, variant))
+    return settings
 VIEWS = [(0, 15), (120, -10), (240, 30)]
 
 
@@ -110,12 +128,17 @@ def main():
     parser.add_argument("mesh", nargs="?", default=os.path.join(TEST_DATA, "bunny.vtp"))
     parser.add_argument("--points", type=float, nargs="+", default=[2e5, 1e6])
     parser.add_argument("--noise", type=float, nargs="+", default=[1e-4])
-    parser.add_argument("--variants", nargs="+", default=list(VARIANTS), choices=list(VARIANTS))
+    parser.add_argument("--variants", nargs="+", default=VARIANTS)
     parser.add_argument("--size", type=int, default=300, help="image side, pixels")
     parser.add_argument("--up", choices=("x", "y", "z"), help="up axis (default: z for Lucy and the horse)")
     parser.add_argument("--out", default="bench-results")
     parser.add_argument("--smoke", action="store_true", help="20 000 points, two variants, 96 pixels")
     args = parser.parse_args()
+    for variant in args.variants:
+        try:
+            settings_of(variant)
+        except ValueError as error:
+            parser.error(str(error))
     if args.smoke:
         args.points, args.noise, args.variants, args.size = [2e4], [1e-4], ["default", "scale4"], 96
     os.makedirs(args.out, exist_ok=True)
@@ -133,7 +156,7 @@ def main():
         for n in [int(p) for p in args.points]:
             cloud = sample(mesh, n, noise, diagonal)
             for variant in args.variants:
-                splats, seconds = fit(cloud, VARIANTS[variant])
+                splats, seconds = fit(cloud, settings_of(variant))
                 scores = quality.score_actor(scene, model, quality.splat_actor(splats), 0)
                 rows.append(dict(
                     model=stem, points=cloud.GetNumberOfPoints(), noise=noise, variant=variant,
