@@ -53,4 +53,9 @@ for scene in splats- metaballs-; do
   fi
 done
 grep -q "ctest -L egl: 0," "$work/results/gpu-run.log"
+# All four of gpu-run.sh's smoke tests ran (a renamed test would drop out).
+if ! grep -q "0 tests failed out of 4\$" "$work/results/gpu-run.log"; then
+  echo "RunGPUBundle: gpu-run.sh --smoke did not run its four EGL tests" >&2
+  exit 1
+fi
 echo "RunGPUBundle: the bundle ran from itself alone ($(stat -c %s "$work/out/pointsurfaces-gpu.tar.xz") bytes)"
