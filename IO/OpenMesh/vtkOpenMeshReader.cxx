@@ -268,17 +268,36 @@ void OFFCounts(const std::string& name,
       continue;
     }
     // A lone number counts too: OpenMesh reads it as the vertex count and
-    // then the face count from whatever follows (found by FuzzOpenMeshReader:
-    // "OFF 0 0 1" over "666660" ran for minutes).
+    // then the face count from whatever follows, on the next line as well
+    // (found by FuzzOpenMeshReader: "OFF 0 0 1" over "666660" ran for
+    // minutes; "COFF 0 0 255 0 0" over "1" over "66666 1 0" for 29 s).
     std::istringstream counts(line);
     long long v = -1, f = -1;
     if (counts >> v)
     {
       afterV = v;
-      if (counts >> f)
+      if (!(counts >> f) && counts.eof())
+      {
+        // The face count from the next line with anything on it.
+        while (std::getline(in, line))
+        {
+          std::istringstream more(line);
+          std::string word;
+          if (more >> word)
+          {
+            std::istringstream number(word);
+            if (!(number >> f))
+            {
+              f = -1;
+            }
+            break;
+          }
+        }
+      }
+      if (f >= 0 || counts)
       {
         afterF = f;
-        if (vertices < 0)
+        if (vertices < 0 && f >= 0)
         {
           vertices = v;
           faces = f;

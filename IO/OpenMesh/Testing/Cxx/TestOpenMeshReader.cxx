@@ -153,6 +153,8 @@ int TestOpenMeshReader(int, char*[])
     Write(dir, "huge-count.off", "OFF\n2 6606666666666666066 0\n0 0 0\n1 1 1\n"),
     Write(dir, "bad-keyword.off", std::string("OFF\b5 0 \0\0\0", 12)),
     Write(dir, "lone-count.off", "OFF 0 0 1\n666660\n"), // ran for minutes in OpenMesh
+    // The face count on the line after a lone vertex count: 29 s in OpenMesh.
+    Write(dir, "next-line-count.off", "COFF 0 0 255 0 0\n1\n66666 1 0\n3 0 0 255 0 0\n"),
     Write(dir, "huge.om", std::string("OMP\x02\xff\xff\xff\x7f\x01\0\0\0\x01\0\0\0", 16)) };
   for (const std::string& path : bad)
   {
