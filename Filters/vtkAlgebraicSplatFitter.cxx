@@ -194,6 +194,7 @@ pointsurfaces::BuildParameters vtkAlgebraicSplatFitter::MakeParameters(bool keep
   params.CoarsestQuality = this->CoarsestQualityFactor;
   params.Tolerance = static_cast<pointsurfaces::ToleranceUnit>(this->ToleranceUnit);
   params.NoiseFactor = this->NoiseFactor;
+  params.FeatureNoiseFactor = this->FeatureNoiseFactor;
   params.MaximumFeatureScale = this->MaximumFeatureScale;
   return params;
 }
@@ -442,6 +443,7 @@ void vtkAlgebraicSplatFitter::PrintSelf(ostream& os, vtkIndent indent)
                                            : "ABSOLUTE")
      << "\n";
   os << indent << "NoiseFactor: " << this->NoiseFactor << "\n";
+  os << indent << "FeatureNoiseFactor: " << this->FeatureNoiseFactor << "\n";
   os << indent << "MaximumFeatureScale: " << this->MaximumFeatureScale << "\n";
   os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";
   os << indent << "CoarsestQualityFactor: " << this->CoarsestQualityFactor << "\n";

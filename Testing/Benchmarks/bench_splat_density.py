@@ -4,13 +4,17 @@
 """Splats against the sampling and the noise of one surface: the density and noise sweeps.
 
     bench_splat_density.py [MESH] [--points N ...] [--noise F ...] [--variants NAME ...]
-                           [--size PX] [--out DIR] [--smoke]
+                           [--subdivide L] [--size PX] [--out DIR] [--smoke]
 
 MESH (default: Testing/Data/bunny.vtp) is any triangle mesh pointsurfaces.scanio
 reads. Each sample puts N points uniformly by area on its triangles
 (surface_sampling.py; N 0: the mesh's own vertices) and moves each by
 Gaussian noise of F times the mesh's bounding-box diagonal (noise along every
-axis). Each variant of the fitter (below) fits every sample; the splats are
+axis). With --subdivide L the mesh is first Loop-subdivided L times, and
+samples and reference share that smooth surface: sampled on the mesh's own
+flat triangles, a dense sample resolves the facets (dihedral angles of
+several degrees between flat faces that the reference shades smoothly),
+and the fitter follows them. Each variant of the fitter (below) fits every sample; the splats are
 drawn as bench_splat_quality.py draws them and scored against the mesh in
 three views (masked SSIM, masked RMSE, coverage IoU, as there).
 
@@ -21,6 +25,7 @@ Variants (fitter settings on top of the defaults):
 - noise: ToleranceUnit NOISE (the bound at least 3 noise scales);
 - absolute: ToleranceUnit ABSOLUTE (the bound in world units);
 - tolX: MaximumDeviation X (in the tolerance's unit);
+- featureX: FeatureNoiseFactor X (0: the first fit at the k-nearest h);
 - words joined by '+' combine, e.g. noise+scale16.
 The default list: default, scale4, scale8, noise, noise+scale4.
 
@@ -55,7 +60,8 @@ VARIANTS = ["default", "scale4", "scale8", "noise", "noise+scale4"]
 def settings_of(variant):
     """The fitter settings a variant names: words joined by '+', each one of
     default, noise (ToleranceUnit NOISE), absolute (ToleranceUnit ABSOLUTE),
-    scaleN (MaximumFeatureScale N) or tolX (MaximumDeviation X)."""
+    scaleN (MaximumFeatureScale N), tolX (MaximumDeviation X) or featureX
+    (FeatureNoiseFactor X)."""
     settings = {}
     for word in variant.split("+"):
         if word == "default":
@@ -68,6 +74,8 @@ def settings_of(variant):
             settings["MaximumFeatureScale"] = int(word[5:])
         elif word.startswith("tol"):
             settings["MaximumDeviation"] = float(word[3:])
+        elif word.startswith("feature"):
+            settings["FeatureNoiseFactor"] = float(word[7:])
         else:
             raise ValueError("unknown variant word %r in %r" % (word, variant))
     return settings
@@ -89,6 +97,21 @@ def sample(mesh, n, noise, diagonal):
     return cloud
 
 
+def subdivide(mesh, levels):
+    """The mesh Loop-subdivided `levels` times (triangles only)."""
+    from vtkmodules.vtkFiltersCore import vtkTriangleFilter
+    from vtkmodules.vtkFiltersModeling import vtkLoopSubdivisionFilter
+    triangles = vtkTriangleFilter()
+    triangles.SetInputData(mesh)
+    loop = vtkLoopSubdivisionFilter()
+    loop.SetInputConnection(triangles.GetOutputPort())
+    loop.SetNumberOfSubdivisions(levels)
+    loop.Update()
+    out = vtkPolyData()
+    out.ShallowCopy(loop.GetOutput())
+    return out
+
+
 def fit(cloud, settings):
     fitter = pointsurfaces.vtkAlgebraicSplatFitter()
     fitter.SetInputData(cloud)
@@ -107,12 +130,14 @@ def plot(rows, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
-    for key in sorted({(r["variant"], r["noise"]) for r in rows}):
-        mine = sorted((r for r in rows if (r["variant"], r["noise"]) == key), key=lambda r: r["points"])
-        xs = [r["points"] for r in mine]
-        label = "%s, noise %g" % key
-        left.plot(xs, [r["splats"] for r in mine], marker="o", label=label)
-        right.plot(xs, [r["masked_ssim"] for r in mine], marker="o", label=label)
+    def key_of(r):
+        return (r["variant"], float(r["noise"]), int(r.get("subdivisions", 0)))
+    for key in sorted({key_of(r) for r in rows}):
+        mine = sorted((r for r in rows if key_of(r) == key), key=lambda r: int(r["points"]))
+        xs = [int(r["points"]) for r in mine]
+        label = "%s, noise %g" % key[:2] + (", %d subdivisions" % key[2] if key[2] else "")
+        left.plot(xs, [int(r["splats"]) for r in mine], marker="o", label=label)
+        right.plot(xs, [float(r["masked_ssim"]) for r in mine], marker="o", label=label)
     for axis, title in ((left, "splats"), (right, "masked SSIM against the mesh")):
         axis.set_xscale("log")
         axis.set_xlabel("points")
@@ -131,6 +156,9 @@ def main():
     parser.add_argument("--variants", nargs="+", default=VARIANTS)
     parser.add_argument("--size", type=int, default=300, help="image side, pixels")
     parser.add_argument("--up", choices=("x", "y", "z"), help="up axis (default: z for Lucy and the horse)")
+    parser.add_argument("--subdivide", type=int, default=0, metavar="L",
+                        help="Loop-subdivide the mesh L times first: samples and reference then "
+                             "share a smooth surface instead of the mesh's flat facets")
     parser.add_argument("--out", default="bench-results")
     parser.add_argument("--smoke", action="store_true", help="20 000 points, two variants, 96 pixels")
     args = parser.parse_args()
@@ -143,6 +171,8 @@ def main():
         args.points, args.noise, args.variants, args.size = [2e4], [1e-4], ["default", "scale4"], 96
     os.makedirs(args.out, exist_ok=True)
     mesh = quality.load_mesh(args.mesh)
+    if args.subdivide > 0:
+        mesh = subdivide(mesh, args.subdivide)
     b = mesh.GetBounds()
     diagonal = ((b[1] - b[0]) ** 2 + (b[3] - b[2]) ** 2 + (b[5] - b[4]) ** 2) ** 0.5
     stem = os.path.basename(args.mesh).split(".")[0]
@@ -159,7 +189,7 @@ def main():
                 splats, seconds = fit(cloud, settings_of(variant))
                 scores = quality.score_actor(scene, model, quality.splat_actor(splats), 0)
                 rows.append(dict(
-                    model=stem, points=cloud.GetNumberOfPoints(), noise=noise, variant=variant,
+                    model=stem, subdivisions=args.subdivide, points=cloud.GetNumberOfPoints(), noise=noise, variant=variant,
                     splats=splats.GetNumberOfPoints(),
                     splats_per_point=round(splats.GetNumberOfPoints() / cloud.GetNumberOfPoints(), 4),
                     fit_s=round(seconds, 3),

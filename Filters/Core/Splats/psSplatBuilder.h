@@ -97,6 +97,14 @@ struct BuildParameters
   ToleranceUnit Tolerance = ToleranceUnit::Spacing;
   /** ToleranceUnit::Noise: the tolerance is at least this many noise scales. */
   double NoiseFactor = 3.0;
+  /**
+   * With MaximumFeatureScale of 2 or more: each chosen point's first fit is
+   * at least this many noise scales wide (its h, up to MaximumFeatureScale
+   * times the k-nearest h), the noise being UncorrelatedNoiseScale of its
+   * neighbourhood. On a sample denser than its noise the splats then stop
+   * following the sampling. 0: the first fit at the k-nearest h.
+   */
+  double FeatureNoiseFactor = 12.0;
 };
 
 /** Neighbours of the PCA normals of BuildParameters::EstimateNormals. */

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pointsurfaces
 {
@@ -59,6 +60,47 @@ double NoiseScale(const double* nbrs, int n, const LocalFrame& frame, int k)
   std::nth_element(residuals.begin(), residuals.begin() + m / 2, residuals.end());
   return 1.4826 * residuals[static_cast<size_t>(m / 2)] *
     std::sqrt(static_cast<double>(m) / (m - 6));
+}
+
+double UncorrelatedNoiseScale(const double* nbrs, int n, const LocalFrame& frame, int k)
+{
+  const int m = std::min(n, k);
+  if (m < 10 || !(frame.Scale > 0.0))
+  {
+    return 0.0;
+  }
+  const PolynomialFit quadric = FitPolynomial(nbrs, nullptr, m, frame, 2);
+  if (quadric.Status != FitStatus::Ok)
+  {
+    return 0.0;
+  }
+  std::vector<double> uvr(3 * static_cast<size_t>(m));
+  for (int j = 0; j < m; ++j)
+  {
+    double* l = &uvr[3 * static_cast<size_t>(j)];
+    ToLocal(frame, nbrs + 3 * static_cast<size_t>(j), l);
+    l[2] -= Evaluate(quadric.Coefficients, quadric.Degree, l[0], l[1]);
+  }
+  std::vector<double> differences(static_cast<size_t>(m));
+  for (int j = 0; j < m; ++j)
+  {
+    const double* a = &uvr[3 * static_cast<size_t>(j)];
+    double best = std::numeric_limits<double>::infinity();
+    double difference = 0.0;
+    for (int o = 0; o < m; ++o)
+    {
+      const double* b = &uvr[3 * static_cast<size_t>(o)];
+      const double d2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]);
+      if (o != j && d2 < best)
+      {
+        best = d2;
+        difference = std::abs(a[2] - b[2]);
+      }
+    }
+    differences[static_cast<size_t>(j)] = difference;
+  }
+  std::nth_element(differences.begin(), differences.begin() + m / 2, differences.end());
+  return 1.4826 / std::sqrt(2.0) * differences[static_cast<size_t>(m / 2)] * frame.Scale;
 }
 
 namespace

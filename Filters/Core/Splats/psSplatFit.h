@@ -128,6 +128,20 @@ POINTSURFACESFILTERS_EXPORT double LocalSpacing(const double q[3],
   int k = SpacingNeighbors);
 
 /**
+ * The uncorrelated part of a neighbourhood's noise: the points' residuals
+ * about their unweighted quadric in `frame` (first `k` points), each minus
+ * that of its nearest neighbour in the plane; 1.4826 / sqrt(2) times the
+ * median of their magnitudes. Relief that the quadric cannot follow varies
+ * little from a point to its nearest neighbour and drops out (unlike in
+ * NoiseScale, which counts it as noise on a sparse sample); a sensor's
+ * noise does not. 0 when fewer than 10 points or the fit fails.
+ */
+POINTSURFACESFILTERS_EXPORT double UncorrelatedNoiseScale(const double* nbrs,
+  int n,
+  const LocalFrame& frame,
+  int k);
+
+/**
  * Robust noise scale of a neighbourhood: 1.4826 times the median distance of
  * its first `k` points to their unweighted quadric in `frame` (whose Scale,
  * h, normalises the fit), times sqrt(k / (k - 6)) for the quadric's six
