@@ -311,7 +311,7 @@ public:
    * its nearest neighbour (psSplatFit.h UncorrelatedNoiseScale), so that
    * relief a sparse sample cannot resolve does not count. A fit narrower than
    * the noise follows it; on a sample denser than its noise the splat count
-   * then stops growing with the sampling (Lucy resampled with noise: 1.14
+   * then stops growing with the sampling (Lucy resampled with noise: 1.18
    * times from 1M to 4M points instead of 1.51, docs/results.md). 0: the
    * first fit at the k-nearest h. Default 12.
    */
@@ -328,9 +328,11 @@ public:
    * measured noise) is kept: large splats where the surface is smooth, small
    * ones in folds and at thin parts. On dense, noisy scans far fewer splats
    * and a better picture; on sparse, clean ones a lower score (see
-   * docs/results.md, "Splat density and noise"). Each doubling costs a fit on four times the points for the
-   * splats it is tried on, and widens the parallel selection's slabs as
-   * much. Default 1: one scale, h from FeatureSizeNeighbors.
+   * docs/results.md, "Splat density and noise"). Each doubling searches
+   * four times the neighbours for the splats it is tried on (the fit itself
+   * takes at most 8 times NumberOfNeighbors of them, evenly by distance),
+   * and widens the parallel selection's slabs as much. Default 1: one
+   * scale, h from FeatureSizeNeighbors.
    */
   vtkSetClampMacro(MaximumFeatureScale, double, 1.0, 64.0);
   vtkGetMacro(MaximumFeatureScale, double);

@@ -41,6 +41,10 @@ constexpr double WholeDisc = 0.9;
 // points, masked SSIM 0.898 against 0.931 at one scale; 10 degrees gave
 // 0.918, 5 degrees 0.928, 3 degrees 0.933 with 14 % fewer splats only).
 constexpr double WidenDistance = 0.5;
+// A wide fit is made on at most this many times NumberOfNeighbors of its
+// neighbours, the nearest WideFitNearest of them whole (see BuildAt).
+constexpr int WideFitNeighbors = 8;
+constexpr int WideFitNearest = 16;
 constexpr double WidenAngle = 5.0;
 
 // The point of `s`'s patch over p (along the splat's normal) and the
@@ -378,7 +382,8 @@ private:
     const SplatFitParameters& local,
     const std::vector<int>& ids,
     const std::vector<double>& d2,
-    const std::vector<double>& coords,
+    const double* fitCoords,
+    int fitCount,
     std::vector<double>& w);
   // The selection's CoverFunction: the points chosen point i covers at s.
   void CoverOf(long long i, double s, std::vector<int>& out) const;
@@ -755,11 +760,34 @@ std::unique_ptr<BuiltSplat> SplatBuild::BuildAt(long long i,
   const std::vector<double>& coords,
   std::vector<double>& w)
 {
+  // A wide fit (Widen, FeatureNoiseFactor) on every one of its k m^2
+  // neighbours cost most of the fit time; its patch is as well determined
+  // by WideFitNeighbors times k of them: the nearest WideFitNearest whole
+  // (the spacing comes from them), then evenly picked by distance.
+  thread_local std::vector<double> thinned;
+  const double* fitCoords = coords.data();
+  int fitCount = static_cast<int>(ids.size());
+  SplatFitParameters fitted = local;
+  const int used = std::min(fitCount, local.NumberOfNeighbors);
+  const int most = WideFitNeighbors * fit.NumberOfNeighbors;
+  if (!params.KeepWeights && used > most && most > WideFitNearest)
+  {
+    thinned.assign(coords.begin(), coords.begin() + 3 * WideFitNearest);
+    const double stride = static_cast<double>(used - WideFitNearest) / (most - WideFitNearest);
+    for (int k = 0; k < most - WideFitNearest; ++k)
+    {
+      const size_t j = static_cast<size_t>(WideFitNearest + k * stride);
+      thinned.insert(thinned.end(), coords.begin() + 3 * j, coords.begin() + 3 * j + 3);
+    }
+    fitCoords = thinned.data();
+    fitCount = most;
+    fitted.NumberOfNeighbors = most;
+  }
   auto b = std::make_unique<BuiltSplat>();
   b->Fitted = FitSplat(index.Point(i),
-    coords.data(),
-    static_cast<int>(ids.size()),
-    local,
+    fitCoords,
+    fitCount,
+    fitted,
     normals ? normals + 3 * i : nullptr,
     params.KeepWeights ? &w : nullptr,
     &c.Plane);
@@ -779,7 +807,7 @@ std::unique_ptr<BuiltSplat> SplatBuild::BuildAt(long long i,
     b->Weights.assign(w.begin(), w.end());
   }
   this->Bound(*b, local.MaximumDeviation, &c.Cover, &c.Rho, &ids, &d2, index.Point(i));
-  this->NarrowRefit(i, c, b, local, ids, d2, coords, w);
+  this->NarrowRefit(i, c, b, fitted, ids, d2, fitCoords, fitCount, w);
   return b;
 }
 
@@ -858,7 +886,8 @@ void SplatBuild::NarrowRefit(long long i,
   const SplatFitParameters& local,
   const std::vector<int>& ids,
   const std::vector<double>& d2,
-  const std::vector<double>& coords,
+  const double* fitCoords,
+  int fitCount,
   std::vector<double>& w)
 {
   // Where the surface bent away well inside the disc, the patch averaged
@@ -878,8 +907,8 @@ void SplatBuild::NarrowRefit(long long i,
     narrow.WeightScale *= narrowScale;
     auto n2 = std::make_unique<BuiltSplat>(*b);
     n2->Fitted = FitSplat(index.Point(i),
-      coords.data(),
-      static_cast<int>(ids.size()),
+      fitCoords,
+      fitCount,
       narrow,
       normals ? normals + 3 * i : nullptr,
       params.KeepWeights ? &w : nullptr,
