@@ -22,6 +22,9 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSplatDataModel.h"
+#include "vtkStringArray.h"
+
+#include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
 #include <cmath>
@@ -262,6 +265,10 @@ int vtkSplatFileReader::RequestData(vtkInformation*,
   AddCount(fd, "SplatFileSplats", this->NumberOfSplats);
   AddCount(fd, "SplatFileLoadedSplats", this->NumberOfLoadedSplats);
   AddCount(fd, "SplatInputPoints", info.InputPoints);
+  vtkNew<vtkStringArray> path;
+  path->SetName(FileNameArrayName());
+  path->InsertNextValue(vtksys::SystemTools::CollapseFullPath(this->FileName));
+  fd->AddArray(path);
   return 1;
 }
 

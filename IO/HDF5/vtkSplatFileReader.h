@@ -23,7 +23,9 @@
  * octree (the mapper culls and refines within what was loaded), the
  * file's attributes as float point arrays, and field data saying what was
  * loaded (SplatFilePages, SplatFileLoadedPages, SplatFileSplats,
- * SplatFileLoadedSplats). A camera move re-executes the reader only when
+ * SplatFileLoadedSplats) and the file's absolute path (SplatFileName,
+ * FileNameArrayName(): ParaView's Streaming Splats representation draws
+ * the file itself from it, each view's pages). A camera move re-executes the reader only when
  * a Camera is set (its MTime counts).
  *
  * A missing, truncated, damaged, foreign or unfinished file gives one
@@ -108,6 +110,9 @@ public:
   vtkGetMacro(CheckInChildProcess, vtkTypeBool);
   vtkBooleanMacro(CheckInChildProcess, vtkTypeBool);
   ///@}
+
+  /** "SplatFileName": the output's field array with the file's absolute path. */
+  static const char* FileNameArrayName() { return "SplatFileName"; }
 
   /** True when the file opens as a splat file. */
   static bool CanReadFile(const char* fileName);

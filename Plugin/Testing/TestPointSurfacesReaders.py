@@ -10,7 +10,10 @@ as Metaballs with the defaults (pvbatch).
   `confout.gro`, `traj_comp.xtc`, `snapshot_000.hdf5`, `snap_000.0.hdf5`,
   `output_0000.hdf5`, `points.vdb` and `cloud.off` (copies of the test data
   under those names, and a lattice of points written here), and
-  `sphere.psplat`, a splat file the Streaming Splat Fitter writes here;
+  `sphere.psplat`, a splat file the Streaming Splat Fitter writes here,
+  which shows as Streaming Splats (the file drawn as the view needs it,
+  however little the reader loaded) matching the whole file drawn as
+  Algebraic Splats, within a GPU budget, and asynchronously;
 - a .vdb on which OpenVDB aborts reads as empty (in the reader's child
   process) and the session goes on;
 - each reader's output, shown as Metaballs with no property touched (the
@@ -160,26 +163,128 @@ check(opened["points.vdb"].GetDataInformation().GetNumberOfPoints() > 0,
       "a good .vdb reads after the damaged one")
 
 # The Streaming Splat Fitter writes a splat file, which File > Open opens
-# with the Splat File Reader (serial: two ranks would write one file twice).
-if not mpi:
-    sphere = Sphere(ThetaResolution=160, PhiResolution=160)
-    streamed = StreamingSplatFitter(Input=sphere)
-    streamed.FileName = os.path.join(named, "sphere.psplat")
-    streamed.NumberOfPieces = 3
-    streamed.ChunkPoints = 5000
-    streamed.UpdatePipeline()
-    written = streamed.GetDataInformation().GetNumberOfPoints()
-    check(written > 100, "the Streaming Splat Fitter writes a splat file (%d splats)" % written)
-    splat_file = OpenDataFile(os.path.join(named, "sphere.psplat"))
-    got = splat_file.GetXMLName() if splat_file is not None else None
-    check(got == "SplatFileReader", "sphere.psplat opens with SplatFileReader (%s)" % got)
-    if splat_file is not None:
-        splat_file.UpdatePipeline()
+# with the Splat File Reader and shows as Streaming Splats: the file itself,
+# drawn as the view needs it, whatever the reader loaded. Under MPI each rank
+# writes a file of its own (one file written twice at once would be damaged)
+# and both open rank 0's; rank 0 draws it for both.
+controller = servermanager.vtkProcessModule.GetProcessModule().GetGlobalController()
+sphere = Sphere(ThetaResolution=160, PhiResolution=160)
+streamed = StreamingSplatFitter(Input=sphere)
+streamed.FileName = os.path.join(named, "sphere-%d.psplat" % RANK if mpi else "sphere.psplat")
+streamed.NumberOfPieces = 3
+streamed.ChunkPoints = 5000
+streamed.PageSize = 256  # many pages, so that a budget can hold some of them
+streamed.UpdatePipeline()
+written = streamed.GetDataInformation().GetNumberOfPoints()
+check(written > 100, "the Streaming Splat Fitter writes a splat file (%d splats)" % written)
+Delete(streamed)
+Delete(sphere)
+if mpi:
+    controller.Barrier()
+splat_path = os.path.join(named, "sphere-0.psplat" if mpi else "sphere.psplat")
+splat_file = OpenDataFile(splat_path)
+got = splat_file.GetXMLName() if splat_file is not None else None
+check(got == "SplatFileReader", "sphere.psplat opens with SplatFileReader (%s)" % got)
+
+
+def streaming_picture(display, label, near=1.0):
+    """The whole sphere (or `near` times as far: part of it) as `display` draws it; rank 0's pixels."""
+    view.CameraFocalPoint = [0, 0, 0]
+    view.CameraPosition = [1.8 * near, -2.4 * near, 1.6 * near]
+    view.CameraViewUp = [0, 0, 1]
+    view.CameraViewAngle = 30
+    path = os.path.join(out, label + (".mpi" if mpi else "") + ".png")
+    SaveScreenshot(path, view, ImageResolution=SIZE)
+    if RANK != 0:
+        return None
+    return pixels(path)[1]
+
+
+if splat_file is not None:
+    splat_file.UpdatePipeline()
+    if not mpi:
         check(splat_file.GetDataInformation().GetNumberOfPoints() == written,
               "the splat file reads back its %d splats" % written)
-        Delete(splat_file)
-    Delete(streamed)
-    Delete(sphere)
+    # The whole file as Algebraic Splats of the reader's output: the reference.
+    splat_file.MemoryBudget = 0
+    whole = Show(splat_file, view)
+    check(whole.Representation == "Streaming Splats",
+          "a splat file shows as Streaming Splats by default (%s)" % whole.Representation)
+    whole.SetRepresentationType("Algebraic Splats")
+    Render(view)
+    reference = streaming_picture(whole, "SplatFileWhole")
+    Hide(splat_file, view)
+
+    # The reader loads almost nothing; Streaming Splats still draw the file.
+    splat_file.MemoryBudget = 0.01
+    splat_file.UpdatePipeline()
+    loaded = splat_file.GetDataInformation().GetNumberOfPoints()
+    stream = Show(splat_file, view)
+    stream.SetRepresentationType("Streaming Splats")
+    stream.SplatStreamingAsynchronous = 0
+    Render(view)
+    picture = streaming_picture(stream, "SplatFileStreamed")
+    stream.UpdatePropertyInformation()
+    resident = stream.GetPropertyValue("SplatStreamingResidentSplats")
+    check(loaded < written // 10, "the reader's output within 0.01 MB: %d of %d splats" % (loaded, written))
+    if RANK == 0:
+        check(stream.GetPropertyValue("SplatStreamingFileSplats") == written and resident == written,
+              "Streaming Splats draw the file's %d splats (%d in memory)" % (written, resident))
+        background = [round(255 * c) for c in view.Background]
+        covered = (abs(picture - background).max(axis=1) > 12).mean()
+        same = (abs(picture - reference).max(axis=1) > 40).mean()
+        check(covered > 0.1 and same < 0.001,
+              "Streaming Splats cover %.1f %% of the view and match the whole file drawn as "
+              "Algebraic Splats but for %.3f %% of the pixels" % (100 * covered, 100 * same))
+
+    # Close up, the pages out of the view are neither read nor drawn.
+    picture = streaming_picture(stream, "SplatFileStreamedNear", near=0.3)
+    stream.UpdatePropertyInformation()
+    near = stream.GetPropertyValue("SplatStreamingWantedSplats")
+    if RANK == 0:
+        check(0 < near < written * 0.8,
+              "close up, the view wants %d of the %d splats (the pages in view)" % (near, written))
+
+    # A budget for about a fifth of the file: nearest pages first, fewer drawn.
+    stream.SplatStreamingBudget = 0.1
+    Render(view)
+    stream.UpdatePropertyInformation()
+    part = stream.GetPropertyValue("SplatStreamingResidentSplats")
+    if RANK == 0:
+        check(0 < part < written // 2,
+              "within 0.1 MB of GPU buffers: %d of the %d splats in memory" % (part, written))
+
+    # Asynchronous: renders return at once and draw what has arrived; the
+    # pages come within a few renders. Every rank must render as often
+    # (under --symmetric a render is collective), and only rank 0 loads:
+    # the ranks go on while any of them is loading.
+    stream.SplatStreamingBudget = 512
+    stream.SplatStreamingAsynchronous = 1
+    renders = 0
+    import time
+    from vtkmodules.vtkCommonCore import vtkIntArray
+    from vtkmodules.vtkParallelCore import vtkCommunicator
+    for renders in range(1, 201):
+        Render(view)
+        stream.UpdatePropertyInformation()
+        loading = vtkIntArray()
+        loading.InsertNextValue(stream.GetPropertyValue("SplatStreamingLoading"))
+        if mpi:
+            anywhere = vtkIntArray()
+            controller.AllReduce(loading, anywhere, vtkCommunicator.MAX_OP)
+            loading = anywhere
+        if not loading.GetValue(0):
+            break
+        time.sleep(0.02)
+    resident = stream.GetPropertyValue("SplatStreamingResidentSplats")
+    wanted = stream.GetPropertyValue("SplatStreamingWantedSplats")
+    loading = stream.GetPropertyValue("SplatStreamingLoading")
+    if RANK == 0:
+        check(not loading and resident >= wanted == near,
+              "Asynchronous: the %d splats the close view wants are in memory after %d renders "
+              "(%d in all)" % (wanted, renders, resident))
+    Hide(splat_file, view)
+    Delete(splat_file)
 
 if RANK == 0:
     print("TestPointSurfacesReaders: %d failure(s)" % len(check.failures), flush=True)

@@ -17,7 +17,7 @@ vtkAlgebraicSplatRepresentation::vtkAlgebraicSplatRepresentation()
   vtkMapper** slots[2] = { &this->Mapper, &this->LODMapper };
   for (int k = 0; k < 2; ++k)
   {
-    this->Splats[k] = vtkAlgebraicSplatMapper::New();
+    this->Splats.push_back(vtkSmartPointer<vtkAlgebraicSplatMapper>::New());
     vtkPointSurfacesDelegatingMapper* mapper = vtkPointSurfacesDelegatingMapper::New();
     mapper->SetDelegate(this->Splats[k]);
     *slots[k] = mapper;
@@ -27,12 +27,17 @@ vtkAlgebraicSplatRepresentation::vtkAlgebraicSplatRepresentation()
 }
 
 //------------------------------------------------------------------------------
-vtkAlgebraicSplatRepresentation::~vtkAlgebraicSplatRepresentation()
+vtkAlgebraicSplatRepresentation::~vtkAlgebraicSplatRepresentation() = default;
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatRepresentation::SetMainMapper(vtkPointSurfacesDelegatingMapper* mapper)
 {
-  for (vtkAlgebraicSplatMapper* splats : this->Splats)
-  {
-    splats->Delete();
-  }
+  mapper->SetDelegate(this->Splats[0]);
+  mapper->Register(this);
+  this->Mapper->Delete();
+  this->Mapper = mapper;
+  this->SetupDefaults();
+  this->Superclass::SetSuppressLOD(true);
 }
 
 #define PS_FORWARD(name, type)                                                                     \

@@ -19,8 +19,12 @@
 
 #include "PointSurfacesParaViewRepresentationsModule.h" // For export macro
 #include "vtkGeometryRepresentationWithFaces.h"
+#include "vtkSmartPointer.h" // For the mappers
+
+#include <vector> // For the mappers
 
 class vtkAlgebraicSplatMapper;
+class vtkPointSurfacesDelegatingMapper;
 
 class POINTSURFACESPARAVIEWREPRESENTATIONS_EXPORT vtkAlgebraicSplatRepresentation
   : public vtkGeometryRepresentationWithFaces
@@ -31,7 +35,7 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /** Forwarded to both splat mappers; see vtkAlgebraicSplatMapper. */
+  /** Forwarded to every splat mapper; see vtkAlgebraicSplatMapper. */
   void SetSplatBlending(bool on);
   void SetSplatBlendDepthOffset(double offset);
   void SetSplatBlendSharpness(double sharpness);
@@ -62,7 +66,14 @@ protected:
   vtkAlgebraicSplatRepresentation();
   ~vtkAlgebraicSplatRepresentation() override;
 
-  vtkAlgebraicSplatMapper* Splats[2];
+  /**
+   * Put `mapper` in the main mapper's place (a subclass's delegating mapper),
+   * drawing through the first splat mapper, and wire it to the actor.
+   */
+  void SetMainMapper(vtkPointSurfacesDelegatingMapper* mapper);
+
+  /** The splat mappers the knobs go to: the main one's and the LOD's first. */
+  std::vector<vtkSmartPointer<vtkAlgebraicSplatMapper>> Splats;
 
 private:
   vtkAlgebraicSplatRepresentation(const vtkAlgebraicSplatRepresentation&) = delete;

@@ -1,0 +1,93 @@
+// SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkStreamingSplatRepresentation.h"
+
+#include "vtkInformation.h"
+#include "vtkMultiProcessController.h"
+#include "vtkObjectFactory.h"
+#include "vtkPVRenderView.h"
+#include "vtkSplatFileDelegatingMapper.h"
+#include "vtkStreamingSplatMapper.h"
+
+vtkStandardNewMacro(vtkStreamingSplatRepresentation);
+
+//------------------------------------------------------------------------------
+vtkStreamingSplatRepresentation::vtkStreamingSplatRepresentation()
+  : FileMapper(vtkSplatFileDelegatingMapper::New())
+{
+  this->SetMainMapper(this->FileMapper);
+  this->FileMapper->Delete(); // the representation's Mapper holds it
+  this->Splats.push_back(this->FileMapper->GetStream());
+}
+
+vtkStreamingSplatRepresentation::~vtkStreamingSplatRepresentation() = default;
+
+//------------------------------------------------------------------------------
+void vtkStreamingSplatRepresentation::SetSplatStreamingBudget(double megabytes)
+{
+  this->FileMapper->GetStream()->SetMemoryBudget(megabytes);
+  this->Modified();
+}
+
+void vtkStreamingSplatRepresentation::SetSplatStreamingAsynchronous(bool on)
+{
+  this->FileMapper->GetStream()->SetAsynchronous(on);
+  this->Modified();
+}
+
+//------------------------------------------------------------------------------
+vtkIdType vtkStreamingSplatRepresentation::GetSplatStreamingFileSplats()
+{
+  return this->FileMapper->GetFileDrawn().empty()
+    ? 0
+    : this->FileMapper->GetStream()->GetNumberOfSplats();
+}
+
+vtkIdType vtkStreamingSplatRepresentation::GetSplatStreamingResidentSplats()
+{
+  return this->FileMapper->GetFileDrawn().empty()
+    ? 0
+    : this->FileMapper->GetStream()->GetNumberOfResidentSplats();
+}
+
+vtkIdType vtkStreamingSplatRepresentation::GetSplatStreamingWantedSplats()
+{
+  return this->FileMapper->GetFileDrawn().empty()
+    ? 0
+    : this->FileMapper->GetStream()->GetNumberOfWantedSplats();
+}
+
+int vtkStreamingSplatRepresentation::GetSplatStreamingLoading()
+{
+  return !this->FileMapper->GetFileDrawn().empty() && this->FileMapper->GetStream()->GetLoading();
+}
+
+//------------------------------------------------------------------------------
+int vtkStreamingSplatRepresentation::ProcessViewRequest(vtkInformationRequestKey* request_type,
+  vtkInformation* inInfo,
+  vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request_type, inInfo, outInfo))
+  {
+    return 0;
+  }
+  if (request_type == vtkPVView::REQUEST_RENDER())
+  {
+    // Composited by depth, piece by piece: one rank draws the whole file.
+    auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
+    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+    const int rank = controller ? controller->GetLocalProcessId() : 0;
+    const bool piecewise = view ? view->GetUseDistributedRenderingForRender() &&
+        !view->InTileDisplayMode() && !view->InCaveDisplayMode()
+                                : controller && controller->GetNumberOfProcesses() > 1;
+    this->FileMapper->SetDrawsFile(!piecewise || rank == 0);
+  }
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkStreamingSplatRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  this->FileMapper->PrintSelf(os, indent.GetNextIndent());
+}
