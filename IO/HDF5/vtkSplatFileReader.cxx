@@ -265,6 +265,14 @@ int vtkSplatFileReader::RequestData(vtkInformation*,
   AddCount(fd, "SplatFileSplats", this->NumberOfSplats);
   AddCount(fd, "SplatFileLoadedSplats", this->NumberOfLoadedSplats);
   AddCount(fd, "SplatInputPoints", info.InputPoints);
+  if (!info.Pages.Tree.Nodes.empty())
+  {
+    vtkNew<vtkDoubleArray> bounds;
+    bounds->SetName(FileBoundsArrayName());
+    bounds->SetNumberOfComponents(6);
+    bounds->InsertNextTuple(info.Pages.Tree.Nodes[0].Bounds);
+    fd->AddArray(bounds);
+  }
   vtkNew<vtkStringArray> path;
   path->SetName(FileNameArrayName());
   path->InsertNextValue(vtksys::SystemTools::CollapseFullPath(this->FileName));

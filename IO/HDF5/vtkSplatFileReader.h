@@ -23,9 +23,9 @@
  * octree (the mapper culls and refines within what was loaded), the
  * file's attributes as float point arrays, and field data saying what was
  * loaded (SplatFilePages, SplatFileLoadedPages, SplatFileSplats,
- * SplatFileLoadedSplats) and the file's absolute path (SplatFileName,
- * FileNameArrayName(): ParaView's Streaming Splats representation draws
- * the file itself from it, each view's pages). A camera move re-executes the reader only when
+ * SplatFileLoadedSplats), the file's absolute path and bounds
+ * (SplatFileName, SplatFileBounds: ParaView's Streaming Splats
+ * representation draws the file itself from them, each view's pages). A camera move re-executes the reader only when
  * a Camera is set (its MTime counts).
  *
  * A missing, truncated, damaged, foreign or unfinished file gives one
@@ -111,8 +111,15 @@ public:
   vtkBooleanMacro(CheckInChildProcess, vtkTypeBool);
   ///@}
 
-  /** "SplatFileName": the output's field array with the file's absolute path. */
+  ///@{
+  /**
+   * The output's field arrays with the file's absolute path
+   * ("SplatFileName") and its bounds, discs included ("SplatFileBounds",
+   * one tuple of 6), whatever was loaded.
+   */
   static const char* FileNameArrayName() { return "SplatFileName"; }
+  static const char* FileBoundsArrayName() { return "SplatFileBounds"; }
+  ///@}
 
   /** True when the file opens as a splat file. */
   static bool CanReadFile(const char* fileName);

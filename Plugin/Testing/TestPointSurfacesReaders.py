@@ -162,6 +162,10 @@ opened["points.vdb"].UpdatePipeline()
 check(opened["points.vdb"].GetDataInformation().GetNumberOfPoints() > 0,
       "a good .vdb reads after the damaged one")
 
+import time  # noqa: E402
+from vtkmodules.vtkCommonCore import vtkIdTypeArray, vtkIntArray  # noqa: E402
+from vtkmodules.vtkParallelCore import vtkCommunicator  # noqa: E402
+
 # The Streaming Splat Fitter writes a splat file, which File > Open opens
 # with the Splat File Reader and shows as Streaming Splats: the file itself,
 # drawn as the view needs it, whatever the reader loaded. Under MPI each rank
@@ -219,9 +223,8 @@ if splat_file is not None:
     splat_file.MemoryBudget = 0.01
     splat_file.UpdatePipeline()
     loaded = splat_file.GetDataInformation().GetNumberOfPoints()
-    stream = Show(splat_file, view)
-    stream.SetRepresentationType("Streaming Splats")
-    stream.SplatStreamingAsynchronous = 0
+    stream = Show(splat_file, view)  # the display of the reference: back to Streaming Splats
+    stream.SetRepresentationType("Streaming Splats")  # asynchronous; in pvbatch each render waits
     Render(view)
     picture = streaming_picture(stream, "SplatFileStreamed")
     stream.UpdatePropertyInformation()
@@ -237,13 +240,29 @@ if splat_file is not None:
               "Streaming Splats cover %.1f %% of the view and match the whole file drawn as "
               "Algebraic Splats but for %.3f %% of the pixels" % (100 * covered, 100 * same))
 
-    # Close up, the pages out of the view are neither read nor drawn.
-    picture = streaming_picture(stream, "SplatFileStreamedNear", near=0.3)
-    stream.UpdatePropertyInformation()
-    near = stream.GetPropertyValue("SplatStreamingWantedSplats")
+    # Where ranks composite by depth, only rank 0 draws the file.
+    if mpi:
+        elsewhere, most = vtkIdTypeArray(), vtkIdTypeArray()
+        elsewhere.InsertNextValue(0 if RANK == 0 else resident)
+        controller.AllReduce(elsewhere, most, vtkCommunicator.MAX_OP)
+        check(most.GetValue(0) == 0, "over two ranks, rank 1 holds %d splats of the file (rank 0 "
+              "draws it)" % most.GetValue(0))
+
+    # Opened afresh and seen close up, only the pages in view are read.
+    Hide(splat_file, view)
+    near_file = OpenDataFile(splat_path)
+    near_display = Show(near_file, view)
+    streaming_picture(near_display, "SplatFileStreamedNear", near=0.3)
+    near_display.UpdatePropertyInformation()
+    near = near_display.GetPropertyValue("SplatStreamingWantedSplats")
+    near_resident = near_display.GetPropertyValue("SplatStreamingResidentSplats")
     if RANK == 0:
-        check(0 < near < written * 0.8,
-              "close up, the view wants %d of the %d splats (the pages in view)" % (near, written))
+        check(0 < near < written * 0.8 and near_resident == near,
+              "close up, the view wants %d of the %d splats (the pages in view), %d read"
+              % (near, written, near_resident))
+    Hide(near_file, view)
+    Delete(near_file)
+    stream = Show(splat_file, view)
 
     # A budget for about a fifth of the file: nearest pages first, fewer drawn.
     stream.SplatStreamingBudget = 0.1
@@ -259,11 +278,9 @@ if splat_file is not None:
     # (under --symmetric a render is collective), and only rank 0 loads:
     # the ranks go on while any of them is loading.
     stream.SplatStreamingBudget = 512
-    stream.SplatStreamingAsynchronous = 1
+    stream.SplatStreamingBatchWait = 0  # as the GUI: renders never wait
+    view.CameraPosition = [0.54, -0.72, 0.48]
     renders = 0
-    import time
-    from vtkmodules.vtkCommonCore import vtkIntArray
-    from vtkmodules.vtkParallelCore import vtkCommunicator
     for renders in range(1, 201):
         Render(view)
         stream.UpdatePropertyInformation()

@@ -452,6 +452,10 @@ void vtkStreamingSplatMapper::RenderPages(vtkRenderer* ren, vtkActor* act)
   {
     cache.Wait();
   }
+  else if (this->RenderWait > 0.0)
+  {
+    cache.Wait(this->RenderWait);
+  }
   const std::string error = cache.TakeError();
   if (!error.empty())
   {
@@ -487,6 +491,7 @@ void vtkStreamingSplatMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "MemoryBudget: " << this->MemoryBudget << " MB\n";
   os << indent << "Asynchronous: " << this->Asynchronous << "\n";
+  os << indent << "RenderWait: " << this->RenderWait << " s\n";
   os << indent << "RenderWhileLoading: " << this->RenderWhileLoading << " (every "
      << this->LoadingRenderInterval << " ms)\n";
   os << indent << "NumberOfSplats: " << this->NumberOfSplats << "\n";

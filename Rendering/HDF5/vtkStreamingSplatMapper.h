@@ -111,6 +111,18 @@ public:
   vtkGetMacro(LoadingRenderInterval, int);
   ///@}
 
+  ///@{
+  /**
+   * With Asynchronous, the most seconds each render waits for the pages its
+   * view wants before it draws. Default 0: a render never waits. Set it
+   * where nothing will render again while pages load (a batch job, a
+   * server), so that each picture is whole; ParaView's Streaming Splats do
+   * so outside the GUI.
+   */
+  vtkSetClampMacro(RenderWait, double, 0.0, 1e6);
+  vtkGetMacro(RenderWait, double);
+  ///@}
+
   /**
    * True while pages the last rendered view wants are still being read, or
    * were read after that render: render again for them.
@@ -165,6 +177,7 @@ protected:
   bool Asynchronous = true;
   bool RenderWhileLoading = true;
   int LoadingRenderInterval = 100;
+  double RenderWait = 0.0;
   vtkIdType NumberOfSplats = 0;
   vtkIdType NumberOfResidentSplats = 0;
   vtkIdType NumberOfWantedSplats = 0;

@@ -6,7 +6,6 @@
 #include "vtkMetaballField.h"
 #include "vtkMetaballGhostBalls.h"
 #include "vtkMetaballMapper.h"
-#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVRenderView.h"
 #include "vtkPointSurfacesDelegatingMapper.h"
@@ -73,11 +72,7 @@ int vtkMetaballRepresentation::ProcessViewRequest(vtkInformationRequestKey* requ
     // Ghosts belong where each rank renders its own piece; anywhere else
     // (data gathered to a client, tile and CAVE displays) they would count
     // beside their owners.
-    auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
-    vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-    const bool piecewise = view ? view->GetUseDistributedRenderingForRender() &&
-        !view->InTileDisplayMode() && !view->InCaveDisplayMode()
-                                : controller && controller->GetNumberOfProcesses() > 1;
+    const bool piecewise = vtkPointSurfacesDelegatingMapper::RendersPiecewise(inInfo);
     for (vtkMapper* mapper : { this->Mapper, this->LODMapper })
     {
       if (auto* delegating = vtkPointSurfacesDelegatingMapper::SafeDownCast(mapper))

@@ -10,7 +10,9 @@
 #include "vtkInformation.h"
 #include "vtkMath.h"
 #include "vtkMetaballGhostBalls.h"
+#include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
+#include "vtkPVRenderView.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPolyData.h"
@@ -162,6 +164,17 @@ vtkDataObject* vtkPointSurfacesDelegatingMapper::Flatten()
   }
   this->FlatTime.Modified();
   return this->Flat;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPointSurfacesDelegatingMapper::RendersPiecewise(vtkInformation* viewRequest)
+{
+  auto* view =
+    viewRequest ? vtkPVRenderView::SafeDownCast(viewRequest->Get(vtkPVView::VIEW())) : nullptr;
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  return view ? view->GetUseDistributedRenderingForRender() && !view->InTileDisplayMode() &&
+      !view->InCaveDisplayMode()
+              : controller && controller->GetNumberOfProcesses() > 1;
 }
 
 //------------------------------------------------------------------------------

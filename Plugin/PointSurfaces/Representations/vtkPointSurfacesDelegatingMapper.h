@@ -24,6 +24,7 @@
 #include "vtkTimeStamp.h"    // For the flattening time
 
 class vtkDataObject;
+class vtkInformation;
 class vtkMetaballGhostBalls;
 
 class POINTSURFACESPARAVIEWREPRESENTATIONS_EXPORT vtkPointSurfacesDelegatingMapper
@@ -49,6 +50,15 @@ public:
   void SetSkipDuplicatePoints(bool skip);
   bool GetSkipDuplicatePoints() { return this->SkipDuplicatePoints; }
   ///@}
+
+  /**
+   * Whether each rank renders its own piece and the images are composited
+   * by depth, for the view of a REQUEST_RENDER pass (`viewRequest`, the
+   * inInfo of vtkPVDataRepresentation::ProcessViewRequest): data gathered
+   * to one process, and tile and CAVE displays, are not. Without a view,
+   * whether there are several processes.
+   */
+  static bool RendersPiecewise(vtkInformation* viewRequest);
 
   void Render(vtkRenderer* ren, vtkActor* act) override;
   double* GetBounds() override;

@@ -4,10 +4,14 @@
 
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
+#include "vtkDataArray.h"
 #include "vtkDataSet.h"
 #include "vtkFieldData.h"
 #include "vtkMath.h"
 #include "vtkObjectFactory.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderWindowInteractor.h"
+#include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkSplatFileReader.h"
 #include "vtkStreamingSplatMapper.h"
@@ -19,16 +23,22 @@ vtkStandardNewMacro(vtkSplatFileDelegatingMapper);
 
 namespace
 {
-// The file name in the field data of `data` or of its first leaf that has one.
-std::string FileNameOf(vtkDataObject* data)
+// The field array `name` of `data`, or of the first leaf that has it; and
+// the points of `data` (all its leaves).
+vtkAbstractArray* FindField(vtkDataObject* data, const char* name, vtkIdType& points)
 {
-  const char* name = vtkSplatFileReader::FileNameArrayName();
-  auto fromField = [name](vtkDataObject* object) -> std::string
+  points = 0;
+  vtkAbstractArray* found = nullptr;
+  auto visit = [&](vtkDataObject* object)
   {
-    auto* array = object
-      ? vtkStringArray::SafeDownCast(object->GetFieldData()->GetAbstractArray(name))
-      : nullptr;
-    return array && array->GetNumberOfValues() > 0 ? array->GetValue(0) : std::string();
+    if (auto* set = vtkDataSet::SafeDownCast(object))
+    {
+      points += set->GetNumberOfPoints();
+    }
+    if (!found && object)
+    {
+      found = object->GetFieldData()->GetAbstractArray(name);
+    }
   };
   if (auto* composite = vtkCompositeDataSet::SafeDownCast(data))
   {
@@ -36,17 +46,45 @@ std::string FileNameOf(vtkDataObject* data)
     it.TakeReference(composite->NewIterator());
     for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
     {
-      std::string file = fromField(it->GetCurrentDataObject());
-      if (!file.empty())
-      {
-        return file;
-      }
+      visit(it->GetCurrentDataObject());
     }
-    return std::string();
   }
-  return fromField(data);
+  else
+  {
+    visit(data);
+  }
+  return found;
 }
 } // namespace
+
+//------------------------------------------------------------------------------
+std::string vtkSplatFileDelegatingMapper::SplatFileOf(vtkDataObject* data)
+{
+  vtkIdType points = 0;
+  auto* name =
+    vtkStringArray::SafeDownCast(FindField(data, vtkSplatFileReader::FileNameArrayName(), points));
+  auto* loaded = vtkDataArray::SafeDownCast(FindField(data, "SplatFileLoadedSplats", points));
+  if (!name || name->GetNumberOfValues() < 1 || !loaded || loaded->GetNumberOfTuples() < 1 ||
+    static_cast<vtkIdType>(loaded->GetComponent(0, 0)) != points)
+  {
+    return std::string();
+  }
+  return name->GetValue(0);
+}
+
+bool vtkSplatFileDelegatingMapper::SplatFileBoundsOf(vtkDataObject* data, double bounds[6])
+{
+  vtkIdType points = 0;
+  auto* array =
+    vtkDataArray::SafeDownCast(FindField(data, vtkSplatFileReader::FileBoundsArrayName(), points));
+  if (SplatFileOf(data).empty() || !array || array->GetNumberOfTuples() < 1 ||
+    array->GetNumberOfComponents() != 6)
+  {
+    return false;
+  }
+  array->GetTuple(0, bounds);
+  return true;
+}
 
 //------------------------------------------------------------------------------
 vtkSplatFileDelegatingMapper::vtkSplatFileDelegatingMapper()
@@ -62,10 +100,19 @@ vtkSplatFileDelegatingMapper::~vtkSplatFileDelegatingMapper()
 //------------------------------------------------------------------------------
 const std::string& vtkSplatFileDelegatingMapper::ChooseFile()
 {
+  // Once per input (and StreamFile) change: the file exists, or not, for as long.
+  vtkDataObject* input = this->GetInputDataObject(0, 0);
+  const vtkMTimeType stamp = input ? input->GetMTime() : 0;
+  if (stamp == this->ChosenFor && this->StreamFile == this->ChosenStreaming && stamp != 0)
+  {
+    return this->FileDrawn;
+  }
+  this->ChosenFor = stamp;
+  this->ChosenStreaming = this->StreamFile;
   this->FileDrawn.clear();
   if (this->StreamFile)
   {
-    const std::string file = FileNameOf(this->GetInputDataObject(0, 0));
+    const std::string file = SplatFileOf(input);
     if (!file.empty() && vtksys::SystemTools::FileExists(file, true))
     {
       this->FileDrawn = file;
@@ -87,6 +134,12 @@ void vtkSplatFileDelegatingMapper::Render(vtkRenderer* ren, vtkActor* act)
   {
     return;
   }
+  // The GUI's interactor (Qt's) renders again on the stream's timer;
+  // elsewhere an interactor may exist (pvbatch) but no event loop runs it.
+  vtkRenderWindow* window = ren->GetRenderWindow();
+  vtkRenderWindowInteractor* interactor = window ? window->GetInteractor() : nullptr;
+  const bool gui = interactor && interactor->GetInitialized() && interactor->IsA("QVTKInteractor");
+  this->Stream->SetRenderWait(gui ? 0.0 : this->BatchWait);
   this->Stream->vtkMapper::ShallowCopy(this);
   this->Stream->Render(ren, act);
 }
@@ -133,6 +186,7 @@ void vtkSplatFileDelegatingMapper::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "StreamFile: " << this->StreamFile << "\n";
   os << indent << "DrawsFile: " << this->DrawsFile << "\n";
+  os << indent << "BatchWait: " << this->BatchWait << " s\n";
   os << indent << "FileDrawn: " << (this->FileDrawn.empty() ? "(none)" : this->FileDrawn) << "\n";
   this->Stream->PrintSelf(os, indent.GetNextIndent());
 }

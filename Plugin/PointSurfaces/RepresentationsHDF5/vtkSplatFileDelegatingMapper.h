@@ -6,8 +6,10 @@
  *
  * A vtkPointSurfacesDelegatingMapper whose input is the output of
  * vtkSplatFileReader (the pages that reader loaded, and the file's path in
- * the field array vtkSplatFileReader::FileNameArrayName()). When this
- * process can read that file, the mapper draws it through its
+ * the field array vtkSplatFileReader::FileNameArrayName()). When the input
+ * is that output unfiltered (its splat count is SplatFileLoadedSplats: a
+ * filter that passed the field data on but changed the splats is drawn as
+ * data) and this process can read the file, the mapper draws it through its
  * vtkStreamingSplatMapper (GetStream): the pages and levels this view
  * needs, within the stream's MemoryBudget of GPU buffers, read by a
  * thread, coarsest first; the delivered data is then only what tells it
@@ -26,6 +28,8 @@
 
 #include "PointSurfacesParaViewRepresentationsHDF5Module.h" // For export macro
 #include "vtkPointSurfacesDelegatingMapper.h"
+
+#include <string> // For the file name
 
 class vtkStreamingSplatMapper;
 
@@ -52,6 +56,26 @@ public:
   vtkGetMacro(DrawsFile, bool);
   ///@}
 
+  ///@{
+  /**
+   * The splat file `data` is the unfiltered vtkSplatFileReader output of,
+   * or empty; and that file's bounds (false when `data` names none).
+   */
+  static std::string SplatFileOf(vtkDataObject* data);
+  static bool SplatFileBoundsOf(vtkDataObject* data, double bounds[6]);
+  ///@}
+
+  ///@{
+  /**
+   * Outside the GUI (no Qt interactor on the render window: pvbatch,
+   * pvpython, a render server), where nothing renders again while pages
+   * load, the stream's RenderWait: the most seconds a render waits for its
+   * view's pages. Default 60. In the GUI renders never wait.
+   */
+  vtkSetClampMacro(BatchWait, double, 0.0, 1e6);
+  vtkGetMacro(BatchWait, double);
+  ///@}
+
   /** After a render or GetBounds: the file drawn, or empty when the data was. */
   const std::string& GetFileDrawn() { return this->FileDrawn; }
 
@@ -73,7 +97,10 @@ protected:
   vtkStreamingSplatMapper* Stream;
   bool StreamFile = true;
   bool DrawsFile = true;
+  double BatchWait = 60.0;
   std::string FileDrawn;
+  vtkMTimeType ChosenFor = 0; // the input's MTime FileDrawn was chosen for
+  bool ChosenStreaming = false;
 
 private:
   vtkSplatFileDelegatingMapper(const vtkSplatFileDelegatingMapper&) = delete;

@@ -6,6 +6,7 @@
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVRenderView.h"
+#include "vtkPointSurfacesDelegatingMapper.h"
 #include "vtkSplatFileDelegatingMapper.h"
 #include "vtkStreamingSplatMapper.h"
 
@@ -32,6 +33,12 @@ void vtkStreamingSplatRepresentation::SetSplatStreamingBudget(double megabytes)
 void vtkStreamingSplatRepresentation::SetSplatStreamingAsynchronous(bool on)
 {
   this->FileMapper->GetStream()->SetAsynchronous(on);
+  this->Modified();
+}
+
+void vtkStreamingSplatRepresentation::SetSplatStreamingBatchWait(double seconds)
+{
+  this->FileMapper->SetBatchWait(seconds);
   this->Modified();
 }
 
@@ -71,16 +78,24 @@ int vtkStreamingSplatRepresentation::ProcessViewRequest(vtkInformationRequestKey
   {
     return 0;
   }
-  if (request_type == vtkPVView::REQUEST_RENDER())
+  if (request_type == vtkPVView::REQUEST_UPDATE())
+  {
+    // The view frames and clips the file, not the pages the reader loaded;
+    // and the processes that read it render it (a client would draw them).
+    double bounds[6];
+    if (vtkSplatFileDelegatingMapper::SplatFileBoundsOf(this->GetInputDataObject(0, 0), bounds))
+    {
+      vtkPVRenderView::SetGeometryBounds(inInfo, this, bounds);
+      vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    }
+  }
+  else if (request_type == vtkPVView::REQUEST_RENDER())
   {
     // Composited by depth, piece by piece: one rank draws the whole file.
-    auto* view = vtkPVRenderView::SafeDownCast(inInfo->Get(vtkPVView::VIEW()));
     vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
     const int rank = controller ? controller->GetLocalProcessId() : 0;
-    const bool piecewise = view ? view->GetUseDistributedRenderingForRender() &&
-        !view->InTileDisplayMode() && !view->InCaveDisplayMode()
-                                : controller && controller->GetNumberOfProcesses() > 1;
-    this->FileMapper->SetDrawsFile(!piecewise || rank == 0);
+    this->FileMapper->SetDrawsFile(
+      !vtkPointSurfacesDelegatingMapper::RendersPiecewise(inInfo) || rank == 0);
   }
   return 1;
 }

@@ -14,11 +14,14 @@
  * Memory Budget) is what other filters see, and what is drawn where this
  * process cannot read the file.
  *
- * With Splat Streaming Asynchronous off, each render reads what the view
- * needs first (batch pictures from pvbatch or pvpython). With it on, a
- * client whose render window has a timer-capable interactor (the GUI,
- * rendering locally) renders again by itself while pages load; elsewhere
- * the picture sharpens at the next render. Where each rank renders its
+ * With Splat Streaming Asynchronous on (the default), the GUI's view
+ * (an interactor with timers) never waits for the disk and renders again
+ * by itself while pages load; where nothing would render again (pvbatch,
+ * pvpython without a GUI, a render server), each render waits up to Splat
+ * Streaming Batch Wait seconds for its view's pages, so pictures are
+ * whole. Off, each render reads what its view needs first. The view
+ * frames the file's bounds, and renders where the file is read (remote
+ * rendering in client-server). Where each rank renders its
  * own piece and images are composited by depth (pvbatch or pvserver over
  * MPI), rank 0 draws the file and the other ranks nothing; on a tile or
  * CAVE display every rank draws it.
@@ -43,6 +46,8 @@ public:
   /** The stream's MemoryBudget (MB of GPU buffers; 0: no limit) and Asynchronous; see vtkStreamingSplatMapper. */
   void SetSplatStreamingBudget(double megabytes);
   void SetSplatStreamingAsynchronous(bool on);
+  /** Outside the GUI, the most seconds a render waits for its pages (default 60): see vtkSplatFileDelegatingMapper::SetBatchWait. */
+  void SetSplatStreamingBatchWait(double seconds);
   ///@}
 
   ///@{

@@ -212,6 +212,18 @@ int TestStreamingSplatMapper(int, char*[])
       "the loading thread ends on the whole picture");
   }
 
+  // Asynchronous with RenderWait (batch jobs): the first render waits for its pages.
+  {
+    auto mapper = Streaming(path, 0.0, true);
+    mapper->SetRenderWait(60.0);
+    Scene scene(mapper, 1.0);
+    const std::vector<unsigned char> first = scene.Pixels();
+    std::cout << "asynchronous, RenderWait 60 s: the first render draws "
+              << mapper->GetNumberOfResidentSplats() << " splats\n";
+    Check(mapper->GetNumberOfResidentSplats() == total && Differ(first, synchronous) < 0.001,
+      "with RenderWait, the first render is the whole picture");
+  }
+
   // RenderWhileLoading, under an interactor's event loop (an X window: the
   // x11 variant of this test): the mapper's own timer renders until every
   // page is drawn, with no render asked for by the program after the first.
