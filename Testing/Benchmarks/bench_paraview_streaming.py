@@ -12,7 +12,8 @@ from a sphere. In one pvbatch process, for each --budgets value:
 
 - **streaming**: *File > Open* (the Splat File Reader at its defaults)
   shown as Streaming Splats with SplatStreamingBudget MB of GPU buffers,
-  asynchronous: the time the reader's update takes, the first render, the
+  asynchronous and, as in the GUI, never waiting (SplatStreamingBatchWait
+  0; pvbatch's default waits for each view's pages): the time the reader's update takes, the first render, the
   first picture with splats and the picture with all the view wants (each
   from the moment the file was named), then an orbit of --frames steps,
   each frame rendered at once (pages arrive between frames);
@@ -81,6 +82,7 @@ def run_streaming(view, path, budget, frames, reader_budget):
     display.SplatLODPixelError = 1.0
     display.SplatStreamingBudget = budget
     display.SplatStreamingAsynchronous = 1
+    display.SplatStreamingBatchWait = 0  # as in the GUI: renders never wait for the disk
     ResetCamera(view)
     first = time.perf_counter()
     Render(view)
