@@ -4,6 +4,9 @@
 
 #include "psChildProcess.h"
 
+#include <algorithm>
+#include <fstream>
+#include <functional>
 #include <set>
 #include <sys/stat.h>
 #include <unistd.h> // For write in the checking child
@@ -15,6 +18,24 @@ namespace
 // The longest a checking child may take (seconds); a splat file's header,
 // octree and chunk indexes for 10^8 points take well under a second.
 constexpr double CheckTimeout = 60.0;
+
+// The first and last 64 KiB of a file, hashed: a file rewritten within one
+// tick of the file system's clock at the same size (a fuzzer's inputs) is
+// not taken for the version checked before.
+std::string EndsDigest(const std::string& path, long long size)
+{
+  std::ifstream in(path, std::ios::binary);
+  const long long window = 65536;
+  std::string bytes(static_cast<size_t>(std::min(size, 2 * window)), '\0');
+  in.read(&bytes[0], std::min(size, window));
+  if (size > window)
+  {
+    const long long tail = std::min(size - window, window);
+    in.seekg(size - tail);
+    in.read(&bytes[static_cast<size_t>(window)], tail);
+  }
+  return std::to_string(std::hash<std::string>()(bytes));
+}
 
 // The file versions and probes that a checking child ran to their end, in
 // this process. Guarded by HDF5Mutex.
@@ -40,7 +61,9 @@ bool CheckInChild(const std::string& path,
   const std::string key = std::string(what) + '\n' + path + '\n' +
     (found ? std::to_string(static_cast<long long>(s.st_mtim.tv_sec)) + '.' +
           std::to_string(static_cast<long long>(s.st_mtim.tv_nsec)) + '\n' +
-          std::to_string(static_cast<long long>(s.st_size))
+          std::to_string(static_cast<long long>(s.st_size)) + '\n' +
+          std::to_string(static_cast<long long>(s.st_ino)) + '\n' +
+          EndsDigest(path, static_cast<long long>(s.st_size))
            : std::string("missing"));
   if (CheckedFiles().count(key))
   {
