@@ -7,6 +7,8 @@
 #include "psLocalFit.h" // For MonomialCount
 #include "psOctree.h"
 
+#include "vtkType.h" // For the attribute types
+
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -86,6 +88,112 @@ hid_t FileType(Kind k)
   return k == Kind::Double ? H5T_IEEE_F64LE : k == Kind::Int ? H5T_STD_I32LE : H5T_IEEE_F32LE;
 }
 
+// How an attribute of VTK type `type` is stored: integers as the integer
+// of their size and sign, everything else as float32.
+struct StoredType
+{
+  int Bytes; // 0: float32
+  bool Signed;
+};
+StoredType StoredTypeOf(int type)
+{
+  switch (type)
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+      return { 1, true };
+    case VTK_UNSIGNED_CHAR:
+      return { 1, false };
+    case VTK_SHORT:
+      return { 2, true };
+    case VTK_UNSIGNED_SHORT:
+      return { 2, false };
+    case VTK_INT:
+      return { 4, true };
+    case VTK_UNSIGNED_INT:
+      return { 4, false };
+    case VTK_LONG:
+    case VTK_LONG_LONG:
+    case VTK_ID_TYPE:
+      return { 8, true };
+    case VTK_UNSIGNED_LONG:
+    case VTK_UNSIGNED_LONG_LONG:
+      return { 8, false };
+    default:
+      return { 0, true };
+  }
+}
+hid_t AttributeFileType(int type)
+{
+  const StoredType t = StoredTypeOf(type);
+  switch (t.Bytes)
+  {
+    case 1:
+      return t.Signed ? H5T_STD_I8LE : H5T_STD_U8LE;
+    case 2:
+      return t.Signed ? H5T_STD_I16LE : H5T_STD_U16LE;
+    case 4:
+      return t.Signed ? H5T_STD_I32LE : H5T_STD_U32LE;
+    case 8:
+      return t.Signed ? H5T_STD_I64LE : H5T_STD_U64LE;
+    default:
+      return H5T_IEEE_F32LE;
+  }
+}
+// The VTK type a stored attribute dataset reads back as.
+int AttributeTypeOf(hid_t dataset)
+{
+  Handle type(H5Dget_type(dataset), H5Tclose);
+  if (type.Id < 0 || H5Tget_class(type.Id) != H5T_INTEGER)
+  {
+    return VTK_FLOAT;
+  }
+  const bool isSigned = H5Tget_sign(type.Id) != H5T_SGN_NONE;
+  switch (H5Tget_size(type.Id))
+  {
+    case 1:
+      return isSigned ? VTK_SIGNED_CHAR : VTK_UNSIGNED_CHAR;
+    case 2:
+      return isSigned ? VTK_SHORT : VTK_UNSIGNED_SHORT;
+    case 4:
+      return isSigned ? VTK_INT : VTK_UNSIGNED_INT;
+    default:
+      return isSigned ? VTK_LONG_LONG : VTK_UNSIGNED_LONG_LONG;
+  }
+}
+// `values` rounded to the nearest integer of `type`'s stored size and sign,
+// clamped to its range (NaN: 0); as they are for a float type.
+const float* StoredValues(int type, const std::vector<float>& values, std::vector<float>& rounded)
+{
+  const StoredType t = StoredTypeOf(type);
+  if (t.Bytes == 0)
+  {
+    return values.data();
+  }
+  const int bits = 8 * t.Bytes - (t.Signed ? 1 : 0); // of the magnitude
+  const double lo = t.Signed ? -std::ldexp(1.0, bits) : 0.0;
+  // The type's maximum, or where a float cannot hold it (32 bits and more)
+  // the largest float below it.
+  const double hi = bits <= 24 ? std::ldexp(1.0, bits) - 1.0
+                               : std::nextafter(static_cast<float>(std::ldexp(1.0, bits)), 0.0f);
+  rounded.resize(values.size());
+  for (size_t k = 0; k < values.size(); ++k)
+  {
+    const double v = values[k];
+    rounded[k] =
+      std::isnan(v) ? 0.0f : static_cast<float>(std::round(std::min(hi, std::max(lo, v))));
+  }
+  return rounded.data();
+}
+} // namespace
+
+int SplatFileInfo::AttributeType(size_t a) const
+{
+  return a < this->AttributeTypes.size() ? this->AttributeTypes[a] : VTK_FLOAT;
+}
+
+namespace
+{
 // A 2-D dataset of `rows` x `components` (1-D when components is 1), chunked by rows.
 hid_t Create(hid_t group, const char* name, hid_t type, hsize_t rows, int components)
 {
@@ -295,8 +403,11 @@ bool SplatFileWriter::Open(const std::string& path, const SplatFileInfo& info, s
       P->CloseAll();
       return false;
     }
-    P->Datasets.push_back(Create(
-      attributes.Id, name.c_str(), H5T_IEEE_F32LE, n, std::max(1, info.AttributeComponents[a])));
+    P->Datasets.push_back(Create(attributes.Id,
+      name.c_str(),
+      AttributeFileType(info.AttributeType(a)),
+      n,
+      std::max(1, info.AttributeComponents[a])));
   }
   if (std::any_of(P->Datasets.begin(), P->Datasets.end(), [](hid_t d) { return d < 0; }))
   {
@@ -327,6 +438,7 @@ bool SplatFileWriter::Write(long long first, const SplatColumns& block, std::str
       return false;
     }
   }
+  std::vector<float> rounded;
   for (size_t a = 0; a < P->Info.AttributeNames.size(); ++a)
   {
     if (rows.Attributes.size() <= a ||
@@ -335,7 +447,7 @@ bool SplatFileWriter::Write(long long first, const SplatColumns& block, std::str
         count,
         std::max(1, P->Info.AttributeComponents[a]),
         H5T_NATIVE_FLOAT,
-        rows.Attributes[a].data(),
+        const_cast<float*>(StoredValues(P->Info.AttributeType(a), rows.Attributes[a], rounded)),
         true))
     {
       error = "cannot be written (disk full?)";
@@ -530,11 +642,13 @@ double SplatFileReader::BytesPerSplat() const
 {
   // The splat data model in VTK: double arrays (origin, normal, tangent, h,
   // m coefficients, radius, deviation, nominal radius, tolerance), the
-  // int LOD, a vertex cell (offset and connectivity), float attributes.
+  // int LOD, a vertex cell (offset and connectivity), the attributes in
+  // their types.
   double bytes = 8.0 * (3 + 3 + 3 + 1 + MonomialCount(P->Info.Degree) + 4) + 4.0 + 16.0;
-  for (int c : P->Info.AttributeComponents)
+  for (size_t a = 0; a < P->Info.AttributeComponents.size(); ++a)
   {
-    bytes += 4.0 * c;
+    const int stored = StoredTypeOf(P->Info.AttributeType(a)).Bytes;
+    bytes += (stored ? stored : 4.0) * P->Info.AttributeComponents[a];
   }
   return bytes;
 }
@@ -635,6 +749,8 @@ bool SplatFileReader::Impl::Check(std::string& error)
       info.AttributeNames.push_back(name);
       info.AttributeComponents.push_back(comps);
       this->Datasets.push_back(H5Dopen2(group.Id, name, H5P_DEFAULT));
+      info.AttributeTypes.push_back(
+        this->Datasets.back() >= 0 ? AttributeTypeOf(this->Datasets.back()) : VTK_FLOAT);
     }
   }
   if (std::any_of(this->Datasets.begin(), this->Datasets.end(), [](hid_t d) { return d < 0; }))

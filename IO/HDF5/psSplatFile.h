@@ -22,6 +22,8 @@
  *     /Splats/Radius, MaxDeviation, NominalRadius, Tolerance  float32 [N]
  *     /Splats/LOD            int32   [N]
  *     /Attributes/<name>     float32 [N, c]  the input's point arrays, MLS-weighted
+ *                                            (integer arrays as their integer type,
+ *                                            rounded: SplatFileInfo::AttributeTypes)
  *     /Octree/Bounds         float64 [M, 6]  per node, discs included
  *     /Octree/Sphere         float64 [M, 4]
  *     /Octree/Children       int32   [M, 2]  first child, child count
@@ -74,6 +76,17 @@ struct SplatFileInfo
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
   std::vector<std::string> AttributeNames;
   std::vector<int> AttributeComponents;
+  /**
+   * Each attribute's VTK data type (vtkType.h; missing entries: VTK_FLOAT).
+   * Integer types are stored as such (8 to 64 bits, signed or not: a
+   * colour stays 3 bytes a splat and reads back as unsigned char), rounded
+   * to the nearest integer and clamped to the type on writing; every other
+   * type as float32. Values travel as float, so integers beyond 2^24 lose
+   * their last bits.
+   */
+  std::vector<int> AttributeTypes;
+  /** The VTK data type of attribute `a`. */
+  int AttributeType(size_t a) const;
   /** The page octree with the s of each level (Pages.Tree.Levels levels). */
   LODOctree Pages;
 };

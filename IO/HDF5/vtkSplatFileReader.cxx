@@ -21,6 +21,7 @@
 #include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkSplatDataModel.h"
 #include "vtkStringArray.h"
 
@@ -76,7 +77,7 @@ void Assemble(const pointsurfaces::SplatColumns& c,
   lod->SetName(vtkSplatDataModel::LODName());
   lod->SetNumberOfTuples(n);
   output->GetPointData()->AddArray(lod);
-  std::vector<vtkFloatArray*> attributes; // null: named like a model array, left out
+  std::vector<vtkDataArray*> attributes; // null: named like a model array, left out
   for (size_t a = 0; a < info.AttributeNames.size(); ++a)
   {
     if (output->GetPointData()->HasArray(info.AttributeNames[a].c_str()))
@@ -84,7 +85,8 @@ void Assemble(const pointsurfaces::SplatColumns& c,
       attributes.push_back(nullptr);
       continue;
     }
-    vtkNew<vtkFloatArray> array;
+    vtkSmartPointer<vtkDataArray> array;
+    array.TakeReference(vtkDataArray::CreateDataArray(info.AttributeType(a)));
     array->SetName(info.AttributeNames[a].c_str());
     array->SetNumberOfComponents(info.AttributeComponents[a]);
     array->SetNumberOfTuples(n);
@@ -115,7 +117,7 @@ void Assemble(const pointsurfaces::SplatColumns& c,
       const int comps = info.AttributeComponents[a];
       for (int j = 0; attributes[a] && j < comps; ++j)
       {
-        attributes[a]->SetTypedComponent(k, j, c.Attributes[a][static_cast<size_t>(comps) * i + j]);
+        attributes[a]->SetComponent(k, j, c.Attributes[a][static_cast<size_t>(comps) * i + j]);
       }
     }
   }

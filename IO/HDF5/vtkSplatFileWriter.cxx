@@ -80,6 +80,7 @@ void vtkSplatFileWriter::WriteData()
     attributes.push_back(array);
     info.AttributeNames.emplace_back(name);
     info.AttributeComponents.push_back(array->GetNumberOfComponents());
+    info.AttributeTypes.push_back(array->GetDataType());
   }
   std::vector<double> origins(3 * static_cast<size_t>(n)), radii(static_cast<size_t>(n));
   std::vector<int> levels(static_cast<size_t>(n), 0);

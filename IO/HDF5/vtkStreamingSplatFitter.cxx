@@ -28,6 +28,7 @@ struct vtkStreamingSplatFitter::Impl
   int Piece = 0;
   std::vector<std::string> Names; // the carried arrays, from the first piece with points
   std::vector<int> Components;
+  std::vector<int> Types; // their VTK data types
   bool Normals = false;
   bool Failed = false;
   vtkIdType Points = 0;
@@ -69,6 +70,7 @@ int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
     P->Stream.reset();
     P->Names.clear();
     P->Components.clear();
+    P->Types.clear();
     P->Failed = this->FileName.empty();
     P->Points = 0;
     if (P->Failed)
@@ -88,6 +90,7 @@ int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
       {
         P->Names.emplace_back(array->GetName());
         P->Components.push_back(array->GetNumberOfComponents());
+        P->Types.push_back(array->GetDataType());
       }
     }
     int total = 0;
@@ -208,6 +211,7 @@ bool vtkStreamingSplatFitter::Finish(vtkPolyData* output)
   info.Oriented = stream.Oriented();
   info.AttributeNames = P->Names;
   info.AttributeComponents = P->Components;
+  info.AttributeTypes = P->Types;
   const int m = pointsurfaces::MonomialCount(this->Degree);
   const int total = stream.Attributes();
   std::vector<pointsurfaces::StreamedSplat> splats;

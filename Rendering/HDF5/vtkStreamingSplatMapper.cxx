@@ -20,6 +20,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
 #include "vtkSplatDataModel.h"
 #include "vtkWeakPointer.h"
 
@@ -47,6 +48,27 @@ void Put(Array* to, vtkIdType at, const std::vector<T>& from, long long count, i
   if (count > 0)
   {
     std::memcpy(to->GetPointer(at * comps), from.data(), sizeof(T) * count * comps);
+  }
+}
+
+// The same for an attribute, in its array's type.
+void PutAttribute(vtkDataArray* to,
+  vtkIdType at,
+  const std::vector<float>& from,
+  long long count,
+  int comps)
+{
+  if (auto* values = vtkFloatArray::FastDownCast(to))
+  {
+    Put(values, at, from, count, comps);
+    return;
+  }
+  for (long long k = 0; k < count; ++k)
+  {
+    for (int c = 0; c < comps; ++c)
+    {
+      to->SetComponent(at + k, c, from[static_cast<size_t>(comps) * k + c]);
+    }
   }
 }
 
@@ -88,12 +110,22 @@ void Gather(const std::vector<pointsurfaces::ResidentPage>& pages,
   lod->SetName(vtkSplatDataModel::LODName());
   lod->SetNumberOfTuples(n);
   out->GetPointData()->AddArray(lod);
-  std::vector<vtkFloatArray*> attributes; // null: named like a model array, left out
+  std::vector<vtkDataArray*> attributes; // null: named like a model array, left out
   for (size_t a = 0; a < info.AttributeNames.size(); ++a)
   {
     const char* name = info.AttributeNames[a].c_str();
-    attributes.push_back(
-      out->GetPointData()->HasArray(name) ? nullptr : make(name, info.AttributeComponents[a]));
+    if (out->GetPointData()->HasArray(name))
+    {
+      attributes.push_back(nullptr);
+      continue;
+    }
+    vtkSmartPointer<vtkDataArray> array;
+    array.TakeReference(vtkDataArray::CreateDataArray(info.AttributeType(a)));
+    array->SetName(name);
+    array->SetNumberOfComponents(info.AttributeComponents[a]);
+    array->SetNumberOfTuples(n);
+    out->GetPointData()->AddArray(array);
+    attributes.push_back(array);
   }
 
   // The page octree, its leaves re-indexed to what is resident.
@@ -175,7 +207,7 @@ void Gather(const std::vector<pointsurfaces::ResidentPage>& pages,
       {
         if (attributes[a])
         {
-          Put(attributes[a], row, block->Attributes[a], c, info.AttributeComponents[a]);
+          PutAttribute(attributes[a], row, block->Attributes[a], c, info.AttributeComponents[a]);
         }
       }
       row += c;

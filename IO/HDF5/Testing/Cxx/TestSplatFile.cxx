@@ -4,7 +4,9 @@
 // - a fitted sphere (three levels, a colour array) written and read back
 //   whole: every splat, each value as the file stores it (origins in
 //   double, the rest in float), and written again from what was read, the
-//   same rows bit for bit;
+//   same rows bit for bit; integer attributes (unsigned char, int) keep
+//   their types and values, and values written to an integer attribute
+//   are rounded and clamped to it;
 // - lazy reads: a budget that holds the coarsest level of every page loads
 //   all of it first; a camera loads only the pages in view, and with a
 //   PixelError only the levels its pixels need; a budget smaller than one
@@ -26,12 +28,14 @@
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
+#include "vtkIntArray.h"
 #include "vtkPLYScanReader.h"
 #include "vtkSplatDataModel.h"
 #include "vtkSplatFileReader.h"
 #include "vtkSplatFileWriter.h"
 #include "vtkStreamingSplatFitter.h"
 #include "vtkTrivialProducer.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtk_hdf5.h"
 
 #include <cmath>
@@ -204,6 +208,18 @@ void WriteAndReadBack()
 {
   const auto splats = Fit(Sphere(60000), 3);
   const vtkIdType n = splats->GetNumberOfPoints();
+  // Integer attributes: a class (unsigned char) and a signed offset (int).
+  vtkNew<vtkUnsignedCharArray> classes;
+  classes->SetName("Class");
+  vtkNew<vtkIntArray> offsets;
+  offsets->SetName("Offset");
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    classes->InsertNextValue(static_cast<unsigned char>(i % 256));
+    offsets->InsertNextValue(static_cast<int>(i - n / 2) * 1000);
+  }
+  splats->GetPointData()->AddArray(classes);
+  splats->GetPointData()->AddArray(offsets);
   const std::string path = Temp("TestSplatFile-sphere.psplat");
   vtkNew<vtkSplatFileWriter> writer;
   writer->SetInputData(splats);
@@ -230,6 +246,13 @@ void WriteAndReadBack()
   Check(whole->GetPointData()->GetArray("Colour") &&
       whole->GetPointData()->GetArray("Colour")->GetNumberOfComponents() == 3,
     "the carried colour is stored with its components");
+  vtkDataArray* classesRead = whole->GetPointData()->GetArray("Class");
+  vtkDataArray* offsetsRead = whole->GetPointData()->GetArray("Offset");
+  Check(classesRead && classesRead->GetDataType() == VTK_UNSIGNED_CHAR && offsetsRead &&
+      offsetsRead->GetDataType() == VTK_INT &&
+      whole->GetPointData()->GetArray("Colour")->GetDataType() == VTK_FLOAT,
+    "integer attributes read back in their types (unsigned char, int), the colour as float");
+
   pointsurfaces::Octree tree;
   std::vector<double> quality;
   Check(vtkSplatDataModel::GetOctree(whole, tree, quality) == vtkSplatDataModel::ValidOctree,
@@ -398,6 +421,66 @@ void BadFiles()
   H5Tclose(shifted);
 }
 
+// Values written to integer attributes: rounded to the nearest and clamped
+// to the type (NaN: 0), read back in the type; a float attribute as it was.
+void RoundedIntegers()
+{
+  const std::vector<float> values = { -3.0f, 2.6f, 7.5f, 254.6f, 300.0f, NAN, -2.5f, 1e10f };
+  const long long n = static_cast<long long>(values.size());
+  pointsurfaces::SplatFileInfo info;
+  info.Degree = 1;
+  info.AttributeNames = { "Byte", "Short", "Float" };
+  info.AttributeComponents = { 1, 1, 1 };
+  info.AttributeTypes = { VTK_UNSIGNED_CHAR, VTK_SHORT, VTK_FLOAT };
+  std::vector<double> origins(3 * n), radii(n, 0.1);
+  std::vector<int> levels(n, 0);
+  for (long long i = 0; i < n; ++i)
+  {
+    origins[3 * i] = static_cast<double>(i);
+  }
+  auto fetch = [&](const std::vector<long long>& ids, pointsurfaces::SplatColumns& block)
+  {
+    for (size_t k = 0; k < ids.size(); ++k)
+    {
+      for (auto& column : block.Attributes)
+      {
+        column[k] = values[ids[k]];
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        block.Origin[3 * k + c] = origins[3 * ids[k] + c];
+      }
+      block.Radius[k] = 0.1f;
+    }
+    return true;
+  };
+  const std::string path = Temp("TestSplatFile-integers.psplat");
+  std::string error;
+  Check(pointsurfaces::WriteSplatFile(
+          path, info, origins.data(), radii.data(), levels.data(), n, { 1.0 }, fetch, error),
+    "a file of integer attributes is written");
+  const auto read = Read(path);
+  vtkDataArray* byte = read->GetPointData()->GetArray("Byte");
+  vtkDataArray* word = read->GetPointData()->GetArray("Short");
+  vtkDataArray* real = read->GetPointData()->GetArray("Float");
+  Check(byte && byte->GetDataType() == VTK_UNSIGNED_CHAR && word &&
+      word->GetDataType() == VTK_SHORT && real && real->GetDataType() == VTK_FLOAT,
+    "the attributes read back as unsigned char, short and float");
+  const double wantByte[] = { 0, 3, 8, 255, 255, 0, 0, 255 };
+  const double wantShort[] = { -3, 3, 8, 255, 300, 0, -3, 32767 };
+  bool rounded = byte && word && real && read->GetNumberOfPoints() == n;
+  for (vtkIdType i = 0; rounded && i < n; ++i)
+  {
+    double p[3];
+    read->GetPoint(i, p);
+    const long long k = static_cast<long long>(p[0]); // the file's order is its own
+    const double f = real->GetComponent(i, 0);
+    rounded = byte->GetComponent(i, 0) == wantByte[k] && word->GetComponent(i, 0) == wantShort[k] &&
+      (std::isnan(values[k]) ? std::isnan(f) : f == static_cast<double>(values[k]));
+  }
+  Check(rounded, "integer attributes are rounded and clamped to their types, floats kept");
+}
+
 void Streaming()
 {
   const auto points = Sphere(40000);
@@ -427,7 +510,9 @@ void Streaming()
   Check(out->GetNumberOfPoints() == fitter->GetNumberOfSplatsWritten(),
     "with no budget the output is the whole file");
   vtkDataArray* colour = out->GetPointData()->GetArray("RGB");
-  Check(colour && colour->GetNumberOfComponents() == 3, "the PLY's colours are carried");
+  Check(
+    colour && colour->GetNumberOfComponents() == 3 && colour->GetDataType() == VTK_UNSIGNED_CHAR,
+    "the PLY's colours are carried, as unsigned char");
   double worst = 0.0;
   for (vtkIdType i = 0; colour && i < out->GetNumberOfPoints(); ++i)
   {
@@ -489,6 +574,7 @@ void Streaming()
 int TestSplatFile(int, char*[])
 {
   WriteAndReadBack();
+  RoundedIntegers();
   BadFiles();
   Streaming();
   return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
