@@ -11,7 +11,10 @@ Two scenes whose colours are known pixel by pixel:
   from `s`, and an unsigned-char RGB array `rgb`;
 - Algebraic Splats: a sphere of points fitted to splats (vtkAlgebraicSplatFitter),
   whose upper half has s = 4 and whose lower half has s = 0 (and `v`, `rgb`
-  the same way).
+  the same way);
+- Streaming Splats: the same sphere's points with the same arrays, written to
+  a splat file by the Streaming Splat Fitter, opened as File > Open opens it
+  and drawn from the file (the reader's output is a preview of a few splats).
 
 For each representation the test colours by the scalar, by the vector's
 magnitude and by one component (with a colour map and its range), by the RGB
@@ -315,6 +318,47 @@ for k in (() if mpi else (0, 1)):
     column, row = splat_samples[k]
     check_selection("splats: rectangle on the %s half" % ("upper" if k == 0 else "lower"),
                     splats_input, [column - 4, row - 4, column + 4, row + 4], [HALF_S[k]])
+
+Hide(splats_input, view)
+
+# Streaming Splats: the sphere's points with the same arrays, fitted into a
+# splat file by the Streaming Splat Fitter and opened as File > Open does; the
+# file itself is drawn, its attributes in their types (the RGB array stays
+# unsigned char: direct colours). Under MPI each rank writes a file of its
+# own and both open rank 0's, which rank 0 draws: the points come from a
+# source that makes no pieces, so rank 0's file holds the whole sphere.
+POINTS = ProgrammableSource(OutputDataSetType="vtkPolyData")
+POINTS.Script = """
+from vtkmodules.vtkFiltersSources import vtkSphereSource
+whole = vtkSphereSource()
+whole.SetRadius(1.0)
+whole.SetThetaResolution(96)
+whole.SetPhiResolution(96)
+whole.Update()
+inp = whole.GetOutput()
+""" + SPLATS.Script.replace("inp = self.GetInput()", "").replace(
+    "self.GetOutput()", "self.GetPolyDataOutput()")
+streamed = StreamingSplatFitter(Input=POINTS)
+streamed.FileName = os.path.join(out, "coloured-%d.psplat" % RANK)
+streamed.PageSize = 256  # pages small enough for a preview of some of them
+streamed.UpdatePipeline()
+Delete(streamed)
+if mpi:
+    servermanager.vtkProcessModule.GetProcessModule().GetGlobalController().Barrier()
+splat_file = OpenDataFile(os.path.join(out, "coloured-0.psplat"))
+splat_file.MemoryBudget = 0.1  # a preview of some pages: what is drawn is the file
+stream = Show(splat_file, view)
+check(stream.Representation == "Streaming Splats",
+      "the splat file shows as Streaming Splats (%s)" % stream.Representation)
+set_camera(splat_centre, 1.3)
+if not mpi:
+    preview = splat_file.GetDataInformation().GetNumberOfPoints()
+    stream.UpdatePropertyInformation()
+    drawn = stream.GetPropertyValue("SplatStreamingResidentSplats")
+    whole = stream.GetPropertyValue("SplatStreamingFileSplats")
+    check(0 < preview < drawn == whole,
+          "the file's %d splats are drawn, not the reader's %d" % (drawn, preview))
+exercise(stream, "streaming", splat_samples, HALF_S, HALF_V, HALF_RGB)
 
 if RANK == 0:
     print("TestPointSurfacesColoring: %d failure(s)" % len(check.failures), flush=True)

@@ -67,6 +67,14 @@ protected:
   ~vtkAlgebraicSplatRepresentation() override;
 
   /**
+   * Opaque, whatever the colouring: no ordered compositing. (Direct colours
+   * under MPI otherwise had ParaView redistribute the data among the ranks,
+   * which lost the splats' octree and took a splat file's preview from the
+   * rank that draws the file.)
+   */
+  bool NeedsOrderedCompositing() override { return false; }
+
+  /**
    * Put `mapper` in the main mapper's place (a subclass's delegating mapper),
    * drawing through the first splat mapper, and wire it to the actor.
    */

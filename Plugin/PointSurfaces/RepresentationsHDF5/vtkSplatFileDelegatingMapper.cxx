@@ -7,7 +7,6 @@
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
 #include "vtkFieldData.h"
-#include "vtkMath.h"
 #include "vtkObjectFactory.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
@@ -23,66 +22,86 @@ vtkStandardNewMacro(vtkSplatFileDelegatingMapper);
 
 namespace
 {
-// The field array `name` of `data`, or of the first leaf that has it; and
-// the points of `data` (all its leaves).
-vtkAbstractArray* FindField(vtkDataObject* data, const char* name, vtkIdType& points)
+// What the reader's field arrays say of `data` (of its first leaf that has
+// each), and its points (all its leaves): found in one walk.
+struct SplatFileFields
 {
-  points = 0;
-  vtkAbstractArray* found = nullptr;
-  auto visit = [&](vtkDataObject* object)
+  vtkStringArray* Name = nullptr;
+  vtkDataArray* Loaded = nullptr;
+  vtkDataArray* Bounds = nullptr;
+  vtkIdType Points = 0;
+
+  explicit SplatFileFields(vtkDataObject* data)
   {
-    if (auto* set = vtkDataSet::SafeDownCast(object))
+    auto visit = [this](vtkDataObject* object)
     {
-      points += set->GetNumberOfPoints();
+      if (auto* set = vtkDataSet::SafeDownCast(object))
+      {
+        this->Points += set->GetNumberOfPoints();
+      }
+      vtkFieldData* fields = object ? object->GetFieldData() : nullptr;
+      if (!fields)
+      {
+        return;
+      }
+      if (!this->Name)
+      {
+        this->Name = vtkStringArray::SafeDownCast(
+          fields->GetAbstractArray(vtkSplatFileReader::FileNameArrayName()));
+      }
+      if (!this->Loaded)
+      {
+        this->Loaded = fields->GetArray("SplatFileLoadedSplats");
+      }
+      if (!this->Bounds)
+      {
+        this->Bounds = fields->GetArray(vtkSplatFileReader::FileBoundsArrayName());
+      }
+    };
+    if (auto* composite = vtkCompositeDataSet::SafeDownCast(data))
+    {
+      vtkSmartPointer<vtkCompositeDataIterator> it;
+      it.TakeReference(composite->NewIterator());
+      for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
+      {
+        visit(it->GetCurrentDataObject());
+      }
     }
-    if (!found && object)
+    else
     {
-      found = object->GetFieldData()->GetAbstractArray(name);
-    }
-  };
-  if (auto* composite = vtkCompositeDataSet::SafeDownCast(data))
-  {
-    vtkSmartPointer<vtkCompositeDataIterator> it;
-    it.TakeReference(composite->NewIterator());
-    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem())
-    {
-      visit(it->GetCurrentDataObject());
+      visit(data);
     }
   }
-  else
+
+  // The file's name when the data is the reader's output unfiltered, else empty.
+  std::string File() const
   {
-    visit(data);
+    if (!this->Name || this->Name->GetNumberOfValues() < 1 || !this->Loaded ||
+      this->Loaded->GetNumberOfTuples() < 1 ||
+      static_cast<vtkIdType>(this->Loaded->GetComponent(0, 0)) != this->Points)
+    {
+      return std::string();
+    }
+    return this->Name->GetValue(0);
   }
-  return found;
-}
+};
 } // namespace
 
 //------------------------------------------------------------------------------
 std::string vtkSplatFileDelegatingMapper::SplatFileOf(vtkDataObject* data)
 {
-  vtkIdType points = 0;
-  auto* name =
-    vtkStringArray::SafeDownCast(FindField(data, vtkSplatFileReader::FileNameArrayName(), points));
-  auto* loaded = vtkDataArray::SafeDownCast(FindField(data, "SplatFileLoadedSplats", points));
-  if (!name || name->GetNumberOfValues() < 1 || !loaded || loaded->GetNumberOfTuples() < 1 ||
-    static_cast<vtkIdType>(loaded->GetComponent(0, 0)) != points)
-  {
-    return std::string();
-  }
-  return name->GetValue(0);
+  return SplatFileFields(data).File();
 }
 
 bool vtkSplatFileDelegatingMapper::SplatFileBoundsOf(vtkDataObject* data, double bounds[6])
 {
-  vtkIdType points = 0;
-  auto* array =
-    vtkDataArray::SafeDownCast(FindField(data, vtkSplatFileReader::FileBoundsArrayName(), points));
-  if (SplatFileOf(data).empty() || !array || array->GetNumberOfTuples() < 1 ||
-    array->GetNumberOfComponents() != 6)
+  const SplatFileFields fields(data);
+  if (fields.File().empty() || !fields.Bounds || fields.Bounds->GetNumberOfTuples() < 1 ||
+    fields.Bounds->GetNumberOfComponents() != 6)
   {
     return false;
   }
-  array->GetTuple(0, bounds);
+  fields.Bounds->GetTuple(0, bounds);
   return true;
 }
 
