@@ -322,8 +322,8 @@ public:
   /**
    * Error-bounded Quality selection (MaximumDeviation > 0): each chosen
    * point whose disc the bound leaves whole is fitted again on 4, 16, ...
-   * times the neighbours (h two, four, ... times as wide), up to this
-   * factor of h, and the widest fit that draws the same surface as the
+   * times the neighbours (h two, four, ... times as wide), the last try at
+   * this factor of h, and the widest fit that draws the same surface as the
    * narrower one (within half the bound and 5 degrees, both widened by the
    * measured noise) is kept: large splats where the surface is smooth, small
    * ones in folds and at thin parts. On dense, noisy scans far fewer splats

@@ -345,8 +345,8 @@ private:
     const std::vector<double>& coords,
     std::vector<double>& w);
   // While the bound leaves `b` (fitted at scale `first`) whole, point i's
-  // fit on 4, 16, ... times its neighbours, kept (with its cover in `c`)
-  // when its disc reaches farther.
+  // fit at 2, 4, ... times that scale, the last at MaximumFeatureScale,
+  // kept (with its cover in `c`) when its disc reaches farther.
   void Widen(long long i,
     ChosenPoint& c,
     std::unique_ptr<BuiltSplat>& b,
@@ -821,7 +821,12 @@ void SplatBuild::Widen(long long i,
 {
   thread_local std::vector<int> ids;
   thread_local std::vector<double> d2, coords, w;
-  for (double m = 2.0 * first; m <= params.MaximumFeatureScale * (1.0 + 1e-9); m *= 2.0)
+  // Doublings from the first scale, the last one landing on
+  // MaximumFeatureScale exactly (from a first scale of 2.9 and at most 16:
+  // 5.8, 11.6, 16; doubling alone would stop at 11.6).
+  const double widest = params.MaximumFeatureScale;
+  for (double m = std::min(2.0 * first, widest); m > first * (1.0 + 1e-9);
+       first = m, m = std::min(2.0 * m, widest))
   {
     // Only a disc that the bound left (nearly) whole is tried wider: one it
     // cut found the surface's feature size already.
