@@ -279,6 +279,21 @@ int vtkSplatFileReader::RequestData(vtkInformation*,
   path->SetName(FileNameArrayName());
   path->InsertNextValue(vtksys::SystemTools::CollapseFullPath(this->FileName));
   fd->AddArray(path);
+  // What this output is, for telling it from a filter's output that passed
+  // the field data on (a Transform keeps the count, a Calculator the points).
+  vtkNew<vtkDoubleArray> loadedBounds;
+  loadedBounds->SetName(LoadedBoundsArrayName());
+  loadedBounds->SetNumberOfComponents(6);
+  loadedBounds->InsertNextTuple(output->GetBounds());
+  fd->AddArray(loadedBounds);
+  vtkNew<vtkStringArray> arrays;
+  arrays->SetName(ArraysArrayName());
+  for (int a = 0; a < output->GetPointData()->GetNumberOfArrays(); ++a)
+  {
+    const char* name = output->GetPointData()->GetArrayName(a);
+    arrays->InsertNextValue(name ? name : "");
+  }
+  fd->AddArray(arrays);
   return 1;
 }
 

@@ -21,11 +21,15 @@
  *
  * The output is a splat set of the splat data model with its own LOD
  * octree (the mapper culls and refines within what was loaded), the
- * file's attributes as float point arrays, and field data saying what was
- * loaded (SplatFilePages, SplatFileLoadedPages, SplatFileSplats,
- * SplatFileLoadedSplats), the file's absolute path and bounds
- * (SplatFileName, SplatFileBounds: ParaView's Streaming Splats
- * representation draws the file itself from them, each view's pages). A camera move re-executes the reader only when
+ * file's attributes as point arrays (integer ones in their types, the rest
+ * float), and field data saying what was loaded (SplatFilePages,
+ * SplatFileLoadedPages, SplatFileSplats, SplatFileLoadedSplats), the file's
+ * absolute path and bounds (SplatFileName, SplatFileBounds: ParaView's
+ * Streaming Splats representation draws the file itself from them, each
+ * view's pages), and the output's own bounds and point array names
+ * (SplatFileLoadedBounds, SplatFileArrays: a filter's output that passed
+ * the field data on but moved the points or added an array is drawn as
+ * data). A camera move re-executes the reader only when
  * a Camera is set (its MTime counts).
  *
  * A missing, truncated, damaged, foreign or unfinished file gives one
@@ -119,6 +123,9 @@ public:
    */
   static const char* FileNameArrayName() { return "SplatFileName"; }
   static const char* FileBoundsArrayName() { return "SplatFileBounds"; }
+  /** The output's own bounds (6 values) and point array names: what it is. */
+  static const char* LoadedBoundsArrayName() { return "SplatFileLoadedBounds"; }
+  static const char* ArraysArrayName() { return "SplatFileArrays"; }
   ///@}
 
   /** True when the file opens as a splat file. */

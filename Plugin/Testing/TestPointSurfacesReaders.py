@@ -248,6 +248,26 @@ if splat_file is not None:
         check(most.GetValue(0) == 0, "over two ranks, rank 1 holds %d splats of the file (rank 0 "
               "draws it)" % most.GetValue(0))
 
+    # A filter that passes the field data on but moves the splats (a
+    # Transform keeps their count) or adds an array (a Calculator keeps the
+    # points, and the file has no such array): its output is drawn as data.
+    Hide(splat_file, view)
+    moved = Transform(Input=splat_file)
+    moved.Transform.Translate = [0.5, 0.0, 0.0]
+    added = Calculator(Input=splat_file, ResultArrayName="height", Function="coordsZ")
+    for label, filtered in (("a Transform", moved), ("a Calculator", added)):
+        display = Show(filtered, view)
+        display.SetRepresentationType("Streaming Splats")
+        Render(view)
+        display.UpdatePropertyInformation()
+        drawn = display.GetPropertyValue("SplatStreamingFileSplats")
+        check(drawn == 0, "the output of %s is drawn as data, not the file (%d of the file's "
+              "splats)" % (label, drawn))
+        Hide(filtered, view)
+    Delete(added)
+    Delete(moved)
+    stream = Show(splat_file, view)
+
     # Opened afresh and seen close up, only the pages in view are read.
     Hide(splat_file, view)
     near_file = OpenDataFile(splat_path)

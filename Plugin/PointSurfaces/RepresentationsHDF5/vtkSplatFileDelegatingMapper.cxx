@@ -2,12 +2,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSplatFileDelegatingMapper.h"
 
+#include "vtkBoundingBox.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkDataArray.h"
 #include "vtkDataSet.h"
 #include "vtkFieldData.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
@@ -18,18 +20,26 @@
 
 #include <vtksys/SystemTools.hxx>
 
+#include <algorithm>
+#include <set>
+
 vtkStandardNewMacro(vtkSplatFileDelegatingMapper);
 
 namespace
 {
 // What the reader's field arrays say of `data` (of its first leaf that has
-// each), and its points (all its leaves): found in one walk.
+// each), and what `data` is (all its leaves): its points, their bounds and
+// the names of its point arrays; found in one walk.
 struct SplatFileFields
 {
   vtkStringArray* Name = nullptr;
   vtkDataArray* Loaded = nullptr;
   vtkDataArray* Bounds = nullptr;
+  vtkDataArray* LoadedBounds = nullptr;
+  vtkStringArray* Arrays = nullptr;
   vtkIdType Points = 0;
+  vtkBoundingBox DataBounds;
+  std::set<std::string> DataArrays;
 
   explicit SplatFileFields(vtkDataObject* data)
   {
@@ -38,6 +48,16 @@ struct SplatFileFields
       if (auto* set = vtkDataSet::SafeDownCast(object))
       {
         this->Points += set->GetNumberOfPoints();
+        if (set->GetNumberOfPoints() > 0)
+        {
+          this->DataBounds.AddBounds(set->GetBounds());
+        }
+        vtkPointData* pd = set->GetPointData();
+        for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+        {
+          const char* name = pd->GetArrayName(a);
+          this->DataArrays.insert(name ? name : "");
+        }
       }
       vtkFieldData* fields = object ? object->GetFieldData() : nullptr;
       if (!fields)
@@ -57,6 +77,15 @@ struct SplatFileFields
       {
         this->Bounds = fields->GetArray(vtkSplatFileReader::FileBoundsArrayName());
       }
+      if (!this->LoadedBounds)
+      {
+        this->LoadedBounds = fields->GetArray(vtkSplatFileReader::LoadedBoundsArrayName());
+      }
+      if (!this->Arrays)
+      {
+        this->Arrays = vtkStringArray::SafeDownCast(
+          fields->GetAbstractArray(vtkSplatFileReader::ArraysArrayName()));
+      }
     };
     if (auto* composite = vtkCompositeDataSet::SafeDownCast(data))
     {
@@ -73,14 +102,38 @@ struct SplatFileFields
     }
   }
 
-  // The file's name when the data is the reader's output unfiltered, else empty.
+  // The file's name when the data is the reader's output unfiltered, else
+  // empty: as many points as it loaded, at the same bounds (a Transform
+  // keeps the count) and no point array it did not have (a Calculator
+  // keeps the points; the file has no such array to colour by).
   std::string File() const
   {
     if (!this->Name || this->Name->GetNumberOfValues() < 1 || !this->Loaded ||
       this->Loaded->GetNumberOfTuples() < 1 ||
-      static_cast<vtkIdType>(this->Loaded->GetComponent(0, 0)) != this->Points)
+      static_cast<vtkIdType>(this->Loaded->GetComponent(0, 0)) != this->Points ||
+      !this->LoadedBounds || this->LoadedBounds->GetNumberOfComponents() != 6 ||
+      this->LoadedBounds->GetNumberOfTuples() < 1 || !this->Arrays)
     {
       return std::string();
+    }
+    if (this->Points > 0)
+    {
+      double loaded[6], bounds[6];
+      this->LoadedBounds->GetTuple(0, loaded);
+      this->DataBounds.GetBounds(bounds);
+      if (!std::equal(loaded, loaded + 6, bounds))
+      {
+        return std::string();
+      }
+    }
+    for (const std::string& name : this->DataArrays)
+    {
+      // VTK's and ParaView's own bookkeeping (vtkOriginalPointIds, which
+      // ParaView's delivery adds for selection; vtkGhostType) does not count.
+      if (name.compare(0, 3, "vtk") != 0 && this->Arrays->LookupValue(name) < 0)
+      {
+        return std::string();
+      }
     }
     return this->Name->GetValue(0);
   }

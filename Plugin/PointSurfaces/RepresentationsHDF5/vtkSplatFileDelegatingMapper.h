@@ -7,9 +7,10 @@
  * A vtkPointSurfacesDelegatingMapper whose input is the output of
  * vtkSplatFileReader (the pages that reader loaded, and the file's path in
  * the field array vtkSplatFileReader::FileNameArrayName()). When the input
- * is that output unfiltered (its splat count is SplatFileLoadedSplats: a
- * filter that passed the field data on but changed the splats is drawn as
- * data) and this process can read the file, the mapper draws it through its
+ * is that output unfiltered (its splat count is SplatFileLoadedSplats, its
+ * bounds SplatFileLoadedBounds and its point arrays among SplatFileArrays:
+ * a filter that passed the field data on but changed, moved or added to the
+ * splats is drawn as data) and this process can read the file, the mapper draws it through its
  * vtkStreamingSplatMapper (GetStream): the pages and levels this view
  * needs, within the stream's MemoryBudget of GPU buffers, read by a
  * thread, coarsest first; the delivered data is then only what tells it
