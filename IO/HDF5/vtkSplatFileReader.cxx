@@ -23,6 +23,7 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkSplatDataModel.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
 #include <vtksys/SystemTools.hxx>
@@ -184,11 +185,29 @@ bool vtkSplatFileReader::CanReadFile(const char* fileName)
 }
 
 //------------------------------------------------------------------------------
+int vtkSplatFileReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  // Every piece gets a share of the chosen splats: under ParaView's ranks
+  // none is left without the arrays (pvbatch --symmetric colours by them).
+  outputVector->GetInformationObject(0)->Set(CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
 int vtkSplatFileReader::RequestData(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
   this->NumberOfSplats = this->NumberOfLoadedSplats = 0;
   if (this->FileName.empty())
   {
@@ -225,9 +244,11 @@ int vtkSplatFileReader::RequestData(vtkInformation*,
     view.PixelError = this->PixelError;
   }
   const double perSplat = P->File.BytesPerSplat();
-  const pointsurfaces::PageSelection selection = pointsurfaces::SelectPages(
+  const pointsurfaces::PageSelection chosen = pointsurfaces::SelectPages(
     info.Pages, perSplat, this->MemoryBudget * 1e6, this->Camera ? &view : nullptr);
-  if (selection.Ranges.empty() && selection.SmallestPage > 0.0)
+  const pointsurfaces::PageSelection selection =
+    pointsurfaces::PieceOfSelection(chosen, piece, pieces, perSplat);
+  if (chosen.Ranges.empty() && chosen.SmallestPage > 0.0 && piece == 0)
   {
     vtkWarningMacro(<< this->FileName << ": MemoryBudget " << this->MemoryBudget
                     << " MB holds no page's coarsest level (the smallest needs "

@@ -32,6 +32,14 @@
  * data). A camera move re-executes the reader only when
  * a Camera is set (its MTime counts).
  *
+ * Asked for pieces (ParaView's ranks, a vtkPolyData streamed in pieces),
+ * piece p of n holds the p-th n-th of the splats chosen within the budget,
+ * in the file's order (pointsurfaces::PieceOfSelection): the pieces
+ * together are what one piece would load, each splat once, and every piece
+ * has the same arrays (empty only when fewer splats are chosen than there
+ * are pieces). The loaded counts and bounds in the field data are the
+ * piece's; the file's name, bounds and counts are the whole file's.
+ *
  * A missing, truncated, damaged, foreign or unfinished file gives one
  * vtkErrorMacro line that starts with the file's name, and an empty
  * output. HDF5 1.10 (Debian 12) can crash on a damaged file's metadata
@@ -138,6 +146,7 @@ protected:
   vtkSplatFileReader();
   ~vtkSplatFileReader() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   std::string FileName;

@@ -125,4 +125,47 @@ PageSelection SelectPages(const LODOctree& lod,
     [](const PageRange& a, const PageRange& b) { return a.Begin < b.Begin; });
   return out;
 }
+
+PageSelection PieceOfSelection(const PageSelection& selection,
+  int piece,
+  int pieces,
+  double bytesPerSplat)
+{
+  if (pieces < 2)
+  {
+    return selection;
+  }
+  PageSelection out;
+  out.Wanted = selection.Wanted;
+  out.SmallestPage = selection.SmallestPage;
+  if (piece < 0 || piece >= pieces)
+  {
+    return out;
+  }
+  long long total = 0;
+  for (const PageRange& r : selection.Ranges)
+  {
+    total += r.End - r.Begin;
+  }
+  // The share [first, last) of the chosen splats counted in the file's order.
+  const long long first = total / pieces * piece + std::min<long long>(piece, total % pieces);
+  const long long last = first + total / pieces + (piece < total % pieces ? 1 : 0);
+  long long at = 0; // chosen splats before the current range
+  for (const PageRange& r : selection.Ranges)
+  {
+    const long long n = r.End - r.Begin;
+    const long long lo = std::max(first, at), hi = std::min(last, at + n);
+    if (hi > lo)
+    {
+      PageRange cut = r; // a cut range keeps its page's Levels
+      cut.Begin = r.Begin + (lo - at);
+      cut.End = r.Begin + (hi - at);
+      out.Ranges.push_back(cut);
+      out.Splats += hi - lo;
+    }
+    at += n;
+  }
+  out.Bytes = static_cast<double>(out.Splats) * bytesPerSplat;
+  return out;
+}
 } // namespace pointsurfaces

@@ -63,6 +63,19 @@ POINTSURFACESFILTERS_EXPORT PageSelection SelectPages(const LODOctree& lod,
   double bytesPerSplat,
   double budgetBytes,
   const LODView* view = nullptr);
+
+/**
+ * Piece `piece` of `pieces` of `selection`, for a reader asked for pieces (one
+ * a rank): a contiguous share of the chosen splats in the file's order, the
+ * ranges cut at the share's ends, so that the pieces hold every chosen splat
+ * once and differ in size by one splat at most. Bytes are counted at
+ * `bytesPerSplat`; Wanted and SmallestPage stay the whole selection's. A
+ * piece outside [0, pieces) is empty; pieces < 2 is the whole selection.
+ */
+POINTSURFACESFILTERS_EXPORT PageSelection PieceOfSelection(const PageSelection& selection,
+  int piece,
+  int pieces,
+  double bytesPerSplat);
 } // namespace pointsurfaces
 
 #endif

@@ -22,6 +22,7 @@
 #include "psHDF5.h"
 #include "psIOTestSupport.h"
 #include "psSplatFile.h"
+#include "psSplatPages.h"
 
 #include "vtkAlgebraicSplatFitter.h"
 #include "vtkCamera.h"
@@ -38,10 +39,14 @@
 #include "vtkUnsignedCharArray.h"
 #include "vtk_hdf5.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <utility>
+#include <vector>
 
 using namespace pointsurfaces_test;
 
@@ -571,9 +576,129 @@ void Streaming()
 }
 } // namespace
 
+// The file read in `pieces` pieces (as ParaView's ranks ask), each with its warnings counted.
+std::vector<vtkSmartPointer<vtkPolyData>> ReadPieces(const std::string& path,
+  int pieces,
+  double budget,
+  int* warnings)
+{
+  std::vector<vtkSmartPointer<vtkPolyData>> out;
+  *warnings = 0;
+  for (int p = 0; p < pieces; ++p)
+  {
+    vtkNew<vtkSplatFileReader> reader;
+    vtkNew<vtkTest::ErrorObserver> observer;
+    reader->AddObserver(vtkCommand::WarningEvent, observer);
+    reader->AddObserver(vtkCommand::ErrorEvent, observer);
+    reader->SetFileName(path.c_str());
+    reader->SetMemoryBudget(budget);
+    reader->UpdatePiece(p, pieces, 0);
+    *warnings += observer->GetWarning() || observer->GetError() ? 1 : 0;
+    auto piece = vtkSmartPointer<vtkPolyData>::New();
+    piece->ShallowCopy(reader->GetOutput());
+    out.push_back(piece);
+  }
+  return out;
+}
+
+vtkIdType FieldCount(vtkPolyData* pd, const char* name)
+{
+  vtkDataArray* a = pd->GetFieldData()->GetArray(name);
+  return a && a->GetNumberOfTuples() == 1 ? static_cast<vtkIdType>(a->GetTuple1(0)) : -1;
+}
+
+std::vector<std::string> ArrayNames(vtkPolyData* pd)
+{
+  std::vector<std::string> names;
+  for (int a = 0; a < pd->GetPointData()->GetNumberOfArrays(); ++a)
+  {
+    names.emplace_back(pd->GetPointData()->GetArrayName(a));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+void Pieces()
+{
+  // The share of a selection: contiguous in the file's order, cut inside ranges.
+  pointsurfaces::PageSelection chosen;
+  for (const auto& [begin, end] :
+    { std::pair<long long, long long>{ 0, 5 }, { 10, 12 }, { 20, 27 } })
+  {
+    pointsurfaces::PageRange r;
+    r.Begin = begin;
+    r.End = end;
+    chosen.Ranges.push_back(r);
+  }
+  chosen.Splats = 14;
+  auto ranges = [&](int piece, int pieces)
+  {
+    std::vector<std::pair<long long, long long>> out;
+    for (const auto& r : pointsurfaces::PieceOfSelection(chosen, piece, pieces, 1.0).Ranges)
+    {
+      out.emplace_back(r.Begin, r.End);
+    }
+    return out;
+  };
+  using Ranges = std::vector<std::pair<long long, long long>>;
+  Check(ranges(0, 3) == Ranges{ { 0, 5 } } && ranges(1, 3) == Ranges{ { 10, 12 }, { 20, 23 } } &&
+      ranges(2, 3) == Ranges{ { 23, 27 } },
+    "14 chosen splats in 3 pieces: 5, 5 and 4, the ranges cut at the shares' ends");
+  Check(pointsurfaces::PieceOfSelection(chosen, 1, 3, 2.0).Bytes == 10.0 &&
+      ranges(0, 1) == Ranges{ { 0, 5 }, { 10, 12 }, { 20, 27 } } && ranges(3, 3).empty() &&
+      ranges(-1, 3).empty() && ranges(13, 20) == Ranges{ { 26, 27 } } && ranges(19, 20).empty(),
+    "a piece's bytes; one piece is the whole; a piece out of range or past the splats is empty");
+
+  // The file in three pieces: each splat once, as one piece reads them.
+  const std::string path = Temp("TestSplatFile-sphere.psplat");
+  const auto whole = Read(path);
+  const vtkIdType n = whole->GetNumberOfPoints();
+  for (const double budget : { 0.0, 0.05 })
+  {
+    const auto one = budget > 0.0 ? Read(path, budget) : whole;
+    int warned = 0;
+    const auto parts = ReadPieces(path, 3, budget, &warned);
+    std::map<std::array<double, 3>, std::vector<double>> joined;
+    vtkIdType sum = 0, smallest = one->GetNumberOfPoints(), largest = 0;
+    bool fields = true, arrays = true;
+    for (const auto& part : parts)
+    {
+      const vtkIdType m = part->GetNumberOfPoints();
+      sum += m;
+      smallest = std::min(smallest, m);
+      largest = std::max(largest, m);
+      const auto byOrigin = ByOrigin(part);
+      joined.insert(byOrigin.begin(), byOrigin.end());
+      fields = fields && FieldCount(part, "SplatFileLoadedSplats") == m &&
+        FieldCount(part, "SplatFileSplats") == n;
+      arrays = arrays && ArrayNames(part) == ArrayNames(one);
+    }
+    std::cout << "in 3 pieces, budget " << budget << " MB: " << parts[0]->GetNumberOfPoints()
+              << " + " << parts[1]->GetNumberOfPoints() << " + " << parts[2]->GetNumberOfPoints()
+              << " of " << one->GetNumberOfPoints() << " splats\n";
+    Check(sum == one->GetNumberOfPoints() && joined == ByOrigin(one) && largest - smallest <= 1 &&
+        smallest > 0 && !warned,
+      "three pieces hold the splats one piece reads, each once, in shares that differ by one");
+    Check(fields && arrays,
+      "each piece has the same arrays and counts its own splats (SplatFileLoadedSplats)");
+  }
+  // More pieces than chosen splats: the last ones empty, with the arrays.
+  int warned = 0;
+  const vtkIdType few = Read(path, 0.01)->GetNumberOfPoints();
+  vtkNew<vtkSplatFileReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetMemoryBudget(0.01);
+  reader->UpdatePiece(static_cast<int>(few) + 5, static_cast<int>(few) + 10, 0);
+  const auto last = ReadPieces(path, 1, 0.01, &warned);
+  Check(few > 0 && reader->GetOutput()->GetNumberOfPoints() == 0 &&
+      ArrayNames(reader->GetOutput()) == ArrayNames(last[0]) && !warned,
+    "a piece past the chosen splats is empty, with the same arrays, and no warning");
+}
+
 int TestSplatFile(int, char*[])
 {
   WriteAndReadBack();
+  Pieces();
   RoundedIntegers();
   BadFiles();
   Streaming();
