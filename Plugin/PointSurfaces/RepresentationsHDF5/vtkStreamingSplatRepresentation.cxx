@@ -43,30 +43,31 @@ void vtkStreamingSplatRepresentation::SetSplatStreamingBatchWait(double seconds)
 }
 
 //------------------------------------------------------------------------------
+bool vtkStreamingSplatRepresentation::DrawsFile()
+{
+  // A rank that leaves the file to rank 0 reports nothing of it: its stream
+  // may have opened the file for its bounds but never draws, nor loads.
+  return !this->FileMapper->GetFileDrawn().empty() && this->FileMapper->GetDrawsFile();
+}
+
 vtkIdType vtkStreamingSplatRepresentation::GetSplatStreamingFileSplats()
 {
-  return this->FileMapper->GetFileDrawn().empty()
-    ? 0
-    : this->FileMapper->GetStream()->GetNumberOfSplats();
+  return !this->DrawsFile() ? 0 : this->FileMapper->GetStream()->GetNumberOfSplats();
 }
 
 vtkIdType vtkStreamingSplatRepresentation::GetSplatStreamingResidentSplats()
 {
-  return this->FileMapper->GetFileDrawn().empty()
-    ? 0
-    : this->FileMapper->GetStream()->GetNumberOfResidentSplats();
+  return !this->DrawsFile() ? 0 : this->FileMapper->GetStream()->GetNumberOfResidentSplats();
 }
 
 vtkIdType vtkStreamingSplatRepresentation::GetSplatStreamingWantedSplats()
 {
-  return this->FileMapper->GetFileDrawn().empty()
-    ? 0
-    : this->FileMapper->GetStream()->GetNumberOfWantedSplats();
+  return !this->DrawsFile() ? 0 : this->FileMapper->GetStream()->GetNumberOfWantedSplats();
 }
 
 int vtkStreamingSplatRepresentation::GetSplatStreamingLoading()
 {
-  return !this->FileMapper->GetFileDrawn().empty() && this->FileMapper->GetStream()->GetLoading();
+  return this->DrawsFile() && this->FileMapper->GetStream()->GetLoading();
 }
 
 //------------------------------------------------------------------------------

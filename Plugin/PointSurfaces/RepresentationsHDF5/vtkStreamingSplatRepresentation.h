@@ -54,7 +54,8 @@ public:
   /**
    * After a render on this process: the file's splats, those in memory,
    * those the view wants within the budget, and whether pages it wants are
-   * still loading (all 0 where the data was drawn instead of a file).
+   * still loading (all 0 where the data was drawn instead of a file, and on
+   * a rank that leaves the file to rank 0).
    */
   vtkIdType GetSplatStreamingFileSplats();
   vtkIdType GetSplatStreamingResidentSplats();
@@ -71,6 +72,9 @@ protected:
   ~vtkStreamingSplatRepresentation() override;
 
   vtkSplatFileDelegatingMapper* FileMapper;
+
+  /** Whether this process draws a file (not the data, and not left to rank 0). */
+  bool DrawsFile();
 
 private:
   vtkStreamingSplatRepresentation(const vtkStreamingSplatRepresentation&) = delete;
