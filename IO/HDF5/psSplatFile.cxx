@@ -15,6 +15,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <limits>
 
 namespace pointsurfaces
 {
@@ -185,6 +187,71 @@ const float* StoredValues(int type, const std::vector<float>& values, std::vecto
   }
   return rounded.data();
 }
+
+// Whether column k has a Range (Origin and the coefficients have none).
+bool Ranged(int k)
+{
+  return std::strcmp(Columns[k].Name, "Origin") != 0 && Columns[k].Components != 0;
+}
+
+// Numbers in a Range of `comps` components: [min, max] of each, then of
+// the magnitude when there are several.
+size_t RangeSize(int comps)
+{
+  return 2 * static_cast<size_t>(comps > 1 ? comps + 1 : comps);
+}
+
+// Widens `range` (RangeSize(comps) numbers; empty: none yet) by the finite
+// values of `rows` rows of `comps` components.
+template<typename T>
+void GrowRange(std::vector<double>& range, const T* values, long long rows, int comps)
+{
+  if (range.empty())
+  {
+    range.resize(RangeSize(comps));
+    for (size_t s = 0; s < range.size(); s += 2)
+    {
+      range[s] = std::numeric_limits<double>::infinity();
+      range[s + 1] = -std::numeric_limits<double>::infinity();
+    }
+  }
+  for (long long r = 0; r < rows; ++r)
+  {
+    double squares = 0.0;
+    bool finite = true;
+    for (int c = 0; c < comps; ++c)
+    {
+      const double v = static_cast<double>(values[r * comps + c]);
+      if (!std::isfinite(v))
+      {
+        finite = false;
+        continue;
+      }
+      range[2 * c] = std::min(range[2 * c], v);
+      range[2 * c + 1] = std::max(range[2 * c + 1], v);
+      squares += v * v;
+    }
+    if (comps > 1 && finite)
+    {
+      const double m = std::sqrt(squares);
+      range[2 * comps] = std::min(range[2 * comps], m);
+      range[2 * comps + 1] = std::max(range[2 * comps + 1], m);
+    }
+  }
+}
+
+// Whether every [min, max] of `range` holds a finite value.
+bool WholeRange(const std::vector<double>& range)
+{
+  for (size_t s = 0; s + 1 < range.size(); s += 2)
+  {
+    if (!(std::isfinite(range[s]) && std::isfinite(range[s + 1]) && range[s] <= range[s + 1]))
+    {
+      return false;
+    }
+  }
+  return !range.empty();
+}
 } // namespace
 
 int SplatFileInfo::AttributeType(size_t a) const
@@ -340,7 +407,8 @@ struct SplatFileWriter::Impl
 {
   hid_t File = -1;
   SplatFileInfo Info;
-  std::vector<hid_t> Datasets; // the columns, then the attributes
+  std::vector<hid_t> Datasets;             // the columns, then the attributes
+  std::vector<std::vector<double>> Ranges; // of each dataset, as written so far
   void CloseAll()
   {
     for (hid_t d : this->Datasets)
@@ -415,6 +483,7 @@ bool SplatFileWriter::Open(const std::string& path, const SplatFileInfo& info, s
     P->CloseAll();
     return false;
   }
+  P->Ranges.assign(P->Datasets.size(), {});
   return true;
 }
 
@@ -437,22 +506,35 @@ bool SplatFileWriter::Write(long long first, const SplatColumns& block, std::str
       error = "cannot be written (disk full?)";
       return false;
     }
+    if (Ranged(k) && Columns[k].Type == Kind::Int)
+    {
+      GrowRange(P->Ranges[k], static_cast<const int*>(ColumnData(rows, k)), block.Count, comps);
+    }
+    else if (Ranged(k))
+    {
+      GrowRange(P->Ranges[k], static_cast<const float*>(ColumnData(rows, k)), block.Count, comps);
+    }
   }
   std::vector<float> rounded;
   for (size_t a = 0; a < P->Info.AttributeNames.size(); ++a)
   {
-    if (rows.Attributes.size() <= a ||
+    const int comps = std::max(1, P->Info.AttributeComponents[a]);
+    const float* stored = rows.Attributes.size() > a
+      ? StoredValues(P->Info.AttributeType(a), rows.Attributes[a], rounded)
+      : nullptr;
+    if (!stored ||
       !Rows(P->Datasets[ColumnCount + a],
         f,
         count,
-        std::max(1, P->Info.AttributeComponents[a]),
+        comps,
         H5T_NATIVE_FLOAT,
-        const_cast<float*>(StoredValues(P->Info.AttributeType(a), rows.Attributes[a], rounded)),
+        const_cast<float*>(stored),
         true))
     {
       error = "cannot be written (disk full?)";
       return false;
     }
+    GrowRange(P->Ranges[ColumnCount + a], stored, block.Count, comps);
   }
   return true;
 }
@@ -510,8 +592,16 @@ bool SplatFileWriter::Close(std::string& error)
     WriteNumbers(P->File, "NumberOfSplats", &splats, 1) &&
     WriteNumbers(P->File, "NumberOfInputPoints", &input, 1) &&
     WriteNumbers(P->File, "Oriented", &oriented, 1) &&
-    WriteNumbers(P->File, "Bounds", info.Bounds, 6) &&
-    WriteNumbers(P->File, "Complete", &complete, 1);
+    WriteNumbers(P->File, "Bounds", info.Bounds, 6);
+  // Each dataset's value ranges (none where no value was finite).
+  for (size_t d = 0; ok && d < P->Datasets.size() && d < P->Ranges.size(); ++d)
+  {
+    if (WholeRange(P->Ranges[d]))
+    {
+      ok = WriteNumbers(P->Datasets[d], "Range", P->Ranges[d].data(), P->Ranges[d].size());
+    }
+  }
+  ok = ok && WriteNumbers(P->File, "Complete", &complete, 1);
   P->CloseAll();
   if (!ok)
   {
@@ -757,6 +847,24 @@ bool SplatFileReader::Impl::Check(std::string& error)
   {
     error = "damaged: a column cannot be opened";
     return false;
+  }
+  // The value ranges the writer stored; one that does not fit is left out.
+  for (size_t d = 0; d < this->Datasets.size(); ++d)
+  {
+    const bool column = d < static_cast<size_t>(ColumnCount);
+    if (column && !Ranged(static_cast<int>(d)))
+    {
+      continue;
+    }
+    const int comps = column ? Columns[d].Components : info.AttributeComponents[d - ColumnCount];
+    std::vector<double> range(RangeSize(comps));
+    if (ReadNumbers(this->Datasets[d], "Range", range.data(), static_cast<int>(range.size())) ==
+        static_cast<int>(range.size()) &&
+      WholeRange(range))
+    {
+      info.Ranges[column ? std::string("Splats/") + Columns[d].Name
+                         : "Attributes/" + info.AttributeNames[d - ColumnCount]] = range;
+    }
   }
 
   // The octree: every range, child and level end within bounds.

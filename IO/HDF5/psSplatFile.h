@@ -24,6 +24,8 @@
  *     /Attributes/<name>     float32 [N, c]  the input's point arrays, MLS-weighted
  *                                            (integer arrays as their integer type,
  *                                            rounded: SplatFileInfo::AttributeTypes)
+ *     (each column but Origin and Coefficients, and each attribute: attribute
+ *      Range, the whole column's value ranges, SplatFileInfo::Ranges)
  *     /Octree/Bounds         float64 [M, 6]  per node, discs included
  *     /Octree/Sphere         float64 [M, 4]
  *     /Octree/Children       int32   [M, 2]  first child, child count
@@ -55,6 +57,7 @@
 #include "psSplatLOD.h"                // For LODOctree
 
 #include <functional> // For the fetch
+#include <map>        // For the ranges
 #include <memory>     // For the implementation
 #include <string>     // For names and errors
 #include <vector>     // For columns
@@ -87,6 +90,18 @@ struct SplatFileInfo
   std::vector<int> AttributeTypes;
   /** The VTK data type of attribute `a`. */
   int AttributeType(size_t a) const;
+  /**
+   * The whole file's value ranges, by dataset ("Splats/Radius",
+   * "Attributes/<name>"): [min, max] of each component's finite values,
+   * then of the magnitude of the tuples whose components are all finite
+   * when there are several components. The writer stores them as each
+   * dataset's Range attribute (every column but Origin and Coefficients,
+   * and every attribute); a file without them (written before 2026-12-06)
+   * or with one that does not fit its dataset has none here. A reader of
+   * some pages gives its arrays these ranges (vtkSplatFileReader), so that
+   * a colour map fits the whole file, not the pages read.
+   */
+  std::map<std::string, std::vector<double>> Ranges;
   /** The page octree with the s of each level (Pages.Tree.Levels levels). */
   LODOctree Pages;
 };

@@ -13,6 +13,8 @@
 #include "vtkFloatArray.h"
 #include "vtkIdTypeArray.h"
 #include "vtkInformation.h"
+#include "vtkInformationDoubleVectorKey.h"
+#include "vtkInformationInformationVectorKey.h"
 #include "vtkInformationVector.h"
 #include "vtkIntArray.h"
 #include "vtkMath.h"
@@ -30,6 +32,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 vtkStandardNewMacro(vtkSplatFileReader);
 
@@ -41,6 +45,43 @@ void AddCount(vtkFieldData* fd, const char* name, vtkIdType value)
   a->SetName(name);
   a->InsertNextValue(value);
   fd->AddArray(a);
+}
+
+// The whole file's ranges of dataset `key` as `array`'s cached ranges
+// (vtkDataArray's information keys, finite and not): GetRange and
+// GetFiniteRange, and so ParaView's data information and a colour map's
+// automatic range, give the file's ranges, not those of the pages read. Set
+// after the values: an array changed later computes its own again (VTK
+// keeps a cached range only while it is newer than the array).
+void CacheRange(vtkDataArray* array,
+  const pointsurfaces::SplatFileInfo& info,
+  const std::string& key)
+{
+  const auto it = info.Ranges.find(key);
+  const int comps = array ? array->GetNumberOfComponents() : 0;
+  if (it == info.Ranges.end() || comps < 1 ||
+    it->second.size() != 2 * static_cast<size_t>(comps > 1 ? comps + 1 : comps))
+  {
+    return;
+  }
+  const std::vector<double>& range = it->second;
+  vtkInformation* keys = array->GetInformation();
+  for (vtkInformationInformationVectorKey* per :
+    { vtkAbstractArray::PER_COMPONENT(), vtkAbstractArray::PER_FINITE_COMPONENT() })
+  {
+    vtkNew<vtkInformationVector> components;
+    components->SetNumberOfInformationObjects(comps);
+    for (int c = 0; c < comps; ++c)
+    {
+      components->GetInformationObject(c)->Set(vtkDataArray::COMPONENT_RANGE(), &range[2 * c], 2);
+    }
+    keys->Set(per, components);
+  }
+  if (comps > 1)
+  {
+    keys->Set(vtkDataArray::L2_NORM_RANGE(), &range[2 * comps], 2);
+    keys->Set(vtkDataArray::L2_NORM_FINITE_RANGE(), &range[2 * comps], 2);
+  }
 }
 
 // The loaded rows as the splat data model, in the order of their own LOD octree.
@@ -121,6 +162,22 @@ void Assemble(const pointsurfaces::SplatColumns& c,
         attributes[a]->SetComponent(k, j, c.Attributes[a][static_cast<size_t>(comps) * i + j]);
       }
     }
+  }
+  const std::pair<vtkDataArray*, const char*> columns[] = { { normal, "Normal" },
+    { tangent, "Tangent" },
+    { size, "FeatureSize" },
+    { radius, "Radius" },
+    { deviation, "MaxDeviation" },
+    { nominal, "NominalRadius" },
+    { tolerance, "Tolerance" },
+    { lod.GetPointer(), "LOD" } };
+  for (const auto& [array, column] : columns)
+  {
+    CacheRange(array, info, std::string("Splats/") + column);
+  }
+  for (size_t a = 0; a < attributes.size(); ++a)
+  {
+    CacheRange(attributes[a], info, "Attributes/" + info.AttributeNames[a]);
   }
   output->SetPoints(points);
   vtkSplatDataModel::AddVertexCells(output);

@@ -32,6 +32,15 @@
  * data). A camera move re-executes the reader only when
  * a Camera is set (its MTime counts).
  *
+ * Each array reports the whole file's value range, not that of the pages
+ * loaded: the file stores every column's and attribute's range
+ * (pointsurfaces::SplatFileInfo::Ranges), set here as the array's cached
+ * ranges (vtkDataArray's COMPONENT_RANGE, L2_NORM_RANGE and their finite
+ * forms), so that GetRange, GetFiniteRange and a colour map fitted to the
+ * data (ParaView's automatic range) fit the whole file. An array changed
+ * afterwards computes its own range again; a file without ranges gives
+ * the pages' own.
+ *
  * Asked for pieces (ParaView's ranks, a vtkPolyData streamed in pieces),
  * piece p of n holds the p-th n-th of the splats chosen within the budget,
  * in the file's order (pointsurfaces::PieceOfSelection): the pieces

@@ -162,6 +162,7 @@ opened["points.vdb"].UpdatePipeline()
 check(opened["points.vdb"].GetDataInformation().GetNumberOfPoints() > 0,
       "a good .vdb reads after the damaged one")
 
+import builtins  # noqa: E402  (paraview.simple brings numpy-style all, min and max)
 import time  # noqa: E402
 from vtkmodules.vtkCommonCore import vtkIdTypeArray, vtkIntArray  # noqa: E402
 from vtkmodules.vtkParallelCore import vtkCommunicator  # noqa: E402
@@ -209,6 +210,7 @@ if splat_file is not None:
     if not mpi:
         check(splat_file.GetDataInformation().GetNumberOfPoints() == written,
               "the splat file reads back its %d splats" % written)
+    whole_radius = tuple(splat_file.PointData["SplatRadius"].GetRange())
     # The whole file as Algebraic Splats of the reader's output: the reference.
     splat_file.MemoryBudget = 0
     whole = Show(splat_file, view)
@@ -247,6 +249,27 @@ if splat_file is not None:
         controller.AllReduce(elsewhere, most, vtkCommunicator.MAX_OP)
         check(most.GetValue(0) == 0, "over two ranks, rank 1 holds %d splats of the file (rank 0 "
               "draws it)" % most.GetValue(0))
+
+    # The colour map fits the whole file, not the pages read: the reader's
+    # arrays report the file's ranges (a coarse preview alone has no small
+    # splats). Serially the preview's own range is fetched to show the
+    # difference (a fetch under --symmetric is avoided, as for selections).
+    ColorBy(stream, ("POINTS", "SplatRadius"))
+    stream.RescaleTransferFunctionToDataRange(False, True)
+    fitted = GetColorTransferFunction("SplatRadius").RGBPoints
+    fitted = (fitted[0], fitted[-4])
+    reported = splat_file.PointData["SplatRadius"].GetRange()
+    check(builtins.all(abs(a - b) <= 1e-6 * abs(b) for a, b in zip(fitted, whole_radius)) and
+          tuple(reported) == tuple(whole_radius),
+          "with %d splats read, the colour map fits the file's SplatRadius range [%.4g, %.4g] "
+          "(the reader reports [%.4g, %.4g])" % (loaded, fitted[0], fitted[1], *reported))
+    if not mpi:
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        own = vtk_to_numpy(servermanager.Fetch(splat_file).GetPointData().GetArray("SplatRadius"))
+        check(own.min() > whole_radius[0],
+              "the pages read alone span [%.4g, %.4g] (the check means something)"
+              % (own.min(), own.max()))
+    ColorBy(stream, None)
 
     # A filter that passes the field data on but moves the splats (a
     # Transform keeps their count) or adds an array (a Calculator keeps the

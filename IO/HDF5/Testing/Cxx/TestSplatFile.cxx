@@ -44,6 +44,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <utility>
 #include <vector>
@@ -695,10 +696,144 @@ void Pieces()
     "a piece past the chosen splats is empty, with the same arrays, and no warning");
 }
 
+// [min, max] of component c (-1: the magnitude, or the only component) of
+// `a`'s finite values, computed here.
+std::array<double, 2> Span(vtkDataArray* a, int c)
+{
+  std::array<double, 2> r = { std::numeric_limits<double>::infinity(),
+    -std::numeric_limits<double>::infinity() };
+  const int comps = a->GetNumberOfComponents();
+  for (vtkIdType t = 0; t < a->GetNumberOfTuples(); ++t)
+  {
+    double v = 0.0;
+    if (c < 0 && comps > 1)
+    {
+      bool finite = true;
+      for (int k = 0; k < comps; ++k)
+      {
+        const double x = a->GetComponent(t, k);
+        finite = finite && std::isfinite(x);
+        v += x * x;
+      }
+      if (!finite)
+      {
+        continue;
+      }
+      v = std::sqrt(v);
+    }
+    else
+    {
+      v = a->GetComponent(t, std::max(0, c));
+    }
+    if (std::isfinite(v))
+    {
+      r[0] = std::min(r[0], v);
+      r[1] = std::max(r[1], v);
+    }
+  }
+  return r;
+}
+
+void WholeFileRanges()
+{
+  // Some pages of the sphere's file: their arrays report the whole file's
+  // ranges (GetRange, GetFiniteRange: what ParaView's colour maps fit).
+  const std::string path = Temp("TestSplatFile-sphere.psplat");
+  const auto whole = Read(path);
+  const auto partial = Read(path, 0.05);
+  const char* names[] = { "Class",
+    "Offset",
+    "Colour",
+    vtkSplatDataModel::RadiusName(),
+    vtkSplatDataModel::NormalName(),
+    vtkSplatDataModel::FeatureSizeName(),
+    vtkSplatDataModel::LODName() };
+  bool same = true, narrower = false, found = true;
+  for (const char* name : names)
+  {
+    vtkDataArray* part = partial->GetPointData()->GetArray(name);
+    vtkDataArray* all = whole->GetPointData()->GetArray(name);
+    if (!part || !all)
+    {
+      found = false;
+      continue;
+    }
+    for (int c = -1; c < part->GetNumberOfComponents(); ++c)
+    {
+      const std::array<double, 2> expected = Span(all, c);
+      std::array<double, 2> got, finite;
+      part->GetRange(got.data(), c);
+      part->GetFiniteRange(finite.data(), c);
+      if (got != expected || finite != expected)
+      {
+        same = false;
+        std::cout << name << " component " << c << ": [" << got[0] << ", " << got[1]
+                  << "], finite [" << finite[0] << ", " << finite[1] << "], the file's ["
+                  << expected[0] << ", " << expected[1] << "]\n";
+      }
+      narrower = narrower || Span(part, c) != expected;
+    }
+  }
+  std::cout << "whole-file ranges: " << partial->GetNumberOfPoints() << " of "
+            << whole->GetNumberOfPoints() << " splats read\n";
+  Check(
+    found && narrower, "the pages read alone span less than the file (the check means something)");
+  Check(same, "arrays of some pages report the whole file's ranges, per component and magnitude");
+
+  // Changed afterwards, an array computes its own range again.
+  vtkDataArray* classes = partial->GetPointData()->GetArray("Class");
+  for (vtkIdType t = 0; classes && t < classes->GetNumberOfTuples(); ++t)
+  {
+    classes->SetComponent(t, 0, 7.0);
+  }
+  if (classes)
+  {
+    classes->Modified();
+  }
+  Check(classes && classes->GetRange()[0] == 7.0 && classes->GetRange()[1] == 7.0,
+    "an array changed after reading computes its own range");
+
+  // A file without ranges (written before them), or with one that does not
+  // fit its dataset: the pages' own ranges, and no error.
+  const std::string old = Write(Temp("TestSplatFile-noranges.psplat"), Slurp(path));
+  {
+    const hid_t f = H5Fopen(old.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t classSet = H5Dopen2(f, "Attributes/Class", H5P_DEFAULT);
+    H5Adelete(classSet, "Range");
+    H5Dclose(classSet);
+    const hid_t offsetSet = H5Dopen2(f, "Attributes/Offset", H5P_DEFAULT);
+    H5Adelete(offsetSet, "Range");
+    const double wrong[3] = { 5.0, 1.0, 2.0 };
+    const hsize_t three = 3;
+    const hid_t space = H5Screate_simple(1, &three, nullptr);
+    const hid_t range =
+      H5Acreate2(offsetSet, "Range", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT);
+    H5Awrite(range, H5T_NATIVE_DOUBLE, wrong);
+    H5Aclose(range);
+    H5Sclose(space);
+    H5Dclose(offsetSet);
+    H5Fclose(f);
+  }
+  int warned = 0;
+  const auto older = Read(old, 0.05, nullptr, 0.0, &warned);
+  vtkDataArray* oldClasses = older->GetPointData()->GetArray("Class");
+  vtkDataArray* oldOffsets = older->GetPointData()->GetArray("Offset");
+  vtkDataArray* oldRadius = older->GetPointData()->GetArray(vtkSplatDataModel::RadiusName());
+  Check(oldClasses && oldOffsets && oldRadius && !warned &&
+      std::array<double, 2>{ oldClasses->GetRange()[0], oldClasses->GetRange()[1] } ==
+        Span(oldClasses, 0) &&
+      std::array<double, 2>{ oldOffsets->GetRange()[0], oldOffsets->GetRange()[1] } ==
+        Span(oldOffsets, 0) &&
+      std::array<double, 2>{ oldRadius->GetRange()[0], oldRadius->GetRange()[1] } ==
+        Span(whole->GetPointData()->GetArray(vtkSplatDataModel::RadiusName()), 0),
+    "without a Range, or with one of the wrong size, the pages' own range; the others stay");
+}
+
 int TestSplatFile(int, char*[])
 {
   WriteAndReadBack();
   Pieces();
+  WholeFileRanges();
   RoundedIntegers();
   BadFiles();
   Streaming();
