@@ -36,10 +36,11 @@
  * loaded: the file stores every column's and attribute's range
  * (pointsurfaces::SplatFileInfo::Ranges), set here as the array's cached
  * ranges (vtkDataArray's COMPONENT_RANGE, L2_NORM_RANGE and their finite
- * forms), so that GetRange, GetFiniteRange and a colour map fitted to the
- * data (ParaView's automatic range) fit the whole file. An array changed
- * afterwards computes its own range again; a file without ranges gives
- * the pages' own.
+ * forms), so that GetRange and GetFiniteRange, and a colour map set from
+ * them, fit the whole file whatever pages a camera loaded (ParaView 5.11's
+ * automatic range too; ParaView 5.13 and later compute ranges from the
+ * values and fit the pages read). An array changed afterwards computes its
+ * own range again; a file without ranges gives the pages' own.
  *
  * Asked for pieces (ParaView's ranks, a vtkPolyData streamed in pieces),
  * piece p of n holds the p-th n-th of the splats chosen within the budget,
