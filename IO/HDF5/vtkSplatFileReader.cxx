@@ -49,8 +49,9 @@ void AddCount(vtkFieldData* fd, const char* name, vtkIdType value)
 
 // The whole file's ranges of dataset `key` as `array`'s cached ranges
 // (vtkDataArray's information keys, finite and not): GetRange and
-// GetFiniteRange, and so ParaView's data information and a colour map's
-// automatic range, give the file's ranges, not those of the pages read. Set
+// GetFiniteRange, and so ParaView 5.11's data information (5.13 and later
+// compute their own from the values), give the file's ranges, not those of
+// the pages read. Set
 // after the values: an array changed later computes its own again (VTK
 // keeps a cached range only while it is newer than the array).
 void CacheRange(vtkDataArray* array,
