@@ -233,6 +233,20 @@ inline bool LaterPiece(vtkInformation* info)
   return info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) &&
     info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER()) > 0;
 }
+
+/**
+ * The piece this update asks for and how many there are (0 of 1 when the
+ * request names none; at least one piece).
+ */
+inline void RequestedPiece(vtkInformation* info, int& piece, int& pieces)
+{
+  piece = info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+    : 0;
+  pieces = info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? std::max(1, info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES()))
+    : 1;
+}
 } // namespace pointsurfaces
 
 #endif

@@ -232,12 +232,8 @@ int vtkPLYScanReader::RequestData(vtkInformation*,
     return 1;
   }
   vtkInformation* info = outputVector->GetInformationObject(0);
-  const int piece = info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  const int pieces = info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    : 1;
+  int piece = 0, pieces = 1;
+  pointsurfaces::RequestedPiece(info, piece, pieces);
   const bool split = this->SplitPoints && pieces > 1;
   if (!split && pointsurfaces::LaterPiece(info))
   {

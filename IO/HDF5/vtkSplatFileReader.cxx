@@ -4,6 +4,7 @@
 
 #include "psLocalFit.h"
 #include "psOctree.h"
+#include "psReaderTime.h" // For RequestedPiece
 #include "psSplatFile.h"
 #include "psSplatPages.h"
 
@@ -25,7 +26,6 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkSplatDataModel.h"
-#include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
 #include <vtksys/SystemTools.hxx>
@@ -260,12 +260,8 @@ int vtkSplatFileReader::RequestData(vtkInformation*,
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  const int piece = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-    : 0;
-  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    : 1;
+  int piece = 0, pieces = 1;
+  pointsurfaces::RequestedPiece(outInfo, piece, pieces);
   this->NumberOfSplats = this->NumberOfLoadedSplats = 0;
   if (this->FileName.empty())
   {
