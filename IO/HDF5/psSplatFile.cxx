@@ -194,21 +194,14 @@ bool Ranged(int k)
   return std::strcmp(Columns[k].Name, "Origin") != 0 && Columns[k].Components != 0;
 }
 
-// Numbers in a Range of `comps` components: [min, max] of each, then of
-// the magnitude when there are several.
-size_t RangeSize(int comps)
-{
-  return 2 * static_cast<size_t>(comps > 1 ? comps + 1 : comps);
-}
-
-// Widens `range` (RangeSize(comps) numbers; empty: none yet) by the finite
+// Widens `range` (SplatRangeSize(comps) numbers; empty: none yet) by the finite
 // values of `rows` rows of `comps` components.
 template<typename T>
 void GrowRange(std::vector<double>& range, const T* values, long long rows, int comps)
 {
   if (range.empty())
   {
-    range.resize(RangeSize(comps));
+    range.resize(SplatRangeSize(comps));
     for (size_t s = 0; s < range.size(); s += 2)
     {
       range[s] = std::numeric_limits<double>::infinity();
@@ -857,7 +850,7 @@ bool SplatFileReader::Impl::Check(std::string& error)
       continue;
     }
     const int comps = column ? Columns[d].Components : info.AttributeComponents[d - ColumnCount];
-    std::vector<double> range(RangeSize(comps));
+    std::vector<double> range(SplatRangeSize(comps));
     if (ReadNumbers(this->Datasets[d], "Range", range.data(), static_cast<int>(range.size())) ==
         static_cast<int>(range.size()) &&
       WholeRange(range))

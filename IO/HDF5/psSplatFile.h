@@ -56,6 +56,7 @@
 #include "PointSurfacesIOHDF5Module.h" // For export macro
 #include "psSplatLOD.h"                // For LODOctree
 
+#include <cstddef>    // For size_t
 #include <functional> // For the fetch
 #include <map>        // For the ranges
 #include <memory>     // For the implementation
@@ -105,6 +106,12 @@ struct SplatFileInfo
   /** The page octree with the s of each level (Pages.Tree.Levels levels). */
   LODOctree Pages;
 };
+
+/** Numbers in a range of SplatFileInfo::Ranges for `components` components. */
+inline size_t SplatRangeSize(int components)
+{
+  return 2 * static_cast<size_t>(components > 1 ? components + 1 : components);
+}
 
 /** Rows of splats, column by column, as the file stores them. */
 struct POINTSURFACESIOHDF5_EXPORT SplatColumns

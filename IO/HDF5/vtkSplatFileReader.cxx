@@ -61,7 +61,7 @@ void CacheRange(vtkDataArray* array,
   const auto it = info.Ranges.find(key);
   const int comps = array ? array->GetNumberOfComponents() : 0;
   if (it == info.Ranges.end() || comps < 1 ||
-    it->second.size() != 2 * static_cast<size_t>(comps > 1 ? comps + 1 : comps))
+    it->second.size() != pointsurfaces::SplatRangeSize(comps))
   {
     return;
   }
