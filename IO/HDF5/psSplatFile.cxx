@@ -195,19 +195,40 @@ bool Ranged(int k)
 }
 
 // Widens `range` (SplatRangeSize(comps) numbers; empty: none yet) by the finite
-// values of `rows` rows of `comps` components.
+// values of `rows` rows of `comps` components, the first of them row `first`
+// of the file; `where` keeps the row of each minimum and maximum (the first
+// row that holds it).
 template<typename T>
-void GrowRange(std::vector<double>& range, const T* values, long long rows, int comps)
+void GrowRange(std::vector<double>& range,
+  std::vector<long long>& where,
+  const T* values,
+  long long first,
+  long long rows,
+  int comps)
 {
   if (range.empty())
   {
     range.resize(SplatRangeSize(comps));
+    where.assign(range.size(), -1);
     for (size_t s = 0; s < range.size(); s += 2)
     {
       range[s] = std::numeric_limits<double>::infinity();
       range[s + 1] = -std::numeric_limits<double>::infinity();
     }
   }
+  auto grow = [&](size_t s, double v, long long row)
+  {
+    if (v < range[s])
+    {
+      range[s] = v;
+      where[s] = row;
+    }
+    if (v > range[s + 1])
+    {
+      range[s + 1] = v;
+      where[s + 1] = row;
+    }
+  };
   for (long long r = 0; r < rows; ++r)
   {
     double squares = 0.0;
@@ -220,15 +241,12 @@ void GrowRange(std::vector<double>& range, const T* values, long long rows, int 
         finite = false;
         continue;
       }
-      range[2 * c] = std::min(range[2 * c], v);
-      range[2 * c + 1] = std::max(range[2 * c + 1], v);
+      grow(2 * static_cast<size_t>(c), v, first + r);
       squares += v * v;
     }
     if (comps > 1 && finite)
     {
-      const double m = std::sqrt(squares);
-      range[2 * comps] = std::min(range[2 * comps], m);
-      range[2 * comps + 1] = std::max(range[2 * comps + 1], m);
+      grow(2 * static_cast<size_t>(comps), std::sqrt(squares), first + r);
     }
   }
 }
@@ -395,13 +413,56 @@ void SplatColumns::Resize(long long count, int degree, const std::vector<int>& c
   }
 }
 
+void SplatColumns::Append(const SplatColumns& from, long long row)
+{
+  if (row < 0 || row >= from.Count)
+  {
+    return;
+  }
+  auto append = [&](auto& to, const auto& source)
+  {
+    const auto width = static_cast<std::ptrdiff_t>(source.size() / static_cast<size_t>(from.Count));
+    const auto begin = source.begin() + static_cast<std::ptrdiff_t>(row) * width;
+    to.insert(to.end(), begin, begin + width);
+  };
+  append(this->Origin, from.Origin);
+  append(this->Normal, from.Normal);
+  append(this->Tangent, from.Tangent);
+  append(this->FeatureSize, from.FeatureSize);
+  append(this->Coefficients, from.Coefficients);
+  append(this->Radius, from.Radius);
+  append(this->MaxDeviation, from.MaxDeviation);
+  append(this->NominalRadius, from.NominalRadius);
+  append(this->Tolerance, from.Tolerance);
+  append(this->LOD, from.LOD);
+  this->Attributes.resize(from.Attributes.size());
+  for (size_t a = 0; a < from.Attributes.size(); ++a)
+  {
+    append(this->Attributes[a], from.Attributes[a]);
+  }
+  ++this->Count;
+}
+
+std::vector<long long> RangeEndRows(const SplatFileInfo& info)
+{
+  std::vector<long long> rows;
+  for (const auto& entry : info.RangeRows)
+  {
+    rows.insert(rows.end(), entry.second.begin(), entry.second.end());
+  }
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  return rows;
+}
+
 //------------------------------------------------------------------------------
 struct SplatFileWriter::Impl
 {
   hid_t File = -1;
   SplatFileInfo Info;
-  std::vector<hid_t> Datasets;             // the columns, then the attributes
-  std::vector<std::vector<double>> Ranges; // of each dataset, as written so far
+  std::vector<hid_t> Datasets;                   // the columns, then the attributes
+  std::vector<std::vector<double>> Ranges;       // of each dataset, as written so far
+  std::vector<std::vector<long long>> RangeRows; // the row of each of their ends
   void CloseAll()
   {
     for (hid_t d : this->Datasets)
@@ -477,6 +538,7 @@ bool SplatFileWriter::Open(const std::string& path, const SplatFileInfo& info, s
     return false;
   }
   P->Ranges.assign(P->Datasets.size(), {});
+  P->RangeRows.assign(P->Datasets.size(), {});
   return true;
 }
 
@@ -501,11 +563,21 @@ bool SplatFileWriter::Write(long long first, const SplatColumns& block, std::str
     }
     if (Ranged(k) && Columns[k].Type == Kind::Int)
     {
-      GrowRange(P->Ranges[k], static_cast<const int*>(ColumnData(rows, k)), block.Count, comps);
+      GrowRange(P->Ranges[k],
+        P->RangeRows[k],
+        static_cast<const int*>(ColumnData(rows, k)),
+        first,
+        block.Count,
+        comps);
     }
     else if (Ranged(k))
     {
-      GrowRange(P->Ranges[k], static_cast<const float*>(ColumnData(rows, k)), block.Count, comps);
+      GrowRange(P->Ranges[k],
+        P->RangeRows[k],
+        static_cast<const float*>(ColumnData(rows, k)),
+        first,
+        block.Count,
+        comps);
     }
   }
   std::vector<float> rounded;
@@ -527,7 +599,8 @@ bool SplatFileWriter::Write(long long first, const SplatColumns& block, std::str
       error = "cannot be written (disk full?)";
       return false;
     }
-    GrowRange(P->Ranges[ColumnCount + a], stored, block.Count, comps);
+    GrowRange(
+      P->Ranges[ColumnCount + a], P->RangeRows[ColumnCount + a], stored, first, block.Count, comps);
   }
   return true;
 }
@@ -586,12 +659,15 @@ bool SplatFileWriter::Close(std::string& error)
     WriteNumbers(P->File, "NumberOfInputPoints", &input, 1) &&
     WriteNumbers(P->File, "Oriented", &oriented, 1) &&
     WriteNumbers(P->File, "Bounds", info.Bounds, 6);
-  // Each dataset's value ranges (none where no value was finite).
+  // Each dataset's value ranges and the rows that hold their ends (none
+  // where no value was finite).
   for (size_t d = 0; ok && d < P->Datasets.size() && d < P->Ranges.size(); ++d)
   {
     if (WholeRange(P->Ranges[d]))
     {
-      ok = WriteNumbers(P->Datasets[d], "Range", P->Ranges[d].data(), P->Ranges[d].size());
+      const std::vector<double> rows(P->RangeRows[d].begin(), P->RangeRows[d].end());
+      ok = WriteNumbers(P->Datasets[d], "Range", P->Ranges[d].data(), P->Ranges[d].size()) &&
+        WriteNumbers(P->Datasets[d], "RangeRows", rows.data(), rows.size());
     }
   }
   ok = ok && WriteNumbers(P->File, "Complete", &complete, 1);
@@ -855,8 +931,20 @@ bool SplatFileReader::Impl::Check(std::string& error)
         static_cast<int>(range.size()) &&
       WholeRange(range))
     {
-      info.Ranges[column ? std::string("Splats/") + Columns[d].Name
-                         : "Attributes/" + info.AttributeNames[d - ColumnCount]] = range;
+      const std::string key = column ? std::string("Splats/") + Columns[d].Name
+                                     : "Attributes/" + info.AttributeNames[d - ColumnCount];
+      info.Ranges[key] = range;
+      // The rows of the ends: whole numbers within the file, or none.
+      std::vector<double> rows(range.size());
+      if (ReadNumbers(this->Datasets[d], "RangeRows", rows.data(), static_cast<int>(rows.size())) ==
+          static_cast<int>(rows.size()) &&
+        std::all_of(rows.begin(),
+          rows.end(),
+          [&](double r)
+          { return r >= 0 && r < static_cast<double>(info.Splats) && r == std::floor(r); }))
+      {
+        info.RangeRows[key].assign(rows.begin(), rows.end());
+      }
     }
   }
 

@@ -25,7 +25,8 @@
  *                                            (integer arrays as their integer type,
  *                                            rounded: SplatFileInfo::AttributeTypes)
  *     (each column but Origin and Coefficients, and each attribute: attribute
- *      Range, the whole column's value ranges, SplatFileInfo::Ranges)
+ *      Range, the whole column's value ranges, SplatFileInfo::Ranges, and
+ *      RangeRows, the rows that hold their ends, SplatFileInfo::RangeRows)
  *     /Octree/Bounds         float64 [M, 6]  per node, discs included
  *     /Octree/Sphere         float64 [M, 4]
  *     /Octree/Children       int32   [M, 2]  first child, child count
@@ -103,6 +104,15 @@ struct SplatFileInfo
    * a colour map fits the whole file, not the pages read.
    */
   std::map<std::string, std::vector<double>> Ranges;
+  /**
+   * For each range of Ranges, the row (splat) of the file that holds each
+   * of its ends, in the same order: a reader of some pages can load these
+   * few splats too, so that ranges computed from the values (ParaView 5.13
+   * and later) are the whole file's. Stored as each dataset's RangeRows
+   * attribute (older files have none; rows outside
+   * the file are refused, and that dataset then has none here).
+   */
+  std::map<std::string, std::vector<long long>> RangeRows;
   /** The page octree with the s of each level (Pages.Tree.Levels levels). */
   LODOctree Pages;
 };
@@ -124,7 +134,12 @@ struct POINTSURFACESIOHDF5_EXPORT SplatColumns
   std::vector<std::vector<float>> Attributes; ///< one per attribute, components a row
   /** Sizes every column for `count` rows of `degree` and those attributes. */
   void Resize(long long count, int degree, const std::vector<int>& components);
+  /** Appends row `row` of `from` (of the same degree and attributes; none outside it). */
+  void Append(const SplatColumns& from, long long row);
 };
+
+/** Every row of info.RangeRows, sorted, each once: the splats that hold the file's ranges. */
+POINTSURFACESIOHDF5_EXPORT std::vector<long long> RangeEndRows(const SplatFileInfo& info);
 
 class POINTSURFACESIOHDF5_EXPORT SplatFileWriter
 {

@@ -49,11 +49,11 @@ void AddCount(vtkFieldData* fd, const char* name, vtkIdType value)
 
 // The whole file's ranges of dataset `key` as `array`'s cached ranges
 // (vtkDataArray's information keys, finite and not): GetRange and
-// GetFiniteRange, and so ParaView 5.11's data information (5.13 and later
-// compute their own from the values), give the file's ranges, not those of
-// the pages read. Set
-// after the values: an array changed later computes its own again (VTK
-// keeps a cached range only while it is newer than the array).
+// GetFiniteRange, and so ParaView 5.11's data information, give the file's
+// ranges, not those of the pages read (ParaView 5.13 and later compute
+// their own from the values: the range ends loaded serve them). Set after
+// the values: an array changed later computes its own again (VTK keeps a
+// cached range only while it is newer than the array).
 void CacheRange(vtkDataArray* array,
   const pointsurfaces::SplatFileInfo& info,
   const std::string& key)
@@ -196,6 +196,11 @@ struct vtkSplatFileReader::Impl
   std::string Path;
   long long Stamp = -1;
   bool Open = false;
+  // The splats that hold the ends of the file's ranges (RangeEndRows), read
+  // once per file version.
+  std::vector<long long> EndRows;
+  pointsurfaces::SplatColumns Ends;
+  bool EndsRead = false;
 };
 
 //------------------------------------------------------------------------------
@@ -276,6 +281,7 @@ int vtkSplatFileReader::RequestData(vtkInformation*,
     P->Open = P->File.Open(this->FileName, error);
     P->Path = this->FileName;
     P->Stamp = stamp;
+    P->EndsRead = false;
     if (!P->Open)
     {
       vtkErrorMacro(<< this->FileName << ": " << error);
@@ -329,6 +335,39 @@ int vtkSplatFileReader::RequestData(vtkInformation*,
     k = next;
     this->UpdateProgress(static_cast<double>(k) / selection.Ranges.size());
   }
+  // The splats that hold the ends of the file's ranges, where the pages
+  // chosen (for every piece) do not hold them: to piece 0.
+  if (this->LoadRangeEnds && piece == 0 && !chosen.Ranges.empty())
+  {
+    if (!P->EndsRead)
+    {
+      P->EndRows = pointsurfaces::RangeEndRows(info);
+      P->Ends = pointsurfaces::SplatColumns();
+      P->Ends.Resize(0, info.Degree, info.AttributeComponents);
+      for (const long long row : P->EndRows)
+      {
+        std::string error;
+        if (!P->File.Read(row, 1, P->Ends, error))
+        {
+          vtkErrorMacro(<< this->FileName << ": " << error);
+          P->Open = false;
+          return 1;
+        }
+      }
+      P->EndsRead = true;
+    }
+    for (size_t e = 0; e < P->EndRows.size(); ++e)
+    {
+      const long long row = P->EndRows[e];
+      const bool loaded = std::any_of(chosen.Ranges.begin(),
+        chosen.Ranges.end(),
+        [row](const pointsurfaces::PageRange& r) { return row >= r.Begin && row < r.End; });
+      if (!loaded)
+      {
+        columns.Append(P->Ends, static_cast<long long>(e));
+      }
+    }
+  }
   Assemble(columns, info, output);
   this->NumberOfLoadedSplats = static_cast<vtkIdType>(columns.Count);
   vtkFieldData* fd = output->GetFieldData();
@@ -379,6 +418,7 @@ void vtkSplatFileReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FileName: " << this->FileName << "\n";
   os << indent << "MemoryBudget: " << this->MemoryBudget << " MB\n";
   os << indent << "CheckInChildProcess: " << (this->CheckInChildProcess ? "on" : "off") << "\n";
+  os << indent << "LoadRangeEnds: " << (this->LoadRangeEnds ? "on" : "off") << "\n";
   os << indent << "PixelError: " << this->PixelError << "\n";
   os << indent << "Camera: " << this->Camera.GetPointer() << "\n";
   os << indent << "ViewportSize: " << this->ViewportSize[0] << " x " << this->ViewportSize[1]

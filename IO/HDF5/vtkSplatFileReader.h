@@ -33,14 +33,26 @@
  * a Camera is set (its MTime counts).
  *
  * Each array reports the whole file's value range, not that of the pages
- * loaded: the file stores every column's and attribute's range
- * (pointsurfaces::SplatFileInfo::Ranges), set here as the array's cached
- * ranges (vtkDataArray's COMPONENT_RANGE, L2_NORM_RANGE and their finite
- * forms), so that GetRange and GetFiniteRange, and a colour map set from
- * them, fit the whole file whatever pages a camera loaded (ParaView 5.11's
- * automatic range too; ParaView 5.13 and later compute ranges from the
- * values and fit the pages read). An array changed afterwards computes its
- * own range again; a file without ranges gives the pages' own.
+ * loaded, in two ways:
+ *
+ * - The file stores every column's and attribute's range
+ *   (pointsurfaces::SplatFileInfo::Ranges), set here as the array's cached
+ *   ranges (vtkDataArray's COMPONENT_RANGE, L2_NORM_RANGE and their finite
+ *   forms), so that GetRange and GetFiniteRange fit the whole file whatever
+ *   pages a camera loaded. An array changed afterwards computes its own
+ *   range again. ParaView 5.11 takes these.
+ * - With LoadRangeEnds (on by default), the output also holds the few
+ *   splats of the file that hold each range's ends (their rows,
+ *   pointsurfaces::SplatFileInfo::RangeRows; at most two per component and
+ *   magnitude of each array, a few dozen, beyond MemoryBudget), so that a
+ *   range computed from the values is the file's too: vtkFieldData::GetRange
+ *   and ParaView 5.13 and later, whose automatic colour range would
+ *   otherwise fit the pages read. They are splats of the file like any
+ *   other, at their own levels (the LOD draws a fine one only where its
+ *   level is drawn), and they go to piece 0.
+ *
+ * A file without ranges (written before 2026-12-06) gives the pages' own;
+ * one without range rows (older) gets no extra splats.
  *
  * Asked for pieces (ParaView's ranks, a vtkPolyData streamed in pieces),
  * piece p of n holds the p-th n-th of the splats chosen within the budget,
@@ -146,6 +158,17 @@ public:
   static const char* ArraysArrayName() { return "SplatFileArrays"; }
   ///@}
 
+  ///@{
+  /**
+   * Also load the splats that hold the ends of each array's range in the
+   * whole file (see the class comment), so that ranges computed from the
+   * values are the file's. Default: on. Off: the pages chosen only.
+   */
+  vtkSetMacro(LoadRangeEnds, vtkTypeBool);
+  vtkGetMacro(LoadRangeEnds, vtkTypeBool);
+  vtkBooleanMacro(LoadRangeEnds, vtkTypeBool);
+  ///@}
+
   /** True when the file opens as a splat file. */
   static bool CanReadFile(const char* fileName);
 
@@ -162,6 +185,7 @@ protected:
   std::string FileName;
   double MemoryBudget = 1024.0;
   vtkTypeBool CheckInChildProcess = true;
+  vtkTypeBool LoadRangeEnds = true;
   double PixelError = 0.0;
   int ViewportSize[2] = { 1920, 1080 };
   vtkSmartPointer<vtkCamera> Camera;

@@ -250,13 +250,13 @@ if splat_file is not None:
         check(most.GetValue(0) == 0, "over two ranks, rank 1 holds %d splats of the file (rank 0 "
               "draws it)" % most.GetValue(0))
 
-    # The colour map fits the whole file, not the pages read, where ParaView
-    # takes VTK's cached ranges (5.11): the reader gives its arrays the
-    # file's ranges (a coarse preview alone has no small splats). ParaView
-    # 5.13 and later compute ranges from the values themselves: there the
-    # colour map fits the pages read, which this checks too, so that a
-    # change either way shows. Serially the preview's own range is fetched
-    # (a fetch under --symmetric is avoided, as for selections).
+    # The colour map fits the whole file, not the pages read, on every
+    # ParaView: 5.11 takes VTK's cached ranges, which the reader sets to the
+    # file's; 5.13 and later compute ranges from the values, and the reader
+    # also loads the few splats that hold each range's ends (LoadRangeEnds).
+    # A coarse preview alone has no small splats: serially, with
+    # LoadRangeEnds off, the pages read span less (the check means
+    # something). A fetch under --symmetric is avoided, as for selections.
     ColorBy(stream, ("POINTS", "SplatRadius"))
     stream.RescaleTransferFunctionToDataRange(False, True)
     fitted = GetColorTransferFunction("SplatRadius").RGBPoints
@@ -264,26 +264,32 @@ if splat_file is not None:
     reported = tuple(splat_file.PointData["SplatRadius"].GetRange())
     version = (servermanager.vtkSMProxyManager.GetVersionMajor(),
                servermanager.vtkSMProxyManager.GetVersionMinor())
-    cached_ranges = version < (5, 13)
 
     def near(a, b):
         return builtins.all(abs(x - y) <= 1e-6 * abs(y) for x, y in zip(a, b))
 
-    if cached_ranges:
-        check(near(fitted, whole_radius) and reported == whole_radius,
-              "with %d splats read, the colour map fits the file's SplatRadius range [%.4g, %.4g] "
-              "(the reader reports [%.4g, %.4g])" % (loaded, fitted[0], fitted[1], *reported))
+    check(near(fitted, whole_radius) and near(reported, whole_radius),
+          "ParaView %d.%d: with %d splats read, the colour map fits the file's SplatRadius range "
+          "[%.4g, %.4g] (the reader reports [%.4g, %.4g])"
+          % (*version, loaded, fitted[0], fitted[1], *reported))
     if not mpi:
         from vtkmodules.util.numpy_support import vtk_to_numpy
-        own = vtk_to_numpy(servermanager.Fetch(splat_file).GetPointData().GetArray("SplatRadius"))
-        check(own.min() > whole_radius[0],
-              "the pages read alone span [%.4g, %.4g] (the check means something)"
-              % (own.min(), own.max()))
-        if not cached_ranges:
-            check(near(fitted, (own.min(), own.max())),
-                  "ParaView %d.%d computes ranges from the values: the colour map fits the %d "
-                  "splats read, [%.4g, %.4g], not the file's [%.4g, %.4g]"
-                  % (*version, loaded, fitted[0], fitted[1], *whole_radius))
+
+        def own_radius():
+            output = servermanager.Fetch(splat_file)
+            values = vtk_to_numpy(output.GetPointData().GetArray("SplatRadius"))
+            return output.GetNumberOfPoints(), values.min(), values.max()
+
+        count, low, high = own_radius()
+        check(near((low, high), whole_radius),
+              "the %d splats read hold the file's SplatRadius ends [%.4g, %.4g]" % (count, low, high))
+        splat_file.LoadRangeEnds = 0
+        pages, low, high = own_radius()
+        splat_file.LoadRangeEnds = 1
+        splat_file.UpdatePipeline()
+        check(low > whole_radius[0] and 0 < count - pages <= 64,
+              "without the range ends the %d splats read span [%.4g, %.4g], and the ends add %d "
+              "splats (the check means something)" % (pages, low, high, count - pages))
     ColorBy(stream, None)
 
     # A filter that passes the field data on but moves the splats (a

@@ -126,12 +126,14 @@ vtkSmartPointer<vtkPolyData> Read(const std::string& path,
   double budget = 0.0,
   vtkCamera* camera = nullptr,
   double pixelError = 0.0,
-  int* warnings = nullptr)
+  int* warnings = nullptr,
+  bool rangeEnds = true)
 {
   vtkNew<vtkSplatFileReader> reader;
   vtkNew<vtkTest::ErrorObserver> observer;
   reader->AddObserver(vtkCommand::WarningEvent, observer);
   reader->SetFileName(path.c_str());
+  reader->SetLoadRangeEnds(rangeEnds);
   reader->SetMemoryBudget(budget);
   reader->SetCamera(camera);
   reader->SetViewportSize(400, 300);
@@ -298,14 +300,15 @@ void WriteAndReadBack()
   writer2->Write();
   Check(Same(Rows(path), Rows(again)), "a file written from what was read holds the same rows");
 
-  // A budget for a bit more than the coarsest levels: all of level 0 first.
+  // A budget for a bit more than the coarsest levels: all of level 0 first
+  // (the pages alone: the range ends come on top, WholeFileRanges).
   pointsurfaces::SplatFileReader file;
   std::string error;
   file.Open(path, error);
   const double perSplat = file.BytesPerSplat();
   const vtkIdType coarse = Level(splats, 0);
   int warned = 0;
-  const auto partial = Read(path, 1.2 * coarse * perSplat / 1e6, nullptr, 0.0, &warned);
+  const auto partial = Read(path, 1.2 * coarse * perSplat / 1e6, nullptr, 0.0, &warned, false);
   std::cout << "budget for 1.2 x level 0 (" << coarse
             << " splats): " << partial->GetNumberOfPoints() << " loaded, " << Level(partial, 0)
             << " of level 0\n";
@@ -334,7 +337,7 @@ void WriteAndReadBack()
   camera->SetPosition(40, 0, 0);
   camera->SetFocalPoint(0, 0, 0);
   camera->SetClippingRange(30, 50);
-  const auto far = Read(path, 0.0, camera, 5.0);
+  const auto far = Read(path, 0.0, camera, 5.0, nullptr, false);
   std::cout << "camera at x = 40, PixelError 5: " << far->GetNumberOfPoints() << " splats, "
             << Level(far, 2) << " of level 2\n";
   Check(far->GetNumberOfPoints() > 0 && Level(far, 2) == 0,
@@ -581,7 +584,8 @@ void Streaming()
 std::vector<vtkSmartPointer<vtkPolyData>> ReadPieces(const std::string& path,
   int pieces,
   double budget,
-  int* warnings)
+  int* warnings,
+  bool rangeEnds = true)
 {
   std::vector<vtkSmartPointer<vtkPolyData>> out;
   *warnings = 0;
@@ -592,6 +596,7 @@ std::vector<vtkSmartPointer<vtkPolyData>> ReadPieces(const std::string& path,
     reader->AddObserver(vtkCommand::WarningEvent, observer);
     reader->AddObserver(vtkCommand::ErrorEvent, observer);
     reader->SetFileName(path.c_str());
+    reader->SetLoadRangeEnds(rangeEnds);
     reader->SetMemoryBudget(budget);
     reader->UpdatePiece(p, pieces, 0);
     *warnings += observer->GetWarning() || observer->GetError() ? 1 : 0;
@@ -654,34 +659,52 @@ void Pieces()
   const std::string path = Temp("TestSplatFile-sphere.psplat");
   const auto whole = Read(path);
   const vtkIdType n = whole->GetNumberOfPoints();
-  for (const double budget : { 0.0, 0.05 })
+  // With the range ends (LoadRangeEnds) they go to piece 0 on top of its
+  // share; without, the shares differ by one at most.
+  std::vector<vtkIdType> withoutEnds;
+  for (const bool ends : { false, true })
   {
-    const auto one = budget > 0.0 ? Read(path, budget) : whole;
-    int warned = 0;
-    const auto parts = ReadPieces(path, 3, budget, &warned);
-    std::map<std::array<double, 3>, std::vector<double>> joined;
-    vtkIdType sum = 0, smallest = one->GetNumberOfPoints(), largest = 0;
-    bool fields = true, arrays = true;
-    for (const auto& part : parts)
+    for (const double budget : { 0.0, 0.05 })
     {
-      const vtkIdType m = part->GetNumberOfPoints();
-      sum += m;
-      smallest = std::min(smallest, m);
-      largest = std::max(largest, m);
-      const auto byOrigin = ByOrigin(part);
-      joined.insert(byOrigin.begin(), byOrigin.end());
-      fields = fields && FieldCount(part, "SplatFileLoadedSplats") == m &&
-        FieldCount(part, "SplatFileSplats") == n;
-      arrays = arrays && ArrayNames(part) == ArrayNames(one);
+      const auto one =
+        budget > 0.0 || !ends ? Read(path, budget, nullptr, 0.0, nullptr, ends) : whole;
+      int warned = 0;
+      const auto parts = ReadPieces(path, 3, budget, &warned, ends);
+      std::map<std::array<double, 3>, std::vector<double>> joined;
+      vtkIdType sum = 0, smallest = one->GetNumberOfPoints(), largest = 0;
+      bool fields = true, arrays = true;
+      for (const auto& part : parts)
+      {
+        const vtkIdType m = part->GetNumberOfPoints();
+        sum += m;
+        smallest = std::min(smallest, m);
+        largest = std::max(largest, m);
+        const auto byOrigin = ByOrigin(part);
+        joined.insert(byOrigin.begin(), byOrigin.end());
+        fields = fields && FieldCount(part, "SplatFileLoadedSplats") == m &&
+          FieldCount(part, "SplatFileSplats") == n;
+        arrays = arrays && ArrayNames(part) == ArrayNames(one);
+        if (!ends)
+        {
+          withoutEnds.push_back(m);
+        }
+      }
+      std::cout << "in 3 pieces, budget " << budget << " MB, range ends " << (ends ? "on" : "off")
+                << ": " << parts[0]->GetNumberOfPoints() << " + " << parts[1]->GetNumberOfPoints()
+                << " + " << parts[2]->GetNumberOfPoints() << " of " << one->GetNumberOfPoints()
+                << " splats\n";
+      const size_t at = budget > 0.0 ? 3 : 0; // this budget's pieces without the ends
+      const bool shares = ends ? parts[1]->GetNumberOfPoints() == withoutEnds[at + 1] &&
+          parts[2]->GetNumberOfPoints() == withoutEnds[at + 2] &&
+          parts[0]->GetNumberOfPoints() >= withoutEnds[at]
+                               : largest - smallest <= 1;
+      Check(sum == one->GetNumberOfPoints() && joined == ByOrigin(one) && shares && smallest > 0 &&
+          !warned,
+        "three pieces hold the splats one piece reads, each once, in shares that differ by one "
+        "(the range ends in piece 0)");
+      Check(fields && arrays,
+        "each piece has the same arrays and counts its own splats (SplatFileLoadedSplats)");
     }
-    std::cout << "in 3 pieces, budget " << budget << " MB: " << parts[0]->GetNumberOfPoints()
-              << " + " << parts[1]->GetNumberOfPoints() << " + " << parts[2]->GetNumberOfPoints()
-              << " of " << one->GetNumberOfPoints() << " splats\n";
-    Check(sum == one->GetNumberOfPoints() && joined == ByOrigin(one) && largest - smallest <= 1 &&
-        smallest > 0 && !warned,
-      "three pieces hold the splats one piece reads, each once, in shares that differ by one");
-    Check(fields && arrays,
-      "each piece has the same arrays and counts its own splats (SplatFileLoadedSplats)");
   }
   // More pieces than chosen splats: the last ones empty, with the arrays.
   int warned = 0;
@@ -741,6 +764,7 @@ void WholeFileRanges()
   const std::string path = Temp("TestSplatFile-sphere.psplat");
   const auto whole = Read(path);
   const auto partial = Read(path, 0.05);
+  const auto pages = Read(path, 0.05, nullptr, 0.0, nullptr, false);
   const char* names[] = { "Class",
     "Offset",
     "Colour",
@@ -748,12 +772,13 @@ void WholeFileRanges()
     vtkSplatDataModel::NormalName(),
     vtkSplatDataModel::FeatureSizeName(),
     vtkSplatDataModel::LODName() };
-  bool same = true, narrower = false, found = true;
+  bool same = true, narrower = false, found = true, ends = true;
   for (const char* name : names)
   {
     vtkDataArray* part = partial->GetPointData()->GetArray(name);
+    vtkDataArray* page = pages->GetPointData()->GetArray(name);
     vtkDataArray* all = whole->GetPointData()->GetArray(name);
-    if (!part || !all)
+    if (!part || !page || !all)
     {
       found = false;
       continue;
@@ -761,9 +786,10 @@ void WholeFileRanges()
     for (int c = -1; c < part->GetNumberOfComponents(); ++c)
     {
       const std::array<double, 2> expected = Span(all, c);
+      // The cached ranges (the pages alone) and the values (with the range ends).
       std::array<double, 2> got, finite;
-      part->GetRange(got.data(), c);
-      part->GetFiniteRange(finite.data(), c);
+      page->GetRange(got.data(), c);
+      page->GetFiniteRange(finite.data(), c);
       if (got != expected || finite != expected)
       {
         same = false;
@@ -771,17 +797,27 @@ void WholeFileRanges()
                   << "], finite [" << finite[0] << ", " << finite[1] << "], the file's ["
                   << expected[0] << ", " << expected[1] << "]\n";
       }
-      narrower = narrower || Span(part, c) != expected;
+      narrower = narrower || Span(page, c) != expected;
+      if (Span(part, c) != expected)
+      {
+        ends = false;
+        std::cout << name << " component " << c << ": the values with the range ends span ["
+                  << Span(part, c)[0] << ", " << Span(part, c)[1] << "], the file [" << expected[0]
+                  << ", " << expected[1] << "]\n";
+      }
     }
   }
-  std::cout << "whole-file ranges: " << partial->GetNumberOfPoints() << " of "
-            << whole->GetNumberOfPoints() << " splats read\n";
+  const vtkIdType added = partial->GetNumberOfPoints() - pages->GetNumberOfPoints();
+  std::cout << "whole-file ranges: " << pages->GetNumberOfPoints() << " of "
+            << whole->GetNumberOfPoints() << " splats read, and " << added << " range ends\n";
   Check(
     found && narrower, "the pages read alone span less than the file (the check means something)");
   Check(same, "arrays of some pages report the whole file's ranges, per component and magnitude");
+  Check(ends && added > 0 && added <= 64,
+    "with the splats that hold the range ends (a few), the values span the whole file");
 
   // Changed afterwards, an array computes its own range again.
-  vtkDataArray* classes = partial->GetPointData()->GetArray("Class");
+  vtkDataArray* classes = pages->GetPointData()->GetArray("Class");
   for (vtkIdType t = 0; classes && t < classes->GetNumberOfTuples(); ++t)
   {
     classes->SetComponent(t, 0, 7.0);
@@ -827,6 +863,48 @@ void WholeFileRanges()
       std::array<double, 2>{ oldRadius->GetRange()[0], oldRadius->GetRange()[1] } ==
         Span(whole->GetPointData()->GetArray(vtkSplatDataModel::RadiusName()), 0),
     "without a Range, or with one of the wrong size, the pages' own range; the others stay");
+
+  // A file without range rows (written before them), or with one outside
+  // the file: the pages alone, and no warning.
+  const std::string norows = Write(Temp("TestSplatFile-norows.psplat"), Slurp(path));
+  {
+    const hid_t f = H5Fopen(norows.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    for (const char* group : { "Splats", "Attributes" })
+    {
+      const hid_t g = H5Gopen2(f, group, H5P_DEFAULT);
+      H5G_info_t content;
+      H5Gget_info(g, &content);
+      for (hsize_t k = 0; k < content.nlinks; ++k)
+      {
+        char name[256] = { 0 };
+        H5Lget_name_by_idx(g, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof(name), H5P_DEFAULT);
+        const hid_t d = H5Dopen2(g, name, H5P_DEFAULT);
+        if (H5Aexists(d, "RangeRows") > 0)
+        {
+          H5Adelete(d, "RangeRows");
+        }
+        if (std::string(name) == "Radius")
+        {
+          const double outside[2] = { 0.0, 1e12 };
+          const hsize_t two = 2;
+          const hid_t space = H5Screate_simple(1, &two, nullptr);
+          const hid_t rows =
+            H5Acreate2(d, "RangeRows", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT);
+          H5Awrite(rows, H5T_NATIVE_DOUBLE, outside);
+          H5Aclose(rows);
+          H5Sclose(space);
+        }
+        H5Dclose(d);
+      }
+      H5Gclose(g);
+    }
+    H5Fclose(f);
+  }
+  const auto noEnds = Read(norows, 0.05, nullptr, 0.0, &warned);
+  Check(!warned && noEnds->GetNumberOfPoints() == pages->GetNumberOfPoints() &&
+      Span(noEnds->GetPointData()->GetArray(vtkSplatDataModel::RadiusName()), 0) ==
+        Span(pages->GetPointData()->GetArray(vtkSplatDataModel::RadiusName()), 0),
+    "without range rows, or with rows outside the file, the pages alone and no warning");
 }
 
 int TestSplatFile(int, char*[])
