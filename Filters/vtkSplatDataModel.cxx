@@ -309,6 +309,31 @@ vtkSplatDataModel::OctreeStatus vtkSplatDataModel::GetOctree(vtkPolyData* pd,
       tree.PresentLevels[i] = static_cast<int>(present->GetTuple1(i));
     }
   }
+  // Every leaf must still hold its own splats, in level order: splats
+  // reordered within the set (a sort, a shuffle, a redistribution that
+  // kept the count) leave ranges that look valid but index other splats.
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const pointsurfaces::OctreeNode& node = tree.Nodes[i];
+    if (node.ChildCount != 0)
+    {
+      continue;
+    }
+    const double r2 = node.Sphere[3] * node.Sphere[3] * (1.0 + 1e-6) + 1e-300;
+    const long long* leafEnds = &tree.LevelEnds[static_cast<size_t>(i) * levels];
+    for (long long k = node.Begin; k < node.End; ++k)
+    {
+      double p[3];
+      pd->GetPoint(k, p);
+      const int level = static_cast<int>(lod->GetTuple1(k));
+      const long long first = level > 0 ? leafEnds[level - 1] : node.Begin;
+      if (vtkMath::Distance2BetweenPoints(p, node.Sphere) > r2 || k < first || k >= leafEnds[level])
+      {
+        tree = pointsurfaces::Octree();
+        return StaleIndex;
+      }
+    }
+  }
   for (int l = 0; l < levels; ++l)
   {
     levelQuality.push_back(quality->GetTuple1(l));

@@ -112,7 +112,8 @@ public:
     NoOctree = 0,    ///< no octree arrays, or incomplete ones
     ValidOctree = 1, ///< the octree indexes the splats and holds them
     MovedSplats = 2, ///< the root's sphere does not hold the splats (moved after fitting)
-    StaleIndex = 3   ///< the node ranges or levels do not index the splats (split, reordered)
+    StaleIndex =
+      3 ///< the ranges or levels do not index the splats, or a leaf does not hold its own (split, reordered)
   };
 
   /** One vertex cell per point of `pd`, replacing its verts. */

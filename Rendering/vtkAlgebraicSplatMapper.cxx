@@ -4,6 +4,7 @@
 
 #include "vtkAlgebraicSplatMapper.h"
 
+#include "psOctree.h" // For BuildOctree
 #include "psShaderHooks.h"
 #include "psSplatLOD.h"
 #include "vtkAlgebraicSplatBlendHelper.h"
@@ -26,6 +27,7 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLActor.h"
+#include "vtkOpenGLBufferObject.h"
 #include "vtkOpenGLCamera.h"
 #include "vtkOpenGLHelper.h"
 #include "vtkOpenGLIndexBufferObject.h"
@@ -75,6 +77,8 @@ void vtkAlgebraicSplatMapper::ReleaseGraphicsResources(vtkWindow* win)
   this->VisibilityBO.ReleaseGraphicsResources(win);
   this->BuiltVariants.clear();
   this->Blend->ReleaseGraphicsResources(win);
+  this->DrawOrderBO->ReleaseGraphicsResources();
+  this->DrawOrderUploaded = false;
   this->Superclass::ReleaseGraphicsResources(win);
 }
 
@@ -466,24 +470,14 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
 void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
 {
   this->Nodes.reset();
+  this->DrawOrder.clear();
+  this->DrawOrderUploaded = false;
   pointsurfaces::Octree tree;
   std::vector<double> quality;
-  switch (vtkSplatDataModel::GetOctree(poly, tree, quality))
+  const vtkSplatDataModel::OctreeStatus status = vtkSplatDataModel::GetOctree(poly, tree, quality);
+  if (status == vtkSplatDataModel::NoOctree)
   {
-    case vtkSplatDataModel::ValidOctree:
-      break;
-    case vtkSplatDataModel::MovedSplats:
-      vtkWarningMacro(<< "The octree in the input's field data does not hold its splats (were "
-                         "the points moved after fitting?): it is ignored, every splat is drawn.");
-      return;
-    case vtkSplatDataModel::StaleIndex:
-      vtkWarningMacro(<< "The octree in the input's field data does not index its "
-                      << poly->GetNumberOfPoints()
-                      << " splats (were splats split, removed or reordered after fitting?): it is "
-                         "ignored, every splat is drawn.");
-      return;
-    default:
-      return; // no octree: draw everything
+    return; // draw everything
   }
   const vtkIdType n = poly->GetNumberOfPoints();
   vtkDataArray* radius = poly->GetPointData()->GetArray(vtkSplatDataModel::RadiusName());
@@ -492,8 +486,55 @@ void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
   std::vector<int> levels(n);
   for (vtkIdType k = 0; k < n; ++k)
   {
-    radii[k] = radius->GetTuple1(k);
-    levels[k] = static_cast<int>(lod->GetTuple1(k));
+    radii[k] = radius->GetComponent(k, 0);
+    levels[k] = static_cast<int>(lod->GetComponent(k, 0));
+  }
+  if (status != vtkSplatDataModel::ValidOctree)
+  {
+    // The fit's octree no longer indexes these splats: they were moved
+    // (a Transform), reordered, split or removed (a Threshold, ParaView's
+    // RedistributeDataSet over MPI ranks). The LOD still holds per splat,
+    // so the mapper builds an octree of its own over them and draws its
+    // ranges through an index buffer of input ids, leaving the vertex
+    // buffers (and the ids that picking reports) in the input's order.
+    vtkDataArray* q = poly->GetFieldData()->GetArray(vtkSplatDataModel::LODQualityName());
+    const int L = q ? static_cast<int>(q->GetNumberOfTuples()) : 0;
+    std::vector<double> xyz(3 * static_cast<size_t>(n));
+    bool usable = L > 0 && n > 0 && n < (vtkIdType(1) << 31);
+    for (vtkIdType k = 0; k < n && usable; ++k)
+    {
+      poly->GetPoint(k, &xyz[3 * k]);
+      usable = levels[k] >= 0 && levels[k] < L && radii[k] >= 0.0 && std::isfinite(radii[k]) &&
+        std::isfinite(xyz[3 * k]) && std::isfinite(xyz[3 * k + 1]) && std::isfinite(xyz[3 * k + 2]);
+    }
+    if (!usable)
+    {
+      vtkWarningMacro(<< "The octree in the input's field data does not index its " << n
+                      << " splats (moved, split, removed or reordered after fitting), and their "
+                         "LOD levels, radii or positions do not allow one of the mapper's own "
+                         "(a level outside SplatLODQuality, or a NaN): every splat is drawn.");
+      return;
+    }
+    quality.resize(L);
+    for (int l = 0; l < L; ++l)
+    {
+      quality[l] = q->GetComponent(l, 0);
+    }
+    tree = pointsurfaces::BuildOctree(xyz.data(), radii.data(), levels.data(), n, L, 64);
+    std::vector<double> sortedRadii(n);
+    std::vector<int> sortedLevels(n);
+    this->DrawOrder.resize(n);
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      const long long i = tree.Order[k];
+      sortedRadii[k] = radii[i];
+      sortedLevels[k] = levels[i];
+      this->DrawOrder[k] = static_cast<unsigned int>(i);
+    }
+    radii.swap(sortedRadii);
+    levels.swap(sortedLevels);
+    vtkDebugMacro(<< "The input's octree does not index its " << n
+                  << " splats: the mapper built its own (" << tree.Nodes.size() << " nodes).");
   }
   this->Nodes = std::make_unique<pointsurfaces::LODOctree>(
     pointsurfaces::MakeLODOctree(std::move(tree), std::move(quality), radii.data(), levels.data()));
@@ -549,12 +590,40 @@ void vtkAlgebraicSplatMapper::DrawOctree(vtkRenderer* ren, vtkActor* act)
   pointsurfaces::LODView view;
   this->MakeLODView(ren, act, view);
   this->NumberOfRenderedSplats = 0;
+  // The mapper's own octree (ReadOctree) indexes the input through DrawOrder.
+  const bool indexed = !this->DrawOrder.empty();
+  if (indexed)
+  {
+    if (!this->DrawOrderUploaded)
+    {
+      this->DrawOrderUploaded =
+        this->DrawOrderBO->Upload(this->DrawOrder, vtkOpenGLBufferObject::ElementArrayBuffer);
+    }
+    if (!this->DrawOrderUploaded || !this->DrawOrderBO->Bind())
+    {
+      return;
+    }
+  }
   for (const pointsurfaces::DrawRange& range : pointsurfaces::SelectDrawRanges(*this->Nodes, view))
   {
     program->SetUniformf("lodQuality", static_cast<float>(range.Quality));
-    glDrawArrays(
-      GL_POINTS, static_cast<GLint>(range.Begin), static_cast<GLsizei>(range.End - range.Begin));
+    const GLsizei count = static_cast<GLsizei>(range.End - range.Begin);
+    if (indexed)
+    {
+      glDrawElements(GL_POINTS,
+        count,
+        GL_UNSIGNED_INT,
+        reinterpret_cast<const void*>(static_cast<size_t>(range.Begin) * sizeof(unsigned int)));
+    }
+    else
+    {
+      glDrawArrays(GL_POINTS, static_cast<GLint>(range.Begin), count);
+    }
     this->NumberOfRenderedSplats += range.End - range.Begin;
+  }
+  if (indexed)
+  {
+    this->DrawOrderBO->Release();
   }
 }
 

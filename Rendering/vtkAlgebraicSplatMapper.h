@@ -23,8 +23,13 @@
  * carries the octree of vtkAlgebraicSplatFitter, nodes whose bounding sphere
  * lies outside the view frustum are skipped, and each visible leaf draws the
  * prefix of its level-sorted splats down to the first level whose splats
- * are at most LODPixelError pixels across on screen. Without an octree, or
- * while a vtkHardwareSelector picks (its ids need one draw), every splat is
+ * are at most LODPixelError pixels across on screen. Where that octree no
+ * longer indexes the splats (a filter moved, reordered, split or removed
+ * them, as ParaView's RedistributeDataSet does over MPI ranks), the mapper
+ * builds an octree of its own over the splats it has, from their LOD
+ * levels and radii, and draws its ranges through an index buffer; the
+ * vertex buffers stay in the input's order. Without an octree, or while
+ * a vtkHardwareSelector picks (its ids need one draw), every splat is
  * drawn.
  *
  * Two-pass blending ([Bolla 2010] 4.2, on by default): a visibility pass writes
@@ -66,8 +71,10 @@
 #include <map>    // For the built variants
 #include <memory> // For the octree
 #include <string> // For the missing hooks message
+#include <vector> // For the draw order
 
 class vtkAlgebraicSplatBlendHelper;
+class vtkOpenGLBufferObject;
 namespace pointsurfaces
 {
 struct LODOctree;
@@ -207,7 +214,11 @@ protected:
    * false, with an error when it has points, when it is not a splat set.
    */
   bool ResetForInput(vtkPolyData* poly);
-  /** Nodes from the input's octree (none when it has none or it is unusable, with a warning). */
+  /**
+   * Nodes from the input's octree; where it no longer indexes the splats
+   * (moved, reordered, split), an octree of the mapper's own over them;
+   * none when the input has no octree.
+   */
   virtual void ReadOctree(vtkPolyData* poly);
   /** Those nodes (null when none), for a subclass's ReadOctree to adjust. */
   pointsurfaces::LODOctree* GetLODNodes() { return this->Nodes.get(); }
@@ -283,6 +294,11 @@ protected:
 private:
   std::unique_ptr<pointsurfaces::LODOctree> Nodes; // the input's octree, when usable
   vtkNew<vtkAlgebraicSplatBlendHelper> Blend;      // the two-pass blend's targets and passes
+  // With an octree of the mapper's own (the input's no longer indexes its
+  // splats): the input id of each octree position, and its index buffer.
+  std::vector<unsigned int> DrawOrder;
+  vtkNew<vtkOpenGLBufferObject> DrawOrderBO;
+  bool DrawOrderUploaded = false;
 
   vtkAlgebraicSplatMapper(const vtkAlgebraicSplatMapper&) = delete;
   void operator=(const vtkAlgebraicSplatMapper&) = delete;

@@ -332,6 +332,23 @@ void TestDataModelChecks(const Set& set)
   Check(vtkSplatDataModel::GetOctree(pd, tree, quality) == vtkSplatDataModel::StaleIndex,
     "a level beyond the octree's: StaleIndex");
   lod->SetValue(3, set.Level[3]);
+  // Two splats of different leaves swapped, with their arrays: the ranges
+  // still look valid, but the leaves no longer hold their splats.
+  // Splat `from` of the set at position `at`.
+  auto place = [&](vtkIdType at, vtkIdType from)
+  {
+    points->SetPoint(at, &set.XYZ[3 * from]);
+    radius->SetValue(at, set.Radius[from]);
+    lod->SetValue(at, set.Level[from]);
+  };
+  place(0, n - 1);
+  place(n - 1, 0);
+  Check(vtkSplatDataModel::GetOctree(pd, tree, quality) == vtkSplatDataModel::StaleIndex,
+    "two splats of different leaves swapped (reordered): StaleIndex");
+  place(0, 0);
+  place(n - 1, n - 1);
+  Check(vtkSplatDataModel::GetOctree(pd, tree, quality) == vtkSplatDataModel::ValidOctree,
+    "swapped back: ValidOctree");
   points->SetNumberOfPoints(n - 1);
   radius->SetNumberOfTuples(n - 1);
   lod->SetNumberOfTuples(n - 1);

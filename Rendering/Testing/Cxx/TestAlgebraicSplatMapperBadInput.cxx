@@ -9,7 +9,8 @@
 //   sizes and zero normals mixed into a valid set: they are counted, a
 //   warning names them, the others are drawn, and GL reports no error;
 // - half the splats with the whole set's octree (a subset or a split between
-//   ParaView's ranks): the stale octree is ignored with one warning, no crash;
+//   ParaView's ranks): the stale octree is replaced by one of the mapper's
+//   own, without a warning or a crash;
 // - a fragment shader that does not compile (a broken replacement in the
 //   actor's shader property): one error over two frames, nothing drawn and
 //   no crash (VTK's UpdateShaders would reuse the null program), and the
@@ -199,8 +200,9 @@ int TestAlgebraicSplatMapperBadInput(int, char*[])
 
   // Every other splat, the octree's field data passed along unchanged (as a
   // subset, threshold or ParaView's split between ranks leaves it): the
-  // octree's ranges no longer index the splats. One warning, the splats
-  // drawn without culling, no crash.
+  // octree's ranges no longer index the splats. The mapper builds its own
+  // over them (TestAlgebraicSplatMapperLOD checks its LOD): no warning, the
+  // splats drawn, no crash.
   {
     vtkNew<vtkMaskPoints> half;
     half->SetInputConnection(fitter->GetOutputPort());
@@ -217,10 +219,32 @@ int TestAlgebraicSplatMapperBadInput(int, char*[])
     Measure(renWin, renderer, origin, coveredHalf, error);
     std::cout << "half the splats with the whole octree: " << coveredHalf << " pixels, " << Warnings
               << " warnings, " << Errors << " errors\n";
-    if (Warnings != 1 || Errors != 0 || coveredHalf < coveredOrigin / 2 ||
+    if (Warnings != 0 || Errors != 0 || coveredHalf < coveredOrigin / 2 ||
       half->GetOutput()->GetFieldData()->GetArray("OctreeNodeRange") == nullptr)
     {
-      std::cerr << "a stale octree (subset) is not ignored as it should be\n";
+      std::cerr << "a stale octree (subset) is not replaced as it should be\n";
+      ++failures;
+    }
+    // A level outside SplatLODQuality: no octree can be built, one warning,
+    // every splat drawn.
+    vtkNew<vtkPolyData> badLevel;
+    badLevel->DeepCopy(half->GetOutput());
+    vtkDataArray* lod = badLevel->GetPointData()->GetArray("SplatLOD");
+    if (lod && lod->GetNumberOfTuples() > 0)
+    {
+      lod->SetComponent(0, 0, 99.0);
+    }
+    mapper->SetInputData(badLevel);
+    Warnings = Errors = 0;
+    renWin->Render();
+    glOk("a subset with a level outside the set's");
+    int coveredBad = 0;
+    Measure(renWin, renderer, origin, coveredBad, error);
+    std::cout << "and a level outside the set's: " << coveredBad << " pixels, " << Warnings
+              << " warnings, " << Errors << " errors\n";
+    if (!lod || Warnings != 1 || Errors != 0 || coveredBad < coveredHalf * 9 / 10)
+    {
+      std::cerr << "a stale octree without valid levels does not warn and draw everything\n";
       ++failures;
     }
     mapper->SetInputData(nullptr);
