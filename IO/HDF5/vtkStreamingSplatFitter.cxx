@@ -7,15 +7,20 @@
 #include "psSplatStream.h"
 #include "vtkSplatFileReader.h"
 
+#include "vtkCommunicator.h"
 #include "vtkDataArray.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
 #include <atomic>
@@ -32,6 +37,12 @@ struct vtkStreamingSplatFitter::Impl
   bool Normals = false;
   bool Failed = false;
   vtkIdType Points = 0;
+  // Over MPI ranks (ParaView's pvserver and pvbatch): rank 0 fits and
+  // writes, the others update their inputs in step and read back their
+  // piece of rank 0's file.
+  vtkMultiProcessController* Controller = nullptr;
+  int Rank = 0;
+  int Ranks = 1;
 };
 
 //------------------------------------------------------------------------------
@@ -73,6 +84,9 @@ int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
     P->Types.clear();
     P->Failed = this->FileName.empty();
     P->Points = 0;
+    P->Controller = vtkMultiProcessController::GetGlobalController();
+    P->Ranks = P->Controller ? std::max(1, P->Controller->GetNumberOfProcesses()) : 1;
+    P->Rank = P->Ranks > 1 ? P->Controller->GetLocalProcessId() : 0;
     if (P->Failed)
     {
       vtkErrorMacro(<< "No FileName: the splats would have nowhere to go.");
@@ -80,7 +94,11 @@ int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
   }
   const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
   vtkPointData* pd = input ? input->GetPointData() : nullptr;
-  if (!P->Failed && !P->Stream && n > 0)
+  if (P->Rank != 0)
+  {
+    P->Points += n; // counted, to tell rank 0 whether the ranks' inputs differ
+  }
+  else if (!P->Failed && !P->Stream && n > 0)
   {
     // The arrays to carry: every numeric point array of the first piece.
     for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
@@ -107,7 +125,7 @@ int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
     params.MergeTolerance = this->MergeTolerance;
     P->Stream = std::make_unique<pointsurfaces::SplatStream>(params, total, P->Normals);
   }
-  if (!P->Failed && n > 0)
+  if (!P->Failed && n > 0 && P->Rank == 0)
   {
     // This piece, in blocks.
     const int total = P->Stream->Attributes();
@@ -161,12 +179,70 @@ int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
   }
   request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
   P->Piece = 0;
-  if (P->Failed || !this->Finish(output))
+  if (P->Ranks > 1)
+  {
+    this->FinishOverRanks(output);
+  }
+  else if (P->Failed || !this->Finish(output))
   {
     output->Initialize();
   }
   P->Stream.reset();
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkStreamingSplatFitter::FinishOverRanks(vtkPolyData* output)
+{
+  // Every rank ran through the same pieces (a parallel filter upstream
+  // executes on all of them together). Rank 0 fitted what its input gave;
+  // two ranks writing one file would race (HDF5 refuses the second, or
+  // the file is damaged).
+  vtkMultiProcessController* controller = P->Controller;
+  vtkIdType counts[2] = { P->Points, -P->Points }, extremes[2] = { 0, 0 };
+  controller->AllReduce(counts, extremes, 2, vtkCommunicator::MAX_OP);
+  const vtkIdType most = extremes[0], least = -extremes[1];
+  if (P->Rank == 0 && least != most)
+  {
+    vtkWarningMacro(<< "The input differs between the " << P->Ranks << " ranks (" << least << " to "
+                    << most << " points; rank 0: " << P->Points
+                    << "): the streaming fit reads its input on rank 0 only, so only rank 0's "
+                       "points are fitted. Give it a reader of a file that every rank can read, "
+                       "or gather the points on one rank first.");
+  }
+  int written = 0;
+  if (P->Rank == 0)
+  {
+    vtkNew<vtkPolyData> whole;
+    written = !P->Failed && this->Finish(whole) ? 1 : 0;
+  }
+  // Rank 0's file, read back in pieces: every rank its share.
+  std::vector<char> name(this->FileName.begin(), this->FileName.end());
+  int length = static_cast<int>(name.size());
+  int sent[2] = { written, length };
+  controller->Broadcast(sent, 2, 0);
+  name.resize(static_cast<size_t>(std::max(0, sent[1])));
+  if (sent[1] > 0)
+  {
+    controller->Broadcast(name.data(), sent[1], 0);
+  }
+  const std::string path(name.begin(), name.end());
+  output->Initialize();
+  if (!sent[0])
+  {
+    return;
+  }
+  if (P->Rank != 0 && !vtksys::SystemTools::FileExists(path))
+  {
+    vtkWarningMacro(<< path << " (written by rank 0) is not visible on rank " << P->Rank
+                    << ": its piece of the output is empty.");
+    return;
+  }
+  vtkNew<vtkSplatFileReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetMemoryBudget(this->OutputMemoryBudget);
+  reader->UpdatePiece(P->Rank, P->Ranks, 0);
+  output->ShallowCopy(reader->GetOutput());
 }
 
 //------------------------------------------------------------------------------

@@ -28,6 +28,18 @@
  * is then fitted chunk by chunk all the same). Selection FixedCount is not
  * streamed (LOP moves points across the whole set): use Quality.
  *
+ * Over MPI ranks (ParaView's pvserver and pvbatch, vtkMultiProcessController's
+ * global controller), rank 0 alone fits and writes rank 0's FileName: every
+ * rank asks its input for the same pieces in step (a parallel filter
+ * upstream executes on all ranks together), the others only count their
+ * points, and then each rank's output is its piece of the file read back
+ * (vtkSplatFileReader's pieces). Two ranks writing one file raced before:
+ * HDF5 refused the second, or the file was damaged. The input should be the
+ * same on every rank (a reader of a file all ranks see, a source); where
+ * the ranks' point counts differ (data spread over the ranks), rank 0 warns
+ * that only its points are fitted. A rank that cannot see rank 0's file
+ * warns and outputs nothing.
+ *
  * Errors (no FileName, a scratch directory or file that cannot be written,
  * FixedCount) give one vtkErrorMacro line and an empty output.
  */
@@ -120,6 +132,7 @@ private:
   vtkStreamingSplatFitter(const vtkStreamingSplatFitter&) = delete;
   void operator=(const vtkStreamingSplatFitter&) = delete;
   bool Finish(vtkPolyData* output);
+  void FinishOverRanks(vtkPolyData* output);
   struct Impl;
   std::unique_ptr<Impl> P;
 };

@@ -169,24 +169,30 @@ from vtkmodules.vtkParallelCore import vtkCommunicator  # noqa: E402
 
 # The Streaming Splat Fitter writes a splat file, which File > Open opens
 # with the Splat File Reader and shows as Streaming Splats: the file itself,
-# drawn as the view needs it, whatever the reader loaded. Under MPI each rank
-# writes a file of its own (one file written twice at once would be damaged)
-# and both open rank 0's; rank 0 draws it for both.
+# drawn as the view needs it, whatever the reader loaded. Under MPI both
+# ranks name the same file: rank 0 alone writes it (two ranks writing one
+# file raced), each rank's output is its piece of the file read back (their
+# sum is the file), and rank 0 draws it for both.
 controller = servermanager.vtkProcessModule.GetProcessModule().GetGlobalController()
 sphere = Sphere(ThetaResolution=160, PhiResolution=160)
 streamed = StreamingSplatFitter(Input=sphere)
-streamed.FileName = os.path.join(named, "sphere-%d.psplat" % RANK if mpi else "sphere.psplat")
+streamed.FileName = os.path.join(named, "sphere%s.psplat" % (".mpi" if mpi else ""))
 streamed.NumberOfPieces = 3
 streamed.ChunkPoints = 5000
 streamed.PageSize = 256  # many pages, so that a budget can hold some of them
 streamed.UpdatePipeline()
-written = streamed.GetDataInformation().GetNumberOfPoints()
+written = streamed.GetDataInformation().GetNumberOfPoints()  # this rank's piece
+if mpi:
+    piece, pieces = vtkIdTypeArray(), vtkIdTypeArray()
+    piece.InsertNextValue(written)
+    controller.AllReduce(piece, pieces, vtkCommunicator.SUM_OP)
+    check(0 < written < pieces.GetValue(0), "rank %d reads back %d of the file's %d splats"
+          % (RANK, written, pieces.GetValue(0)))
+    written = pieces.GetValue(0)
 check(written > 100, "the Streaming Splat Fitter writes a splat file (%d splats)" % written)
 Delete(streamed)
 Delete(sphere)
-if mpi:
-    controller.Barrier()
-splat_path = os.path.join(named, "sphere-0.psplat" if mpi else "sphere.psplat")
+splat_path = os.path.join(named, "sphere%s.psplat" % (".mpi" if mpi else ""))
 splat_file = OpenDataFile(splat_path)
 got = splat_file.GetXMLName() if splat_file is not None else None
 check(got == "SplatFileReader", "sphere.psplat opens with SplatFileReader (%s)" % got)
