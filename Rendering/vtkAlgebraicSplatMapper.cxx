@@ -482,14 +482,20 @@ void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
   const vtkIdType n = poly->GetNumberOfPoints();
   vtkDataArray* radius = poly->GetPointData()->GetArray(vtkSplatDataModel::RadiusName());
   vtkDataArray* lod = poly->GetPointData()->GetArray(vtkSplatDataModel::LODName());
-  std::vector<double> radii(n);
-  std::vector<int> levels(n);
-  for (vtkIdType k = 0; k < n; ++k)
+  std::vector<double> radii;
+  std::vector<int> levels;
+  if (status == vtkSplatDataModel::ValidOctree)
   {
-    radii[k] = radius->GetComponent(k, 0);
-    levels[k] = static_cast<int>(lod->GetComponent(k, 0));
+    // GetOctree checked every level against the octree's.
+    radii.resize(n);
+    levels.resize(n);
+    for (vtkIdType k = 0; k < n; ++k)
+    {
+      radii[k] = radius->GetComponent(k, 0);
+      levels[k] = static_cast<int>(lod->GetComponent(k, 0));
+    }
   }
-  if (status != vtkSplatDataModel::ValidOctree)
+  else
   {
     // The fit's octree no longer indexes these splats: they were moved
     // (a Transform), reordered, split or removed (a Threshold, ParaView's
@@ -497,22 +503,34 @@ void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
     // so the mapper builds an octree of its own over them and draws its
     // ranges through an index buffer of input ids, leaving the vertex
     // buffers (and the ids that picking reports) in the input's order.
+    // Splats with a NaN position or radius are drawn as nothing anyway
+    // (BuildBufferObjects): they are left out of it.
     vtkDataArray* q = poly->GetFieldData()->GetArray(vtkSplatDataModel::LODQualityName());
     const int L = q ? static_cast<int>(q->GetNumberOfTuples()) : 0;
-    std::vector<double> xyz(3 * static_cast<size_t>(n));
-    bool usable = L > 0 && n > 0 && n < (vtkIdType(1) << 31);
+    std::vector<double> xyz;
+    std::vector<vtkIdType> ids;
+    bool usable = L > 0 && n < (vtkIdType(1) << 31);
     for (vtkIdType k = 0; k < n && usable; ++k)
     {
-      poly->GetPoint(k, &xyz[3 * k]);
-      usable = levels[k] >= 0 && levels[k] < L && radii[k] >= 0.0 && std::isfinite(radii[k]) &&
-        std::isfinite(xyz[3 * k]) && std::isfinite(xyz[3 * k + 1]) && std::isfinite(xyz[3 * k + 2]);
+      const double level = lod->GetComponent(k, 0);
+      usable = level >= 0.0 && level < L && level == std::floor(level);
+      double p[3];
+      poly->GetPoint(k, p);
+      const double r = radius->GetComponent(k, 0);
+      if (usable && std::isfinite(p[0] + p[1] + p[2]) && r >= 0.0 && std::isfinite(r))
+      {
+        ids.push_back(k);
+        xyz.insert(xyz.end(), p, p + 3);
+        radii.push_back(r);
+        levels.push_back(static_cast<int>(level));
+      }
     }
-    if (!usable)
+    if (!usable || ids.empty())
     {
       vtkWarningMacro(<< "The octree in the input's field data does not index its " << n
                       << " splats (moved, split, removed or reordered after fitting), and their "
-                         "LOD levels, radii or positions do not allow one of the mapper's own "
-                         "(a level outside SplatLODQuality, or a NaN): every splat is drawn.");
+                         "LOD levels do not allow one of the mapper's own (a level outside "
+                         "SplatLODQuality): every splat is drawn.");
       return;
     }
     quality.resize(L);
@@ -520,16 +538,17 @@ void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
     {
       quality[l] = q->GetComponent(l, 0);
     }
-    tree = pointsurfaces::BuildOctree(xyz.data(), radii.data(), levels.data(), n, L, 64);
-    std::vector<double> sortedRadii(n);
-    std::vector<int> sortedLevels(n);
-    this->DrawOrder.resize(n);
-    for (vtkIdType k = 0; k < n; ++k)
+    const long long m = static_cast<long long>(ids.size());
+    tree = pointsurfaces::BuildOctree(xyz.data(), radii.data(), levels.data(), m, L, 64);
+    std::vector<double> sortedRadii(m);
+    std::vector<int> sortedLevels(m);
+    this->DrawOrder.resize(m);
+    for (long long k = 0; k < m; ++k)
     {
       const long long i = tree.Order[k];
       sortedRadii[k] = radii[i];
       sortedLevels[k] = levels[i];
-      this->DrawOrder[k] = static_cast<unsigned int>(i);
+      this->DrawOrder[k] = static_cast<unsigned int>(ids[i]);
     }
     radii.swap(sortedRadii);
     levels.swap(sortedLevels);
@@ -601,6 +620,12 @@ void vtkAlgebraicSplatMapper::DrawOctree(vtkRenderer* ren, vtkActor* act)
     }
     if (!this->DrawOrderUploaded || !this->DrawOrderBO->Bind())
     {
+      // No index buffer: every splat, in one draw.
+      this->DrawOrderBO->Release();
+      const int n = this->VBOs->GetNumberOfTuples("vertexMC");
+      program->SetUniformf("lodQuality", 0.0f);
+      glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(n));
+      this->NumberOfRenderedSplats = n;
       return;
     }
   }

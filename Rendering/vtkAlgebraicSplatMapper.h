@@ -222,6 +222,8 @@ protected:
   virtual void ReadOctree(vtkPolyData* poly);
   /** Those nodes (null when none), for a subclass's ReadOctree to adjust. */
   pointsurfaces::LODOctree* GetLODNodes() { return this->Nodes.get(); }
+  /** Whether those nodes are the input's octree (false: the mapper built its own). */
+  bool LODNodesFromInput() const { return this->Nodes && this->DrawOrder.empty(); }
   /**
    * The view that culls and picks levels: `ren`'s camera and tiled viewport,
    * `act`'s matrix, Culling and LODPixelError.

@@ -26,6 +26,7 @@
 #include <atomic>
 
 vtkStandardNewMacro(vtkStreamingSplatFitter);
+vtkCxxSetObjectMacro(vtkStreamingSplatFitter, Controller, vtkMultiProcessController);
 
 struct vtkStreamingSplatFitter::Impl
 {
@@ -40,7 +41,6 @@ struct vtkStreamingSplatFitter::Impl
   // Over MPI ranks (ParaView's pvserver and pvbatch): rank 0 fits and
   // writes, the others update their inputs in step and read back their
   // piece of rank 0's file.
-  vtkMultiProcessController* Controller = nullptr;
   int Rank = 0;
   int Ranks = 1;
 };
@@ -49,9 +49,13 @@ struct vtkStreamingSplatFitter::Impl
 vtkStreamingSplatFitter::vtkStreamingSplatFitter()
   : P(new Impl)
 {
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
-vtkStreamingSplatFitter::~vtkStreamingSplatFitter() = default;
+vtkStreamingSplatFitter::~vtkStreamingSplatFitter()
+{
+  this->SetController(nullptr);
+}
 
 //------------------------------------------------------------------------------
 int vtkStreamingSplatFitter::RequestUpdateExtent(vtkInformation*,
@@ -82,11 +86,11 @@ int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
     P->Names.clear();
     P->Components.clear();
     P->Types.clear();
-    P->Failed = this->FileName.empty();
     P->Points = 0;
-    P->Controller = vtkMultiProcessController::GetGlobalController();
-    P->Ranks = P->Controller ? std::max(1, P->Controller->GetNumberOfProcesses()) : 1;
-    P->Rank = P->Ranks > 1 ? P->Controller->GetLocalProcessId() : 0;
+    P->Ranks = this->Controller ? std::max(1, this->Controller->GetNumberOfProcesses()) : 1;
+    P->Rank = P->Ranks > 1 ? this->Controller->GetLocalProcessId() : 0;
+    // Only rank 0's FileName counts over ranks.
+    P->Failed = P->Rank == 0 && this->FileName.empty();
     if (P->Failed)
     {
       vtkErrorMacro(<< "No FileName: the splats would have nowhere to go.");
@@ -172,16 +176,26 @@ int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
     }
   }
   this->UpdateProgress(0.2 * (P->Piece + 1) / this->NumberOfPieces);
-  if (++P->Piece < this->NumberOfPieces && !P->Failed && !this->GetAbortExecute())
+  int more = ++P->Piece < this->NumberOfPieces && !P->Failed && !this->GetAbortExecute() ? 1 : 0;
+  if (P->Ranks > 1)
+  {
+    // The ranks go on or stop together: a parallel filter upstream must
+    // execute on all of them for every piece.
+    int all = 0;
+    this->Controller->AllReduce(&more, &all, 1, vtkCommunicator::MIN_OP);
+    more = all;
+  }
+  if (more)
   {
     request->Set(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING(), 1);
     return 1;
   }
   request->Remove(vtkStreamingDemandDrivenPipeline::CONTINUE_EXECUTING());
+  const bool everyPiece = P->Piece >= this->NumberOfPieces;
   P->Piece = 0;
   if (P->Ranks > 1)
   {
-    this->FinishOverRanks(output);
+    this->FinishOverRanks(output, everyPiece);
   }
   else if (P->Failed || !this->Finish(output))
   {
@@ -192,17 +206,18 @@ int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
 }
 
 //------------------------------------------------------------------------------
-void vtkStreamingSplatFitter::FinishOverRanks(vtkPolyData* output)
+void vtkStreamingSplatFitter::FinishOverRanks(vtkPolyData* output, bool everyPiece)
 {
   // Every rank ran through the same pieces (a parallel filter upstream
   // executes on all of them together). Rank 0 fitted what its input gave;
   // two ranks writing one file would race (HDF5 refuses the second, or
   // the file is damaged).
-  vtkMultiProcessController* controller = P->Controller;
+  vtkMultiProcessController* controller = this->Controller;
   vtkIdType counts[2] = { P->Points, -P->Points }, extremes[2] = { 0, 0 };
   controller->AllReduce(counts, extremes, 2, vtkCommunicator::MAX_OP);
   const vtkIdType most = extremes[0], least = -extremes[1];
-  if (P->Rank == 0 && least != most)
+  const bool fitted = P->Rank == 0 && everyPiece && !P->Failed;
+  if (fitted && least != most)
   {
     vtkWarningMacro(<< "The input differs between the " << P->Ranks << " ranks (" << least << " to "
                     << most << " points; rank 0: " << P->Points
@@ -210,25 +225,25 @@ void vtkStreamingSplatFitter::FinishOverRanks(vtkPolyData* output)
                        "points are fitted. Give it a reader of a file that every rank can read, "
                        "or gather the points on one rank first.");
   }
-  int written = 0;
-  if (P->Rank == 0)
+  const int written = fitted && this->Finish(nullptr) ? 1 : 0;
+  // Rank 0's file (its absolute path: the ranks' working directories may
+  // differ), read back in pieces: every rank its share.
+  std::string path;
+  if (P->Rank == 0 && written)
   {
-    vtkNew<vtkPolyData> whole;
-    written = !P->Failed && this->Finish(whole) ? 1 : 0;
+    path = vtksys::SystemTools::CollapseFullPath(this->FileName);
   }
-  // Rank 0's file, read back in pieces: every rank its share.
-  std::vector<char> name(this->FileName.begin(), this->FileName.end());
-  int length = static_cast<int>(name.size());
-  int sent[2] = { written, length };
+  int sent[2] = { written, static_cast<int>(path.size()) };
   controller->Broadcast(sent, 2, 0);
+  std::vector<char> name(path.begin(), path.end());
   name.resize(static_cast<size_t>(std::max(0, sent[1])));
   if (sent[1] > 0)
   {
     controller->Broadcast(name.data(), sent[1], 0);
   }
-  const std::string path(name.begin(), name.end());
+  path.assign(name.begin(), name.end());
   output->Initialize();
-  if (!sent[0])
+  if (!sent[0] || path.empty())
   {
     return;
   }
@@ -238,10 +253,22 @@ void vtkStreamingSplatFitter::FinishOverRanks(vtkPolyData* output)
                     << ": its piece of the output is empty.");
     return;
   }
+  this->ReadBack(path, output, P->Rank, P->Ranks);
+}
+
+//------------------------------------------------------------------------------
+void vtkStreamingSplatFitter::ReadBack(const std::string& path,
+  vtkPolyData* output,
+  int piece,
+  int pieces)
+{
   vtkNew<vtkSplatFileReader> reader;
   reader->SetFileName(path.c_str());
   reader->SetMemoryBudget(this->OutputMemoryBudget);
-  reader->UpdatePiece(P->Rank, P->Ranks, 0);
+  // The file was just written here: no need to check it in a child process
+  // (a fork after MPI_Init is best avoided).
+  reader->SetCheckInChildProcess(pieces == 1);
+  reader->UpdatePiece(piece, pieces, 0);
   output->ShallowCopy(reader->GetOutput());
 }
 
@@ -352,11 +379,10 @@ bool vtkStreamingSplatFitter::Finish(vtkPolyData* output)
   this->UpdateProgress(0.95);
 
   // The output: the file, coarsest levels first, within the budget.
-  vtkNew<vtkSplatFileReader> reader;
-  reader->SetFileName(this->FileName.c_str());
-  reader->SetMemoryBudget(this->OutputMemoryBudget);
-  reader->Update();
-  output->ShallowCopy(reader->GetOutput());
+  if (output)
+  {
+    this->ReadBack(this->FileName, output, 0, 1);
+  }
   return true;
 }
 

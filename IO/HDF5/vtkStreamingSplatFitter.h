@@ -28,12 +28,14 @@
  * is then fitted chunk by chunk all the same). Selection FixedCount is not
  * streamed (LOP moves points across the whole set): use Quality.
  *
- * Over MPI ranks (ParaView's pvserver and pvbatch, vtkMultiProcessController's
- * global controller), rank 0 alone fits and writes rank 0's FileName: every
- * rank asks its input for the same pieces in step (a parallel filter
- * upstream executes on all ranks together), the others only count their
- * points, and then each rank's output is its piece of the file read back
- * (vtkSplatFileReader's pieces). Two ranks writing one file raced before:
+ * Over MPI ranks (ParaView's pvserver and pvbatch: the Controller, by
+ * default the global controller), rank 0 alone fits and writes rank 0's
+ * FileName: every rank asks its input for the same pieces in step (a
+ * parallel filter upstream executes on all ranks together; they go on or
+ * stop together), the others only count their points (so every rank reads
+ * the whole input), and then each rank's output is its piece of the file
+ * read back (vtkSplatFileReader's pieces). A program whose ranks each fit
+ * their own file sets the Controller to null. Two ranks writing one file raced before:
  * HDF5 refused the second, or the file was damaged. The input should be the
  * same on every rank (a reader of a file all ranks see, a source); where
  * the ranks' point counts differ (data spread over the ranks), rank 0 warns
@@ -50,6 +52,8 @@
 #include "vtkAlgebraicSplatFitter.h"
 
 #include <memory> // For the stream
+
+class vtkMultiProcessController;
 #include <string> // For names
 #include <vector> // For the arrays
 
@@ -101,6 +105,16 @@ public:
 
   ///@{
   /**
+   * The ranks that share the fit (see the class comment); null or one
+   * process: this process fits and writes on its own, whatever the others
+   * do. Default: the global controller (VTK's parallel filters' rule).
+   */
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
+  ///@{
+  /**
    * After an update: splats written, chunks fitted, halo points loaded in
    * all, and the most points of one chunk with its halo.
    */
@@ -127,12 +141,15 @@ protected:
   vtkIdType NumberOfChunks = 0;
   vtkIdType NumberOfHaloPoints = 0;
   vtkIdType LargestChunk = 0;
+  vtkMultiProcessController* Controller = nullptr;
 
 private:
   vtkStreamingSplatFitter(const vtkStreamingSplatFitter&) = delete;
   void operator=(const vtkStreamingSplatFitter&) = delete;
+  // The file written; then read back into `output` when not null.
   bool Finish(vtkPolyData* output);
-  void FinishOverRanks(vtkPolyData* output);
+  void FinishOverRanks(vtkPolyData* output, bool everyPiece);
+  void ReadBack(const std::string& path, vtkPolyData* output, int piece, int pieces);
   struct Impl;
   std::unique_ptr<Impl> P;
 };

@@ -370,7 +370,9 @@ void vtkStreamingSplatMapper::ReadOctree(vtkPolyData* poly)
 {
   this->Superclass::ReadOctree(poly);
   pointsurfaces::LODOctree* nodes = this->GetLODNodes();
-  if (nodes && P->Cache && P->Cache->IsOpen())
+  // The file's mean scales, for the page octree only (not for one the
+  // superclass built).
+  if (nodes && this->LODNodesFromInput() && P->Cache && P->Cache->IsOpen())
   {
     const std::vector<double>& file = P->Cache->Info().Pages.MeanScale;
     if (file.size() == nodes->MeanScale.size())

@@ -197,7 +197,9 @@ int TestAlgebraicSplatMapperLOD(int argc, char* argv[])
     std::cout << (moved ? "moved and reordered: " : "reordered: ") << drawn << " of " << total
               << " splats drawn (the fit's octree: " << lodDrawn << "), " << differ
               << " pixels differ, picked " << picked << " (the fit's " << originalPick << ")\n";
-    if (drawn != lodDrawn || differ > 90 || warnings->GetWarning())
+    // The same octree from the same splats: the same count, but for ties
+    // of the octant splits that another order may break otherwise.
+    if (std::abs(drawn - lodDrawn) > lodDrawn / 100 || differ > 90 || warnings->GetWarning())
     {
       std::cerr << "Reordered splats lost their LOD, changed the picture or warned\n";
       ++failures;

@@ -719,6 +719,16 @@ void Pieces()
     "a piece past the chosen splats is empty, with the same arrays, and no warning");
 }
 
+// Attribute `name` of `object`: `n` doubles (for damaging a file by hand).
+void WriteDoubles(hid_t object, const char* name, const double* values, hsize_t n)
+{
+  const hid_t space = H5Screate_simple(1, &n, nullptr);
+  const hid_t attribute = H5Acreate2(object, name, H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT);
+  H5Awrite(attribute, H5T_NATIVE_DOUBLE, values);
+  H5Aclose(attribute);
+  H5Sclose(space);
+}
+
 // [min, max] of component c (-1: the magnitude, or the only component) of
 // `a`'s finite values, computed here.
 std::array<double, 2> Span(vtkDataArray* a, int c)
@@ -840,13 +850,7 @@ void WholeFileRanges()
     const hid_t offsetSet = H5Dopen2(f, "Attributes/Offset", H5P_DEFAULT);
     H5Adelete(offsetSet, "Range");
     const double wrong[3] = { 5.0, 1.0, 2.0 };
-    const hsize_t three = 3;
-    const hid_t space = H5Screate_simple(1, &three, nullptr);
-    const hid_t range =
-      H5Acreate2(offsetSet, "Range", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT);
-    H5Awrite(range, H5T_NATIVE_DOUBLE, wrong);
-    H5Aclose(range);
-    H5Sclose(space);
+    WriteDoubles(offsetSet, "Range", wrong, 3);
     H5Dclose(offsetSet);
     H5Fclose(f);
   }
@@ -886,13 +890,7 @@ void WholeFileRanges()
         if (std::string(name) == "Radius")
         {
           const double outside[2] = { 0.0, 1e12 };
-          const hsize_t two = 2;
-          const hid_t space = H5Screate_simple(1, &two, nullptr);
-          const hid_t rows =
-            H5Acreate2(d, "RangeRows", H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT);
-          H5Awrite(rows, H5T_NATIVE_DOUBLE, outside);
-          H5Aclose(rows);
-          H5Sclose(space);
+          WriteDoubles(d, "RangeRows", outside, 2);
         }
         H5Dclose(d);
       }
