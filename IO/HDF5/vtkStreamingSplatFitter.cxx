@@ -18,6 +18,7 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <vtksys/SystemTools.hxx>
@@ -38,6 +39,7 @@ struct vtkStreamingSplatFitter::Impl
   bool Normals = false;
   bool Failed = false;
   vtkIdType Points = 0;
+  vtkIdType Received = 0; // on rank 0: points the other ranks sent
   // Over MPI ranks (ParaView's pvserver and pvbatch): rank 0 fits and
   // writes, the others update their inputs in step and read back their
   // piece of rank 0's file.
@@ -86,7 +88,7 @@ int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
     P->Names.clear();
     P->Components.clear();
     P->Types.clear();
-    P->Points = 0;
+    P->Points = P->Received = 0;
     P->Ranks = this->Controller ? std::max(1, this->Controller->GetNumberOfProcesses()) : 1;
     P->Rank = P->Ranks > 1 ? this->Controller->GetLocalProcessId() : 0;
     // Only rank 0's FileName counts over ranks.
@@ -96,84 +98,21 @@ int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
       vtkErrorMacro(<< "No FileName: the splats would have nowhere to go.");
     }
   }
-  const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
-  vtkPointData* pd = input ? input->GetPointData() : nullptr;
-  if (P->Rank != 0)
+  if (P->Ranks > 1)
   {
-    P->Points += n; // counted, to tell rank 0 whether the ranks' inputs differ
+    // Every rank's piece goes to rank 0, unless it holds the same points as
+    // rank 0's or an earlier rank's (a reader or source that every rank
+    // runs alike).
+    std::vector<vtkSmartPointer<vtkPointSet>> parts;
+    this->GatherPiece(input, parts);
+    for (vtkPointSet* part : parts)
+    {
+      this->AddPiece(part);
+    }
   }
-  else if (!P->Failed && !P->Stream && n > 0)
+  else
   {
-    // The arrays to carry: every numeric point array of the first piece.
-    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
-    {
-      vtkDataArray* array = pd->GetArray(a);
-      if (array && array->GetName())
-      {
-        P->Names.emplace_back(array->GetName());
-        P->Components.push_back(array->GetNumberOfComponents());
-        P->Types.push_back(array->GetDataType());
-      }
-    }
-    int total = 0;
-    for (int c : P->Components)
-    {
-      total += c;
-    }
-    P->Normals = pd->GetNormals() != nullptr;
-    pointsurfaces::StreamParameters params;
-    params.Build = this->MakeParameters(total > 0);
-    params.ChunkPoints = this->ChunkPoints;
-    params.ScratchDirectory = this->ScratchDirectory;
-    params.Orient = this->OrientNormals;
-    params.MergeTolerance = this->MergeTolerance;
-    P->Stream = std::make_unique<pointsurfaces::SplatStream>(params, total, P->Normals);
-  }
-  if (!P->Failed && n > 0 && P->Rank == 0)
-  {
-    // This piece, in blocks.
-    const int total = P->Stream->Attributes();
-    vtkDataArray* normals = P->Normals ? pd->GetNormals() : nullptr;
-    std::vector<vtkDataArray*> arrays;
-    for (const std::string& name : P->Names)
-    {
-      arrays.push_back(pd->GetArray(name.c_str()));
-    }
-    std::vector<double> xyz;
-    std::vector<float> nrm, attr;
-    const vtkIdType block = 65536;
-    for (vtkIdType first = 0; first < n && !P->Failed; first += block)
-    {
-      const vtkIdType count = std::min(block, n - first);
-      xyz.resize(3 * count);
-      nrm.assign(normals ? 3 * count : 0, 0.0f);
-      attr.assign(static_cast<size_t>(count) * total, 0.0f);
-      for (vtkIdType i = 0; i < count; ++i)
-      {
-        input->GetPoint(first + i, &xyz[3 * i]);
-        for (int c = 0; normals && c < 3; ++c)
-        {
-          nrm[3 * i + c] = static_cast<float>(normals->GetComponent(first + i, c));
-        }
-        int at = 0;
-        for (size_t a = 0; a < arrays.size(); ++a)
-        {
-          for (int c = 0; c < P->Components[a]; ++c, ++at)
-          {
-            const bool has = arrays[a] && c < arrays[a]->GetNumberOfComponents();
-            attr[static_cast<size_t>(i) * total + at] =
-              has ? static_cast<float>(arrays[a]->GetComponent(first + i, c)) : 0.0f;
-          }
-        }
-      }
-      P->Failed = !P->Stream->AddPoints(
-        xyz.data(), normals ? nrm.data() : nullptr, total ? attr.data() : nullptr, count);
-    }
-    P->Points += n;
-    if (P->Failed)
-    {
-      vtkErrorMacro(<< P->Stream->Error());
-    }
+    this->AddPiece(input);
   }
   this->UpdateProgress(0.2 * (P->Piece + 1) / this->NumberOfPieces);
   int more = ++P->Piece < this->NumberOfPieces && !P->Failed && !this->GetAbortExecute() ? 1 : 0;
@@ -206,24 +145,169 @@ int vtkStreamingSplatFitter::RequestData(vtkInformation* request,
 }
 
 //------------------------------------------------------------------------------
+void vtkStreamingSplatFitter::AddPiece(vtkPointSet* input)
+{
+  const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
+  vtkPointData* pd = input ? input->GetPointData() : nullptr;
+  if (!P->Failed && !P->Stream && n > 0)
+  {
+    // The arrays to carry: every numeric point array of the first piece.
+    for (int a = 0; a < pd->GetNumberOfArrays(); ++a)
+    {
+      vtkDataArray* array = pd->GetArray(a);
+      if (array && array->GetName())
+      {
+        P->Names.emplace_back(array->GetName());
+        P->Components.push_back(array->GetNumberOfComponents());
+        P->Types.push_back(array->GetDataType());
+      }
+    }
+    int total = 0;
+    for (int c : P->Components)
+    {
+      total += c;
+    }
+    P->Normals = pd->GetNormals() != nullptr;
+    pointsurfaces::StreamParameters params;
+    params.Build = this->MakeParameters(total > 0);
+    params.ChunkPoints = this->ChunkPoints;
+    params.ScratchDirectory = this->ScratchDirectory;
+    params.Orient = this->OrientNormals;
+    params.MergeTolerance = this->MergeTolerance;
+    P->Stream = std::make_unique<pointsurfaces::SplatStream>(params, total, P->Normals);
+  }
+  if (P->Failed || n == 0)
+  {
+    return;
+  }
+  // This piece, in blocks.
+  const int total = P->Stream->Attributes();
+  vtkDataArray* normals = P->Normals ? pd->GetNormals() : nullptr;
+  std::vector<vtkDataArray*> arrays;
+  for (const std::string& name : P->Names)
+  {
+    arrays.push_back(pd->GetArray(name.c_str()));
+  }
+  std::vector<double> xyz;
+  std::vector<float> nrm, attr;
+  const vtkIdType block = 65536;
+  for (vtkIdType first = 0; first < n && !P->Failed; first += block)
+  {
+    const vtkIdType count = std::min(block, n - first);
+    xyz.resize(3 * count);
+    nrm.assign(normals ? 3 * count : 0, 0.0f);
+    attr.assign(static_cast<size_t>(count) * total, 0.0f);
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      input->GetPoint(first + i, &xyz[3 * i]);
+      for (int c = 0; normals && c < 3; ++c)
+      {
+        nrm[3 * i + c] = static_cast<float>(normals->GetComponent(first + i, c));
+      }
+      int at = 0;
+      for (size_t a = 0; a < arrays.size(); ++a)
+      {
+        for (int c = 0; c < P->Components[a]; ++c, ++at)
+        {
+          const bool has = arrays[a] && c < arrays[a]->GetNumberOfComponents();
+          attr[static_cast<size_t>(i) * total + at] =
+            has ? static_cast<float>(arrays[a]->GetComponent(first + i, c)) : 0.0f;
+        }
+      }
+    }
+    P->Failed = !P->Stream->AddPoints(
+      xyz.data(), normals ? nrm.data() : nullptr, total ? attr.data() : nullptr, count);
+  }
+  P->Points += n;
+  if (P->Failed)
+  {
+    vtkErrorMacro(<< P->Stream->Error());
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkStreamingSplatFitter::GatherPiece(vtkPointSet* input,
+  std::vector<vtkSmartPointer<vtkPointSet>>& parts)
+{
+  // Collective: every rank, every piece. A signature of each rank's piece
+  // (its count and coordinate sums) tells rank 0 which ranks hold points
+  // of their own: those send them; a rank whose piece equals rank 0's or
+  // an earlier sender's (every rank read the same piece) does not.
+  vtkMultiProcessController* controller = this->Controller;
+  const vtkIdType n = input ? input->GetNumberOfPoints() : 0;
+  double signature[5] = { static_cast<double>(n), 0.0, 0.0, 0.0, 0.0 };
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double x[3];
+    input->GetPoint(i, x);
+    signature[1] += x[0];
+    signature[2] += x[1];
+    signature[3] += x[2];
+    signature[4] += x[0] * (static_cast<double>(i % 7919) + 1.0);
+  }
+  std::vector<double> all(5 * static_cast<size_t>(P->Ranks));
+  controller->Gather(signature, all.data(), 5, 0);
+  std::vector<int> senders(static_cast<size_t>(P->Ranks), 0);
+  if (P->Rank == 0)
+  {
+    for (int r = 1; r < P->Ranks; ++r)
+    {
+      const double* mine = &all[5 * static_cast<size_t>(r)];
+      bool seen = !(mine[0] > 0.0);
+      for (int q = 0; q < r && !seen; ++q)
+      {
+        seen =
+          (q == 0 || senders[q]) && std::equal(mine, mine + 5, &all[5 * static_cast<size_t>(q)]);
+      }
+      senders[r] = seen ? 0 : 1;
+    }
+  }
+  controller->Broadcast(senders.data(), P->Ranks, 0);
+  const int tag = 871031;
+  if (P->Rank == 0)
+  {
+    parts.emplace_back(input);
+    for (int r = 1; r < P->Ranks; ++r)
+    {
+      if (senders[r])
+      {
+        vtkSmartPointer<vtkDataObject> received;
+        received.TakeReference(controller->ReceiveDataObject(r, tag));
+        vtkPointSet* points = vtkPointSet::SafeDownCast(received);
+        if (points)
+        {
+          parts.emplace_back(points);
+        }
+        P->Received += points ? points->GetNumberOfPoints() : 0;
+      }
+    }
+  }
+  else
+  {
+    P->Points += n;
+    if (senders[P->Rank])
+    {
+      // Points and point data only: the cells are not needed.
+      vtkNew<vtkPolyData> piece;
+      piece->SetPoints(input->GetPoints());
+      piece->GetPointData()->ShallowCopy(input->GetPointData());
+      controller->Send(piece, 0, tag);
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkStreamingSplatFitter::FinishOverRanks(vtkPolyData* output, bool everyPiece)
 {
   // Every rank ran through the same pieces (a parallel filter upstream
-  // executes on all of them together). Rank 0 fitted what its input gave;
-  // two ranks writing one file would race (HDF5 refuses the second, or
-  // the file is damaged).
+  // executes on all of them together) and rank 0 fitted them all, its own
+  // and those the others sent; two ranks writing one file would race
+  // (HDF5 refuses the second, or the file is damaged).
   vtkMultiProcessController* controller = this->Controller;
-  vtkIdType counts[2] = { P->Points, -P->Points }, extremes[2] = { 0, 0 };
-  controller->AllReduce(counts, extremes, 2, vtkCommunicator::MAX_OP);
-  const vtkIdType most = extremes[0], least = -extremes[1];
   const bool fitted = P->Rank == 0 && everyPiece && !P->Failed;
-  if (fitted && least != most)
+  if (fitted)
   {
-    vtkWarningMacro(<< "The input differs between the " << P->Ranks << " ranks (" << least << " to "
-                    << most << " points; rank 0: " << P->Points
-                    << "): the streaming fit reads its input on rank 0 only, so only rank 0's "
-                       "points are fitted. Give it a reader of a file that every rank can read, "
-                       "or gather the points on one rank first.");
+    vtkDebugMacro(<< P->Points << " points fitted, " << P->Received << " of them from other ranks");
   }
   const int written = fitted && this->Finish(nullptr) ? 1 : 0;
   // Rank 0's file (its absolute path: the ranks' working directories may

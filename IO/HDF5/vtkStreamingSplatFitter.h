@@ -30,17 +30,18 @@
  *
  * Over MPI ranks (ParaView's pvserver and pvbatch: the Controller, by
  * default the global controller), rank 0 alone fits and writes rank 0's
- * FileName: every rank asks its input for the same pieces in step (a
- * parallel filter upstream executes on all ranks together; they go on or
- * stop together), the others only count their points (so every rank reads
- * the whole input), and then each rank's output is its piece of the file
- * read back (vtkSplatFileReader's pieces). A program whose ranks each fit
- * their own file sets the Controller to null. Two ranks writing one file raced before:
- * HDF5 refused the second, or the file was damaged. The input should be the
- * same on every rank (a reader of a file all ranks see, a source); where
- * the ranks' point counts differ (data spread over the ranks), rank 0 warns
- * that only its points are fitted. A rank that cannot see rank 0's file
- * warns and outputs nothing.
+ * FileName; two ranks writing one file raced before (HDF5 refused the
+ * second, or the file was damaged). Every rank asks its input for the same
+ * pieces in step (a parallel filter upstream executes on all ranks
+ * together; the ranks go on or stop together), and each rank whose piece
+ * holds points of its own sends them to rank 0: data spread over the
+ * ranks (after RedistributeDataSet, a partitioned reader) is fitted whole,
+ * while a piece that equals rank 0's or an earlier rank's (a reader or
+ * source that every rank runs alike; told by its count and coordinate
+ * sums) is not sent twice. Each rank's output is then its piece of the
+ * file read back (vtkSplatFileReader's pieces). A rank that cannot see
+ * rank 0's file warns and outputs nothing. A program whose ranks each fit
+ * their own file sets the Controller to null.
  *
  * Errors (no FileName, a scratch directory or file that cannot be written,
  * FixedCount) give one vtkErrorMacro line and an empty output.
@@ -51,9 +52,12 @@
 #include "PointSurfacesIOHDF5Module.h" // For export macro
 #include "vtkAlgebraicSplatFitter.h"
 
+#include "vtkSmartPointer.h" // For the gathered pieces
+
 #include <memory> // For the stream
 
 class vtkMultiProcessController;
+class vtkPointSet;
 #include <string> // For names
 #include <vector> // For the arrays
 
@@ -146,6 +150,12 @@ protected:
 private:
   vtkStreamingSplatFitter(const vtkStreamingSplatFitter&) = delete;
   void operator=(const vtkStreamingSplatFitter&) = delete;
+  // One piece's points into the stream (rank 0; the first piece with points
+  // starts it and fixes the carried arrays).
+  void AddPiece(vtkPointSet* input);
+  // Collective over the Controller's ranks: on rank 0, the pieces to add
+  // (its own, then those of the ranks whose points differ).
+  void GatherPiece(vtkPointSet* input, std::vector<vtkSmartPointer<vtkPointSet>>& parts);
   // The file written; then read back into `output` when not null.
   bool Finish(vtkPolyData* output);
   void FinishOverRanks(vtkPolyData* output, bool everyPiece);

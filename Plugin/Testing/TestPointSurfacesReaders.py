@@ -191,6 +191,23 @@ if mpi:
     written = pieces.GetValue(0)
 check(written > 100, "the Streaming Splat Fitter writes a splat file (%d splats)" % written)
 Delete(streamed)
+if mpi:
+    # The same sphere spread over the ranks: each rank sends rank 0 its own
+    # points, and the fit is whole (before, only rank 0's half was fitted).
+    spread = RedistributeDataSet(Input=sphere)
+    gathered = StreamingSplatFitter(Input=spread)
+    gathered.FileName = os.path.join(named, "sphere-spread.mpi.psplat")
+    gathered.NumberOfPieces = 3
+    gathered.ChunkPoints = 5000
+    gathered.PageSize = 256
+    gathered.UpdatePipeline()
+    piece.SetValue(0, gathered.GetDataInformation().GetNumberOfPoints())
+    controller.AllReduce(piece, pieces, vtkCommunicator.SUM_OP)
+    check(abs(pieces.GetValue(0) - written) <= 0.02 * written,
+          "the sphere spread over the ranks fits into %d splats (%d when every rank has it all)"
+          % (pieces.GetValue(0), written))
+    Delete(gathered)
+    Delete(spread)
 Delete(sphere)
 splat_path = os.path.join(named, "sphere%s.psplat" % (".mpi" if mpi else ""))
 splat_file = OpenDataFile(splat_path)
