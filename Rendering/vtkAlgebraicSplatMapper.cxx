@@ -622,10 +622,7 @@ void vtkAlgebraicSplatMapper::DrawOctree(vtkRenderer* ren, vtkActor* act)
     {
       // No index buffer: every splat, in one draw.
       this->DrawOrderBO->Release();
-      const int n = this->VBOs->GetNumberOfTuples("vertexMC");
-      program->SetUniformf("lodQuality", 0.0f);
-      glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(n));
-      this->NumberOfRenderedSplats = n;
+      this->DrawSplats(ren, act, false);
       return;
     }
   }
