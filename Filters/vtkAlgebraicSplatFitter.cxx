@@ -23,6 +23,7 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSMPTools.h"
 #include "vtkSplatDataModel.h"
 
 #include <algorithm>
@@ -196,6 +197,7 @@ pointsurfaces::BuildParameters vtkAlgebraicSplatFitter::MakeParameters(bool keep
   params.NoiseFactor = this->NoiseFactor;
   params.FeatureNoiseFactor = this->FeatureNoiseFactor;
   params.MaximumFeatureScale = this->MaximumFeatureScale;
+  params.SubsampleWideFits = this->SubsampleWideFits;
   return params;
 }
 
@@ -271,6 +273,7 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
                     << " input points with NaN or infinite coordinates.");
   }
   this->MergeCoincident(xyz, normals, kept);
+  SortSpatially(xyz, normals, kept);
   const vtkIdType n = static_cast<vtkIdType>(kept.size());
   if (n < 3)
   {
@@ -348,6 +351,35 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   AddCount(fd, "SplatReducedDegree", this->NumberOfReducedDegreeSplats);
   AddCount(fd, vtkSplatDataModel::NormalsOrientedName(), oriented ? 1 : 0);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatFitter::SortSpatially(std::vector<double>& xyz,
+  std::vector<double>& normals,
+  std::vector<vtkIdType>& kept)
+{
+  const long long n = static_cast<long long>(kept.size());
+  const std::vector<long long> order = pointsurfaces::SpatialOrder(xyz.data(), n);
+  std::vector<double> sortedXYZ(xyz.size()), sortedNormals(normals.size());
+  std::vector<vtkIdType> sortedKept(kept.size());
+  vtkSMPTools::For(0,
+    n,
+    [&](long long begin, long long end)
+    {
+      for (long long k = begin; k < end; ++k)
+      {
+        const long long i = order[k];
+        std::copy(&xyz[3 * i], &xyz[3 * i] + 3, &sortedXYZ[3 * k]);
+        if (!normals.empty())
+        {
+          std::copy(&normals[3 * i], &normals[3 * i] + 3, &sortedNormals[3 * k]);
+        }
+        sortedKept[k] = kept[i];
+      }
+    });
+  xyz.swap(sortedXYZ);
+  normals.swap(sortedNormals);
+  kept.swap(sortedKept);
 }
 
 //------------------------------------------------------------------------------
@@ -445,6 +477,7 @@ void vtkAlgebraicSplatFitter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NoiseFactor: " << this->NoiseFactor << "\n";
   os << indent << "FeatureNoiseFactor: " << this->FeatureNoiseFactor << "\n";
   os << indent << "MaximumFeatureScale: " << this->MaximumFeatureScale << "\n";
+  os << indent << "SubsampleWideFits: " << this->SubsampleWideFits << "\n";
   os << indent << "NumberOfLevels: " << this->NumberOfLevels << "\n";
   os << indent << "CoarsestQualityFactor: " << this->CoarsestQualityFactor << "\n";
   os << indent << "BuildOctree: " << this->BuildOctree << "\n";

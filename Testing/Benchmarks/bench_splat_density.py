@@ -129,7 +129,7 @@ def plot(rows, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+    fig, (left, middle, right) = plt.subplots(1, 3, figsize=(14, 4))
     def key_of(r):
         return (r["variant"], float(r["noise"]), int(r.get("subdivisions", 0)))
     for key in sorted({key_of(r) for r in rows}):
@@ -137,12 +137,15 @@ def plot(rows, path):
         xs = [int(r["points"]) for r in mine]
         label = "%s, noise %g" % key[:2] + (", %d subdivisions" % key[2] if key[2] else "")
         left.plot(xs, [int(r["splats"]) for r in mine], marker="o", label=label)
+        middle.plot(xs, [float(r["fit_s"]) for r in mine], marker="o", label=label)
         right.plot(xs, [float(r["masked_ssim"]) for r in mine], marker="o", label=label)
-    for axis, title in ((left, "splats"), (right, "masked SSIM against the mesh")):
+    for axis, title in ((left, "splats"), (middle, "fit time, s"),
+                        (right, "masked SSIM against the mesh")):
         axis.set_xscale("log")
         axis.set_xlabel("points")
         axis.set_title(title)
     left.set_yscale("log")
+    middle.set_yscale("log")
     right.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=100)

@@ -174,6 +174,65 @@ void PointIndex::Within(const double q[3],
 
 namespace pointsurfaces
 {
+namespace
+{
+// The low 21 bits of v, two zero bits after each.
+unsigned long long Spread(unsigned long long v)
+{
+  v &= 0x1fffffULL;
+  v = (v | (v << 32)) & 0x1f00000000ffffULL;
+  v = (v | (v << 16)) & 0x1f0000ff0000ffULL;
+  v = (v | (v << 8)) & 0x100f00f00f00f00fULL;
+  v = (v | (v << 4)) & 0x10c30c30c30c30c3ULL;
+  v = (v | (v << 2)) & 0x1249249249249249ULL;
+  return v;
+}
+} // namespace
+
+std::vector<long long> SpatialOrder(const double* xyz, long long n)
+{
+  std::vector<long long> order(static_cast<size_t>(std::max(0LL, n)));
+  std::iota(order.begin(), order.end(), 0LL);
+  if (n < 2)
+  {
+    return order;
+  }
+  double lo[3] = { xyz[0], xyz[1], xyz[2] }, hi[3] = { xyz[0], xyz[1], xyz[2] };
+  for (long long i = 1; i < n; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      lo[c] = std::min(lo[c], xyz[3 * i + c]);
+      hi[c] = std::max(hi[c], xyz[3 * i + c]);
+    }
+  }
+  const double side = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2] });
+  const double cells = 2097151.0; // 2^21 - 1
+  const double scale = side > 0.0 ? cells / side : 0.0;
+  std::vector<std::pair<unsigned long long, long long>> keys(static_cast<size_t>(n));
+  vtkSMPTools::For(0,
+    n,
+    [&](long long begin, long long end)
+    {
+      for (long long i = begin; i < end; ++i)
+      {
+        unsigned long long code = 0;
+        for (int c = 0; c < 3; ++c)
+        {
+          const double g = std::min(cells, std::max(0.0, (xyz[3 * i + c] - lo[c]) * scale));
+          code |= Spread(static_cast<unsigned long long>(g)) << c;
+        }
+        keys[i] = std::make_pair(code, i);
+      }
+    });
+  vtkSMPTools::Sort(keys.begin(), keys.end());
+  for (long long i = 0; i < n; ++i)
+  {
+    order[i] = keys[i].second;
+  }
+  return order;
+}
+
 std::vector<long long> UniquePoints(const double* xyz, long long n, double tolerance)
 {
   std::vector<long long> kept;

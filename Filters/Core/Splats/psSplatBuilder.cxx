@@ -45,6 +45,17 @@ constexpr double WidenDistance = 0.5;
 // neighbours, the nearest WideFitNearest of them whole (see BuildAt).
 constexpr int WideFitNeighbors = 8;
 constexpr int WideFitNearest = 16;
+// A wide neighbourhood (the plane, h and fit points of scale m: the
+// max(NumberOfNeighbors, FeatureSizeNeighbors + 1) m^2 nearest points, 10 240
+// at the fitter's defaults and m = 16) is found in a subsample of the points
+// (every 4th, 16th or 64th, picked by a hash of the point's id, each
+// subsample within the next denser one), the sparsest that still gives it
+// SubsampleNeighbors points (BuildParameters::SubsampleWideFits); the
+// WideFitNearest nearest stay whole (the spacing comes from them), and the
+// bound still sees every point. The ordered k-nearest searches of the wide
+// gathers took a third of the fit time at 1M points, more at 10M.
+constexpr int SubsampleRatios[] = { 64, 16, 4 };
+constexpr int SubsampleNeighbors = 256;
 constexpr double WidenAngle = 5.0;
 
 // The point of `s`'s patch over p (along the splat's normal) and the
@@ -319,12 +330,16 @@ private:
   void EstimateNormals();
   // The neighbours of point i and its plane with h (Normal and Scale).
   // At `scale` m, m^2 times the neighbours (h about m times as wide).
+  // `whole` (when given) tells whether `ids` are all the points within
+  // their last distance: false when a wide neighbourhood came from a
+  // subsample (see SubsampleRatios).
   bool PlaneOf(long long i,
     LocalFrame& frame,
     std::vector<int>& ids,
     std::vector<double>& d2,
     std::vector<double>& coords,
-    double scale = 1.0) const;
+    double scale = 1.0,
+    bool* whole = nullptr) const;
   // `base` with its MaximumDeviation in local spacings around q (from the
   // unit of BuildParameters::Tolerance): `coords` are q's nearest points,
   // `plane` their plane with h (found here when null and needed). `noise`,
@@ -336,14 +351,15 @@ private:
     double* noise = nullptr) const;
   // Point i's splat fitted with `local` on the neighbours `ids` (planes and
   // cover in `c`), bounded, and refitted narrower where the bound cut it
-  // well inside; null when the fit fails.
+  // well inside; null when the fit fails. `whole`: as PlaneOf's.
   std::unique_ptr<BuiltSplat> BuildAt(long long i,
     ChosenPoint& c,
     const SplatFitParameters& local,
     const std::vector<int>& ids,
     const std::vector<double>& d2,
     const std::vector<double>& coords,
-    std::vector<double>& w);
+    std::vector<double>& w,
+    bool whole = true);
   // While the bound leaves `b` (fitted at scale `first`) whole, point i's
   // fit at 2, 4, ... times that scale, the last at MaximumFeatureScale,
   // kept (with its cover in `c`) when its disc reaches farther.
@@ -384,7 +400,8 @@ private:
     const std::vector<double>& d2,
     const double* fitCoords,
     int fitCount,
-    std::vector<double>& w);
+    std::vector<double>& w,
+    bool whole);
   // The selection's CoverFunction: the points chosen point i covers at s.
   void CoverOf(long long i, double s, std::vector<int>& out) const;
   // The median h of a sample of 64 points.
@@ -412,7 +429,21 @@ private:
   const std::function<void(double)>& Progress;
   const std::atomic<bool>* Abort;
   ChunkContext* Chunk;
-  PointIndex index;
+  // The subsamples of SubsampleRatios (sparsest first): their points' ids,
+  // coordinates and index; absent where they would hold too few points.
+  struct Subsample
+  {
+    int Ratio = 1;
+    std::vector<int> Ids;
+    std::vector<double> XYZ;
+    std::unique_ptr<PointIndex> Index;
+  };
+  std::vector<Subsample> subsamples;
+  // The index of every point, built beside the subsamples' (a 10M-point
+  // index takes seconds on one core).
+  std::unique_ptr<PointIndex> BuildIndexes();
+  std::unique_ptr<PointIndex> indexStorage;
+  const PointIndex& index;
   SplatFitParameters fit;
   int kAll;
   bool bounded;
@@ -443,7 +474,8 @@ SplatBuild::SplatBuild(const double* xyz_,
   , Progress(progress)
   , Abort(abort)
   , Chunk(chunk_)
-  , index(xyz_, n_)
+  , indexStorage(this->BuildIndexes())
+  , index(*indexStorage)
   , fit(params_.Fit)
   , chosenOf(static_cast<size_t>(n_))
   , levelS(params_.Quality)
@@ -466,6 +498,84 @@ SplatBuild::SplatBuild(const double* xyz_,
   // Tells this call's cached searches (see Bound) from an earlier call's.
   static std::atomic<unsigned long long> builds{ 0 };
   buildId = ++builds;
+}
+
+//------------------------------------------------------------------------------
+std::unique_ptr<PointIndex> SplatBuild::BuildIndexes()
+{
+  // Subsamples serve the wide fits of bounded Quality selection only. The
+  // widest gather asks max(NumberOfNeighbors, FeatureSizeNeighbors + 1) m^2
+  // points at m = MaximumFeatureScale; a subsample too sparse even for that,
+  // or too small to hold it, is left out.
+  const SplatFitParameters& f = params.Fit;
+  const double widest = std::min<double>(static_cast<double>(n),
+                          std::max(f.NumberOfNeighbors, f.FeatureSizeNeighbors + 1)) *
+    params.MaximumFeatureScale * params.MaximumFeatureScale;
+  const bool subsample = f.MaximumDeviation > 0.0 && params.MaximumFeatureScale >= 2.0 &&
+    params.SubsampleWideFits && !params.KeepWeights && params.Select == Selection::Quality;
+  const int top = SubsampleRatios[0];
+  std::vector<unsigned char> slot;
+  for (int ratio : SubsampleRatios)
+  {
+    if (!subsample || widest / ratio < SubsampleNeighbors || n / ratio < 4 * SubsampleNeighbors)
+    {
+      continue;
+    }
+    if (slot.empty())
+    {
+      slot.resize(static_cast<size_t>(n));
+      vtkSMPTools::For(0,
+        n,
+        [&](long long begin, long long end)
+        {
+          for (long long i = begin; i < end; ++i)
+          {
+            // splitmix64: a point's slot does not depend on its neighbours'
+            // ids, so a scan's order (lines, tiles) leaves no pattern in a
+            // subsample; each subsample holds the sparser ones.
+            unsigned long long z = static_cast<unsigned long long>(i) + 0x9e3779b97f4a7c15ULL;
+            z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+            z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+            slot[i] = static_cast<unsigned char>((z ^ (z >> 31)) % top);
+          }
+        });
+    }
+    Subsample sub;
+    sub.Ratio = ratio;
+    const unsigned char below = static_cast<unsigned char>(top / ratio);
+    for (long long i = 0; i < n; ++i)
+    {
+      if (slot[i] < below)
+      {
+        sub.Ids.push_back(static_cast<int>(i));
+        sub.XYZ.insert(sub.XYZ.end(), xyz + 3 * i, xyz + 3 * i + 3);
+      }
+    }
+    subsamples.push_back(std::move(sub));
+  }
+  // Every index at once: the whole one on one thread, the subsamples'
+  // (a third of its points together) on the others.
+  std::unique_ptr<PointIndex> whole;
+  vtkSMPTools::For(0,
+    static_cast<long long>(subsamples.size()) + 1,
+    1,
+    [&](long long begin, long long end)
+    {
+      for (long long k = begin; k < end; ++k)
+      {
+        if (k == 0)
+        {
+          whole = std::make_unique<PointIndex>(xyz, n);
+        }
+        else
+        {
+          Subsample& sub = subsamples[static_cast<size_t>(k - 1)];
+          sub.Index =
+            std::make_unique<PointIndex>(sub.XYZ.data(), static_cast<long long>(sub.Ids.size()));
+        }
+      }
+    });
+  return whole;
 }
 
 //------------------------------------------------------------------------------
@@ -499,23 +609,81 @@ bool SplatBuild::PlaneOf(long long i,
   std::vector<int>& ids,
   std::vector<double>& d2,
   std::vector<double>& coords,
-  double scale) const
+  double scale,
+  bool* whole) const
 {
   const double grow = scale * scale;
   const int fitCount = static_cast<int>(
     std::min<double>(static_cast<double>(n), std::round(fit.NumberOfNeighbors * grow)));
   const int featureCount = static_cast<int>(
     std::min<double>(static_cast<double>(n - 1), std::round(fit.FeatureSizeNeighbors * grow)));
-  Gather(index, index.Point(i), std::max(fitCount, featureCount + 1), ids, d2, coords);
-  const int m = std::min(fitCount, static_cast<int>(ids.size()));
-  if (FitReferencePlane(coords.data(), nullptr, m, frame, normals ? normals + 3 * i : nullptr) !=
+  if (whole)
+  {
+    *whole = true;
+  }
+  // The sparsest subsample that holds SubsampleNeighbors of the points
+  // gathered.
+  const int gathered = std::max(fitCount, featureCount + 1);
+  const Subsample* sub = nullptr;
+  if (scale > 1.0)
+  {
+    for (const Subsample& candidate : subsamples)
+    {
+      if (gathered / candidate.Ratio >= SubsampleNeighbors)
+      {
+        sub = &candidate;
+        break;
+      }
+    }
+  }
+  const double* q = index.Point(i);
+  if (!sub)
+  {
+    Gather(index, q, gathered, ids, d2, coords);
+    const int m = std::min(fitCount, static_cast<int>(ids.size()));
+    if (FitReferencePlane(coords.data(), nullptr, m, frame, normals ? normals + 3 * i : nullptr) !=
+      FitStatus::Ok)
+    {
+      return false;
+    }
+    frame.Scale = FeatureSize(q, frame, coords.data(), static_cast<int>(ids.size()), featureCount);
+    return frame.Scale > 0.0;
+  }
+  // The plane and h from the subsample alone; the fit's neighbours are the
+  // WideFitNearest nearest points, then the subsample's points beyond them.
+  thread_local std::vector<int> subIds;
+  thread_local std::vector<double> subD2, subCoords;
+  const int r = sub->Ratio;
+  Gather(*sub->Index, q, gathered / r + 1, subIds, subD2, subCoords);
+  const int m = std::min(std::max(fitCount / r, 3), static_cast<int>(subIds.size()));
+  if (FitReferencePlane(subCoords.data(), nullptr, m, frame, normals ? normals + 3 * i : nullptr) !=
     FitStatus::Ok)
   {
     return false;
   }
   frame.Scale =
-    FeatureSize(index.Point(i), frame, coords.data(), static_cast<int>(ids.size()), featureCount);
-  return frame.Scale > 0.0;
+    FeatureSize(q, frame, subCoords.data(), static_cast<int>(subIds.size()), featureCount / r);
+  if (!(frame.Scale > 0.0))
+  {
+    return false;
+  }
+  // As on every point, the fit reaches as far as its fitCount nearest.
+  Gather(index, q, WideFitNearest, ids, d2, coords);
+  const double edge = d2.empty() ? 0.0 : d2.back();
+  for (size_t j = 0; j < std::min<size_t>(subIds.size(), fitCount / r + 1); ++j)
+  {
+    if (subD2[j] > edge)
+    {
+      ids.push_back(sub->Ids[subIds[j]]);
+      d2.push_back(subD2[j]);
+      coords.insert(coords.end(), &subCoords[3 * j], &subCoords[3 * j] + 3);
+    }
+  }
+  if (whole)
+  {
+    *whole = false;
+  }
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -714,9 +882,10 @@ bool SplatBuild::FrameOf(long long i, LocalFrame& frame)
           LocalSpacing(index.Point(i), coords.data(), static_cast<int>(coords.size() / 3));
       SplatFitParameters start = local;
       start.NumberOfNeighbors = static_cast<int>(std::round(fit.NumberOfNeighbors * first * first));
-      if (this->PlaneOf(i, c->Plane, ids, d2, coords, first))
+      bool whole = true;
+      if (this->PlaneOf(i, c->Plane, ids, d2, coords, first, &whole))
       {
-        b = this->BuildAt(i, *c, start, ids, d2, coords, w);
+        b = this->BuildAt(i, *c, start, ids, d2, coords, w, whole);
       }
       if (!b || b->Radius < nearestRadius)
       {
@@ -758,7 +927,8 @@ std::unique_ptr<BuiltSplat> SplatBuild::BuildAt(long long i,
   const std::vector<int>& ids,
   const std::vector<double>& d2,
   const std::vector<double>& coords,
-  std::vector<double>& w)
+  std::vector<double>& w,
+  bool whole)
 {
   // A wide fit (Widen, FeatureNoiseFactor) on every one of its k m^2
   // neighbours cost most of the fit time; its patch is as well determined
@@ -806,8 +976,16 @@ std::unique_ptr<BuiltSplat> SplatBuild::BuildAt(long long i,
     b->Ids.assign(ids.begin(), ids.begin() + w.size());
     b->Weights.assign(w.begin(), w.end());
   }
-  this->Bound(*b, local.MaximumDeviation, &c.Cover, &c.Rho, &ids, &d2, index.Point(i));
-  this->NarrowRefit(i, c, b, fitted, ids, d2, fitCoords, fitCount, w);
+  // A subsample's neighbours are no superset of the disc's points: the bound
+  // then searches the index.
+  this->Bound(*b,
+    local.MaximumDeviation,
+    &c.Cover,
+    &c.Rho,
+    whole ? &ids : nullptr,
+    whole ? &d2 : nullptr,
+    index.Point(i));
+  this->NarrowRefit(i, c, b, fitted, ids, d2, fitCoords, fitCount, w, whole);
   return b;
 }
 
@@ -835,13 +1013,15 @@ void SplatBuild::Widen(long long i,
       return;
     }
     ChosenPoint wide;
-    if (!this->PlaneOf(i, wide.Plane, ids, d2, coords, m))
+    bool whole = true;
+    if (!this->PlaneOf(i, wide.Plane, ids, d2, coords, m, &whole))
     {
       return;
     }
     SplatFitParameters wider = local;
     wider.NumberOfNeighbors = static_cast<int>(std::round(fit.NumberOfNeighbors * m * m));
-    std::unique_ptr<BuiltSplat> candidate = this->BuildAt(i, wide, wider, ids, d2, coords, w);
+    std::unique_ptr<BuiltSplat> candidate =
+      this->BuildAt(i, wide, wider, ids, d2, coords, w, whole);
     if (!candidate || !(candidate->Radius > b->Radius) ||
       !SameSurface(b->Fitted,
         candidate->Fitted,
@@ -893,7 +1073,8 @@ void SplatBuild::NarrowRefit(long long i,
   const std::vector<double>& d2,
   const double* fitCoords,
   int fitCount,
-  std::vector<double>& w)
+  std::vector<double>& w,
+  bool whole)
 {
   // Where the surface bent away well inside the disc, the patch averaged
   // over more than it may cover: fit again with weights that reach no
@@ -923,7 +1104,13 @@ void SplatBuild::NarrowRefit(long long i,
       n2->Radius = nominalRadius;
       std::vector<int> cover2;
       std::vector<double> rho2;
-      this->Bound(*n2, local.MaximumDeviation, &cover2, &rho2, &ids, &d2, index.Point(i));
+      this->Bound(*n2,
+        local.MaximumDeviation,
+        &cover2,
+        &rho2,
+        whole ? &ids : nullptr,
+        whole ? &d2 : nullptr,
+        index.Point(i));
       if (n2->Radius > b->Radius)
       {
         if (params.KeepWeights)

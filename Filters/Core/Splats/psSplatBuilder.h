@@ -105,6 +105,15 @@ struct BuildParameters
    * following the sampling. 0: the first fit at the k-nearest h.
    */
   double FeatureNoiseFactor = 12.0;
+  /**
+   * With MaximumFeatureScale of 2 or more (bounded Quality selection): a
+   * wide fit's neighbourhood (its plane, h and fit points; the
+   * max(NumberOfNeighbors, FeatureSizeNeighbors + 1) m^2 nearest points at
+   * scale m) is found in a subsample of the points (every 4th, 16th or 64th,
+   * the sparsest that still holds 256 of them), its 16 nearest points
+   * whole; the bound still tests every point. False: every point of it.
+   */
+  bool SubsampleWideFits = true;
 };
 
 /** Neighbours of the PCA normals of BuildParameters::EstimateNormals. */

@@ -20,12 +20,18 @@
 #include "vtkTestErrorObserver.h"
 #include "vtkUnsignedCharArray.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <limits>
+#include <numeric>
+#include <random>
 #include <set>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -268,6 +274,58 @@ void TestLevelsAndOctree()
   Check(first == s0->GetOutput()->GetNumberOfPoints(), "the builder's level 0 is the s = 4 set");
 }
 
+// The splats do not depend on the order of the input points (the fitter
+// sorts them spatially first): a shuffled sphere gives the same splats, and
+// the same attributes on them.
+void TestInputOrder()
+{
+  auto sphere = Sphere(6000);
+  const vtkIdType n = sphere->GetNumberOfPoints();
+  std::vector<vtkIdType> perm(static_cast<size_t>(n));
+  std::iota(perm.begin(), perm.end(), 0);
+  std::shuffle(perm.begin(), perm.end(), std::mt19937(3));
+  auto shuffled = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  shuffled->GetPointData()->CopyAllocate(sphere->GetPointData(), n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    pts->InsertNextPoint(sphere->GetPoint(perm[i]));
+    shuffled->GetPointData()->CopyData(sphere->GetPointData(), perm[i], i);
+  }
+  shuffled->SetPoints(pts);
+  for (double scale : { 1.0, 4.0 })
+  {
+    // Each splat's origin and Temperature, sorted.
+    std::vector<std::array<double, 4>> found[2];
+    int which = 0;
+    for (vtkPolyData* input : { sphere.GetPointer(), shuffled.GetPointer() })
+    {
+      vtkNew<vtkAlgebraicSplatFitter> fitter;
+      fitter->SetInputData(input);
+      fitter->SetDegree(3);
+      fitter->SetMaximumFeatureScale(scale);
+      fitter->Update();
+      vtkPolyData* out = fitter->GetOutput();
+      vtkDataArray* temperature = out->GetPointData()->GetArray("Temperature");
+      for (vtkIdType i = 0; temperature && i < out->GetNumberOfPoints(); ++i)
+      {
+        const double* p = out->GetPoint(i);
+        found[which].push_back({ p[0], p[1], p[2], temperature->GetTuple1(i) });
+      }
+      std::sort(found[which].begin(), found[which].end());
+      ++which;
+    }
+    std::printf("MaximumFeatureScale %g: %zu splats in input order, %zu shuffled\n",
+      scale,
+      found[0].size(),
+      found[1].size());
+    Check(!found[0].empty() && found[0] == found[1],
+      "a shuffled input gives the same splats and attributes at MaximumFeatureScale " +
+        std::to_string(scale));
+  }
+}
+
 void TestFixedCount()
 {
   auto sphere = Sphere(5000);
@@ -459,6 +517,7 @@ int TestAlgebraicSplatFitter(int, char*[])
   TestDataModel();
   TestLevelsAndOctree();
   TestFixedCount();
+  TestInputOrder();
   TestMemoryLimit();
   TestBadInput();
   if (Failures)

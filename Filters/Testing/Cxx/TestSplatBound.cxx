@@ -609,8 +609,68 @@ void TestGrowingDiscs()
   Check(outside == 0, "discs at the rim stop at the data");
 }
 
+// Wide fits (MaximumFeatureScale 16) find their neighbourhoods in a
+// subsample of the points (BuildParameters::SubsampleWideFits): on a dense,
+// noisy sphere they must draw what the fits on every point draw, with no
+// point left uncovered.
+void TestSubsampledWideFits()
+{
+  std::mt19937 gen(5);
+  std::normal_distribution<double> noise(0.0, 0.004); // a third of the spacing
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<double> pts;
+  const double radius = 3.0;
+  while (pts.size() < 3 * 120000)
+  {
+    double d[3] = { unit(gen), unit(gen), unit(gen) };
+    const double r = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (r > 0.1 && r <= 1.0)
+    {
+      const double at = radius + noise(gen);
+      for (double c : d)
+      {
+        pts.push_back(at * c / r);
+      }
+    }
+  }
+  const long long n = static_cast<long long>(pts.size() / 3);
+  BuildParameters params;
+  params.Fit.Degree = 3;
+  params.Fit.MaximumDeviation = 0.5;
+  params.Tolerance = ToleranceUnit::Noise;
+  params.MaximumFeatureScale = 16.0;
+  const Distance exact = [&](const double p[3])
+  { return std::abs(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]) - radius); };
+  const BuildResult sub = BuildSplats(pts.data(), n, nullptr, params);
+  params.SubsampleWideFits = false;
+  const BuildResult all = BuildSplats(pts.data(), n, nullptr, params);
+  const Measure ms = MeasureSplats(sub, pts, exact);
+  const Measure ma = MeasureSplats(all, pts, exact);
+  bool same = sub.Splats.size() == all.Splats.size();
+  for (size_t j = 0; same && j < sub.Splats.size(); ++j)
+  {
+    same = sub.Splats[j].Radius == all.Splats[j].Radius;
+  }
+  std::printf("wide fits on a subsample / on every point: %lld / %lld splats, off the sphere "
+              "%.4f / %.4f (p95 %.4f / %.4f), uncovered %lld / %lld\n",
+    ms.Splats,
+    ma.Splats,
+    ms.Worst,
+    ma.Worst,
+    ms.P95,
+    ma.P95,
+    ms.Uncovered,
+    ma.Uncovered);
+  Check(!same, "the subsample changes the wide fits (the path ran)");
+  Check(ms.Splats > 0 && std::abs(ms.Splats - ma.Splats) <= 0.05 * ma.Splats,
+    "wide fits on a subsample: splat count within 5 % of every point's");
+  Check(ms.Uncovered == 0 && ma.Uncovered == 0, "wide fits on a subsample: no point uncovered");
+  Check(ms.P95 <= 1.25 * ma.P95 + 1e-3, "wide fits on a subsample: patches as close to the sphere");
+}
+
 int TestSplatBound(int, char*[])
 {
+  TestSubsampledWideFits();
   TestFoldLip();
   TestStrayPointAcrossBorder();
   TestNormalAngle();

@@ -18,6 +18,7 @@
 #include "vtkSMPTools.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -781,8 +782,55 @@ void TestOrientation()
 }
 } // namespace
 
+// SpatialOrder: a permutation in Morton order, whatever the input's order.
+void TestSpatialOrder()
+{
+  Check(SpatialOrder(nullptr, 0).empty(), "SpatialOrder of no points is empty");
+  const double one[3] = { 1e7, -1e7, 3.0 };
+  Check(SpatialOrder(one, 1) == std::vector<long long>{ 0 }, "SpatialOrder of one point");
+  const std::vector<double> same = { 2, 2, 2, 2, 2, 2, 2, 2, 2 };
+  Check(SpatialOrder(same.data(), 3) == std::vector<long long>({ 0, 1, 2 }),
+    "coincident points keep their order");
+  // A 4 x 4 x 4 grid near 1e7, shuffled: the Z curve visits each 2 x 2 x 2
+  // octant whole before the next, x fastest.
+  std::vector<std::array<int, 3>> cells;
+  for (int z = 0; z < 4; ++z)
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x)
+        cells.push_back({ x, y, z });
+  std::shuffle(cells.begin(), cells.end(), std::mt19937(9));
+  std::vector<double> grid;
+  for (const auto& c : cells)
+  {
+    grid.insert(grid.end(), { 1e7 + 0.5 * c[0], 1e7 + 0.5 * c[1], -1e7 + 0.5 * c[2] });
+  }
+  const std::vector<long long> order = SpatialOrder(grid.data(), 64);
+  std::vector<long long> sorted(order);
+  std::sort(sorted.begin(), sorted.end());
+  bool permutation = true;
+  for (long long i = 0; i < 64; ++i)
+  {
+    permutation = permutation && sorted[i] == i;
+  }
+  Check(permutation, "SpatialOrder is a permutation");
+  bool octants = true, first = true;
+  for (size_t k = 0; k < order.size(); ++k)
+  {
+    const auto& c = cells[order[k]];
+    const int octant = (c[0] / 2) | (c[1] / 2) << 1 | (c[2] / 2) << 2;
+    octants = octants && octant == static_cast<int>(k / 8);
+    if (k < 8)
+    {
+      const int inner = (c[0] % 2) | (c[1] % 2) << 1 | (c[2] % 2) << 2;
+      first = first && inner == static_cast<int>(k);
+    }
+  }
+  Check(octants && first, "SpatialOrder follows the Z curve");
+}
+
 int TestSplatFit(int, char*[])
 {
+  TestSpatialOrder();
   TestParaboloidThroughKernel();
   TestConvergenceOrder();
   TestInvariance();
