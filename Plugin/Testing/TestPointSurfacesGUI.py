@@ -105,6 +105,10 @@ def show_coloured(source, representation, array, name):
     display.SetRepresentationType(representation)
     ColorBy(display, ("POINTS", array))
     display.RescaleTransferFunctionToDataRange(True, False)
+    # A map without a grey middle: under the default Cool to Warm, values
+    # near the middle of the range (most splat radii) are light grey, and
+    # the check below could not tell them from white.
+    GetColorTransferFunction(array).ApplyPreset("Viridis (matplotlib)", True)
     view.ResetCamera()
     Render(view)
     path = os.path.join(out, name + ".png")
