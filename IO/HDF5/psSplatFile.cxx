@@ -188,10 +188,10 @@ const float* StoredValues(int type, const std::vector<float>& values, std::vecto
   return rounded.data();
 }
 
-// Whether column k has a Range (Origin and the coefficients have none).
+// Whether column k has a Range (the origins, which are the points, have none).
 bool Ranged(int k)
 {
-  return std::strcmp(Columns[k].Name, "Origin") != 0 && Columns[k].Components != 0;
+  return std::strcmp(Columns[k].Name, "Origin") != 0;
 }
 
 // Widens `range` (SplatRangeSize(comps) numbers; empty: none yet) by the finite
@@ -925,7 +925,9 @@ bool SplatFileReader::Impl::Check(std::string& error)
     {
       continue;
     }
-    const int comps = column ? Columns[d].Components : info.AttributeComponents[d - ColumnCount];
+    const int comps = !column ? info.AttributeComponents[d - ColumnCount]
+      : Columns[d].Components ? Columns[d].Components
+                              : MonomialCount(info.Degree);
     std::vector<double> range(SplatRangeSize(comps));
     if (ReadNumbers(this->Datasets[d], "Range", range.data(), static_cast<int>(range.size())) ==
         static_cast<int>(range.size()) &&

@@ -165,6 +165,7 @@ void Assemble(const pointsurfaces::SplatColumns& c,
     }
   }
   const std::pair<vtkDataArray*, const char*> columns[] = { { normal, "Normal" },
+    { coeffs, "Coefficients" },
     { tangent, "Tangent" },
     { size, "FeatureSize" },
     { radius, "Radius" },

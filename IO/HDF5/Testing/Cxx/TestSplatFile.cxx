@@ -780,6 +780,7 @@ void WholeFileRanges()
     "Colour",
     vtkSplatDataModel::RadiusName(),
     vtkSplatDataModel::NormalName(),
+    vtkSplatDataModel::CoefficientsName(),
     vtkSplatDataModel::FeatureSizeName(),
     vtkSplatDataModel::LODName() };
   bool same = true, narrower = false, found = true, ends = true;
