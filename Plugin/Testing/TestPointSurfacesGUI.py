@@ -107,8 +107,18 @@ def show_coloured(source, representation, array, name):
     display.RescaleTransferFunctionToDataRange(True, False)
     # A map without a grey middle: under the default Cool to Warm, values
     # near the middle of the range (most splat radii) are light grey, and
-    # the check below could not tell them from white.
-    GetColorTransferFunction(array).ApplyPreset("Viridis (matplotlib)", True)
+    # the check below could not tell them from white. ParaView 6 renamed
+    # the preset (and raises where 5.11 returns False).
+    lut = GetColorTransferFunction(array)
+    applied = False
+    for preset in ("Viridis (matplotlib)", "Viridis"):
+        try:
+            applied = lut.ApplyPreset(preset, True) is not False
+        except RuntimeError:
+            applied = False
+        if applied:
+            break
+    check(applied, "%s: the Viridis colour map applied" % array)
     view.ResetCamera()
     Render(view)
     path = os.path.join(out, name + ".png")
