@@ -661,8 +661,8 @@ bool SplatBuild::PlaneOf(long long i,
   {
     return false;
   }
-  frame.Scale =
-    FeatureSize(q, frame, subCoords.data(), static_cast<int>(subIds.size()), featureCount / r);
+  frame.Scale = FeatureSize(
+    q, frame, subCoords.data(), static_cast<int>(subIds.size()), std::max(1, featureCount / r));
   if (!(frame.Scale > 0.0))
   {
     return false;
