@@ -51,6 +51,12 @@ constexpr Column Columns[] = { { "Origin", 3, Kind::Double },
   { "LOD", 1, Kind::Int } };
 constexpr int ColumnCount = sizeof(Columns) / sizeof(Columns[0]);
 
+// A column's components: its own, or the coefficients of a splat of `degree`.
+int ComponentsOf(const Column& c, int degree)
+{
+  return c.Components ? c.Components : MonomialCount(degree);
+}
+
 // The memory of column k of `c`.
 void* ColumnData(SplatColumns& c, int k)
 {
@@ -512,7 +518,7 @@ bool SplatFileWriter::Open(const std::string& path, const SplatFileInfo& info, s
   const hsize_t n = static_cast<hsize_t>(info.Splats);
   for (const Column& c : Columns)
   {
-    const int comps = c.Components ? c.Components : MonomialCount(info.Degree);
+    const int comps = ComponentsOf(c, info.Degree);
     P->Datasets.push_back(Create(splats.Id, c.Name, FileType(c.Type), n, comps));
   }
   for (size_t a = 0; a < info.AttributeNames.size(); ++a)
@@ -554,7 +560,7 @@ bool SplatFileWriter::Write(long long first, const SplatColumns& block, std::str
   const hsize_t f = static_cast<hsize_t>(first), count = static_cast<hsize_t>(block.Count);
   for (int k = 0; k < ColumnCount; ++k)
   {
-    const int comps = Columns[k].Components ? Columns[k].Components : MonomialCount(P->Info.Degree);
+    const int comps = ComponentsOf(Columns[k], P->Info.Degree);
     if (!Rows(
           P->Datasets[k], f, count, comps, MemoryType(Columns[k].Type), ColumnData(rows, k), true))
     {
@@ -870,7 +876,7 @@ bool SplatFileReader::Impl::Check(std::string& error)
     long long rows;
     int comps;
     Shape(splatGroup.Id, c.Name, rows, comps);
-    const int want = c.Components ? c.Components : MonomialCount(info.Degree);
+    const int want = ComponentsOf(c, info.Degree);
     if (rows != info.Splats || comps != want)
     {
       error = std::string("damaged: Splats/") + c.Name + " is not " + std::to_string(info.Splats) +
@@ -925,9 +931,8 @@ bool SplatFileReader::Impl::Check(std::string& error)
     {
       continue;
     }
-    const int comps = !column ? info.AttributeComponents[d - ColumnCount]
-      : Columns[d].Components ? Columns[d].Components
-                              : MonomialCount(info.Degree);
+    const int comps =
+      column ? ComponentsOf(Columns[d], info.Degree) : info.AttributeComponents[d - ColumnCount];
     std::vector<double> range(SplatRangeSize(comps));
     if (ReadNumbers(this->Datasets[d], "Range", range.data(), static_cast<int>(range.size())) ==
         static_cast<int>(range.size()) &&
@@ -1100,7 +1105,7 @@ bool SplatFileReader::Read(long long first, long long count, SplatColumns& out, 
   const hsize_t f = static_cast<hsize_t>(first), n = static_cast<hsize_t>(count);
   for (int k = 0; k < ColumnCount; ++k)
   {
-    const int comps = Columns[k].Components ? Columns[k].Components : MonomialCount(P->Info.Degree);
+    const int comps = ComponentsOf(Columns[k], P->Info.Degree);
     const size_t elementBytes = Columns[k].Type == Kind::Double ? 8 : 4;
     unsigned char* base = static_cast<unsigned char*>(ColumnData(out, k)) +
       static_cast<size_t>(at) * comps * elementBytes;
