@@ -48,9 +48,9 @@ packages=(
   build-essential cmake ninja-build pkg-config
   # VTK and its Python bindings (bookworm: 9.1, trixie: 9.3, forky: 9.6)
   libvtk9-dev python3-vtk9 vtk9 python3-numpy
-  # numerics and readers (PCL: kd-trees, PCD files; Ceres: robust fits;
+  # numerics and readers (nanoflann: kd-trees; PCL: PCD files; Ceres: robust fits;
   # OpenMesh: OFF, OBJ, OM and STL meshes)
-  libeigen3-dev libpcl-dev libceres-dev libopenmesh-dev
+  libeigen3-dev libnanoflann-dev libpcl-dev libceres-dev libopenmesh-dev
   # HDF5's C API (Gadget and SWIFT snapshots, through VTK's VTK::hdf5)
   libhdf5-dev
   # headless GL: Mesa llvmpipe through EGL (surfaceless)

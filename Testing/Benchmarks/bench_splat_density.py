@@ -33,13 +33,21 @@ Density independence is what the issue asks of the fitter: above the
 sampling that resolves the surface, the splat count should stop growing with
 N, at the same picture. Output in --out: splat_density.csv (one row per
 sample and variant: points, noise, variant, splats, splats per point, fit
-seconds, masked SSIM, RMSE, IoU) and splat_density.png (splats and SSIM
-against the points, one line per variant and noise). Timings are wall-clock
+seconds, the fit's peak memory, masked SSIM, RMSE, IoU) and
+splat_density.png (splats, fit time, peak memory and SSIM against the
+points, one line per variant and noise). Each fit runs in a process of its
+own that reads the sample from a temporary file, fits and exits; its peak
+memory (peak_gb, GiB) is that process's peak resident set (VmHWM): the
+interpreter and VTK (about 0.1 GiB), the points read and the fit. Timings are wall-clock
 on whatever this runs on: compare them only within one run.
 """
 import argparse
+import json
 import os
+import shutil
+import subprocess
 import sys
+import tempfile
 import time
 
 import numpy as np
@@ -53,6 +61,7 @@ import pointsurfaces  # noqa: E402
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy  # noqa: E402
 from vtkmodules.vtkCommonCore import vtkPoints  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkPolyData  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter  # noqa: E402
 
 VARIANTS = ["default", "scale4", "scale8", "noise", "noise+scale4"]
 
@@ -125,11 +134,66 @@ def fit(cloud, settings):
     return splats, seconds
 
 
+def write_vtp(data, path):
+    writer = vtkXMLPolyDataWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(data)
+    writer.SetDataModeToAppended()
+    writer.EncodeAppendedDataOff()
+    if not writer.Write():
+        raise RuntimeError("cannot write " + path)
+
+
+def read_vtp(path):
+    reader = vtkXMLPolyDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    out = vtkPolyData()
+    out.ShallowCopy(reader.GetOutput())
+    return out
+
+
+def peak_resident_gib():
+    """This process's peak resident set since it started its program (Linux's
+    VmHWM; getrusage's ru_maxrss would also count the parent's pages that a
+    child shares until exec), in GiB."""
+    try:
+        with open("/proc/self/status") as status:
+            for line in status:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024.0 / 1024.0
+    except OSError:
+        pass
+    import resource
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0 / 1024.0
+
+
+def fit_in_child(cloud_path, variant, folder):
+    """Fits in a child process that reads the sample and exits: its splats,
+    fit seconds and peak resident memory (GiB: the interpreter, VTK, the
+    points read and the fit)."""
+    splat_path = os.path.join(folder, "splats.vtp")
+    command = [sys.executable, os.path.abspath(__file__), "--child", cloud_path, splat_path,
+               "--variants", variant]
+    done = subprocess.run(command, stdout=subprocess.PIPE, text=True)
+    if done.returncode != 0:
+        raise RuntimeError("the fit of %s (%s) failed (status %d)" % (cloud_path, variant, done.returncode))
+    result = json.loads(done.stdout.strip().splitlines()[-1])
+    return read_vtp(splat_path), result["fit_s"], result["peak_gib"]
+
+
+def child(cloud_path, splat_path, variant):
+    splats, seconds = fit(read_vtp(cloud_path), settings_of(variant))
+    write_vtp(splats, splat_path)
+    print(json.dumps(dict(fit_s=seconds, peak_gib=peak_resident_gib())))
+    return 0
+
+
 def plot(rows, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (left, middle, right) = plt.subplots(1, 3, figsize=(14, 4))
+    fig, (left, middle, memory, right) = plt.subplots(1, 4, figsize=(18, 4))
     def key_of(r):
         return (r["variant"], float(r["noise"]), int(r.get("subdivisions", 0)))
     for key in sorted({key_of(r) for r in rows}):
@@ -138,8 +202,11 @@ def plot(rows, path):
         label = "%s, noise %g" % key[:2] + (", %d subdivisions" % key[2] if key[2] else "")
         left.plot(xs, [int(r["splats"]) for r in mine], marker="o", label=label)
         middle.plot(xs, [float(r["fit_s"]) for r in mine], marker="o", label=label)
+        if all(r.get("peak_gb") not in (None, "") for r in mine):
+            memory.plot(xs, [float(r["peak_gb"]) for r in mine], marker="o", label=label)
         right.plot(xs, [float(r["masked_ssim"]) for r in mine], marker="o", label=label)
     for axis, title in ((left, "splats"), (middle, "fit time, s"),
+                        (memory, "peak memory of the fit's process, GiB"),
                         (right, "masked SSIM against the mesh")):
         axis.set_xscale("log")
         axis.set_xlabel("points")
@@ -164,7 +231,10 @@ def main():
                              "share a smooth surface instead of the mesh's flat facets")
     parser.add_argument("--out", default="bench-results")
     parser.add_argument("--smoke", action="store_true", help="20 000 points, two variants, 96 pixels")
+    parser.add_argument("--child", nargs=2, metavar=("CLOUD", "SPLATS"), help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if args.child:
+        return child(args.child[0], args.child[1], args.variants[0])
     for variant in args.variants:
         try:
             settings_of(variant)
@@ -185,24 +255,37 @@ def main():
     model = dict(name=stem, cameras=cameras, views=VIEWS,
                  references=[scene.image(c) for c in cameras])
     rows = []
-    for noise in args.noise:
-        for n in [int(p) for p in args.points]:
-            cloud = sample(mesh, n, noise, diagonal)
-            for variant in args.variants:
-                splats, seconds = fit(cloud, settings_of(variant))
-                scores = quality.score_actor(scene, model, quality.splat_actor(splats), 0)
-                rows.append(dict(
-                    model=stem, subdivisions=args.subdivide, points=cloud.GetNumberOfPoints(), noise=noise, variant=variant,
-                    splats=splats.GetNumberOfPoints(),
-                    splats_per_point=round(splats.GetNumberOfPoints() / cloud.GetNumberOfPoints(), 4),
-                    fit_s=round(seconds, 3),
-                    masked_ssim=round(float(np.mean([s["masked_ssim"] for s in scores])), 4),
-                    masked_rmse=round(float(np.mean([s["masked_rmse"] for s in scores])), 4),
-                    coverage_iou=round(float(np.mean([s["coverage_iou"] for s in scores])), 4)))
-                print("# %s" % rows[-1], flush=True)
+    folder = tempfile.mkdtemp(prefix="bench_splat_density_")
+    try:
+        for noise in args.noise:
+            for n in [int(p) for p in args.points]:
+                rows += sweep_sample(args, stem, model, scene, folder,
+                                     sample(mesh, n, noise, diagonal), noise)
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)
     write_rows(os.path.join(args.out, "splat_density.csv"), rows)
     plot(rows, os.path.join(args.out, "splat_density.png"))
     return 0
+
+
+def sweep_sample(args, stem, model, scene, folder, cloud, noise):
+    """Every variant's fit of one sample, each in a process of its own."""
+    rows = []
+    cloud_path = os.path.join(folder, "cloud.vtp")
+    write_vtp(cloud, cloud_path)
+    for variant in args.variants:
+        splats, seconds, peak = fit_in_child(cloud_path, variant, folder)
+        scores = quality.score_actor(scene, model, quality.splat_actor(splats), 0)
+        rows.append(dict(
+            model=stem, subdivisions=args.subdivide, points=cloud.GetNumberOfPoints(), noise=noise, variant=variant,
+            splats=splats.GetNumberOfPoints(),
+            splats_per_point=round(splats.GetNumberOfPoints() / cloud.GetNumberOfPoints(), 4),
+            fit_s=round(seconds, 3), peak_gb=round(peak, 3),
+            masked_ssim=round(float(np.mean([s["masked_ssim"] for s in scores])), 4),
+            masked_rmse=round(float(np.mean([s["masked_rmse"] for s in scores])), 4),
+            coverage_iou=round(float(np.mean([s["coverage_iou"] for s in scores])), 4)))
+        print("# %s" % rows[-1], flush=True)
+    return rows
 
 
 if __name__ == "__main__":

@@ -2,20 +2,147 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "psPointIndex.h"
 
-#include <pcl/kdtree/kdtree_flann.h>
-#include <pcl/point_types.h>
-
 #include "vtkSMPTools.h"
+
+#include <nanoflann.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numeric>
+#include <utility>
 
 namespace pointsurfaces
 {
+namespace
+{
+// nanoflann's view of the caller's coordinates, which it reads in place.
+struct Cloud
+{
+  const double* XYZ;
+  size_t N;
+  size_t kdtree_get_point_count() const { return this->N; }
+  double kdtree_get_pt(size_t i, size_t c) const { return this->XYZ[3 * i + c]; }
+  template<class Box>
+  bool kdtree_get_bbox(Box&) const
+  {
+    return false;
+  }
+};
+
+using Metric = nanoflann::L2_Simple_Adaptor<double, Cloud, double, std::uint32_t>;
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<Metric, Cloud, 3, std::uint32_t>;
+
+// The search options: exact, results left in the order found (the result
+// sets below order them). nanoflann 1.5 renamed SearchParams.
+#if NANOFLANN_VERSION < 0x150
+const nanoflann::SearchParams Unsorted(32, 0.0f, false);
+#else
+const nanoflann::SearchParameters Unsorted(0.0f, false);
+#endif
+
+// The tree offers a point to a result set when its distance is below
+// worstDist(); each set makes its own exact test, so its bound sits one
+// ulp above the distances it takes.
+double Above(double d2)
+{
+  return std::nextafter(d2, std::numeric_limits<double>::infinity());
+}
+
+// The k nearest points as a max-heap of (squared distance, id): the kept
+// set is the k smallest pairs whatever the order of the visit, so ties at
+// the k-th distance go to the lower ids. The first k points are taken as
+// they come and heaped once; each closer one then replaces the top.
+struct NearestSet
+{
+  using DistanceType = double;
+  using IndexType = std::uint32_t;
+  size_t K;
+  std::vector<std::pair<double, int>>& Heap;
+  double Worst = std::numeric_limits<double>::infinity();
+  void init() {}
+  size_t size() const { return this->Heap.size(); }
+  bool empty() const { return this->Heap.empty(); }
+  bool full() const { return this->Heap.size() == this->K; }
+  void sort() {}
+  double worstDist() const { return this->Worst; }
+  bool addPoint(double d2, std::uint32_t id)
+  {
+    const std::pair<double, int> p(d2, static_cast<int>(id));
+    auto& h = this->Heap;
+    if (h.size() < this->K)
+    {
+      h.push_back(p);
+      if (h.size() == this->K)
+      {
+        std::make_heap(h.begin(), h.end());
+        this->Worst = Above(h.front().first);
+      }
+      return true;
+    }
+    if (!(p < h.front()))
+    {
+      return true;
+    }
+    // Sift the new pair down from the top.
+    const size_t n = h.size();
+    size_t i = 0;
+    for (;;)
+    {
+      size_t c = 2 * i + 1;
+      if (c >= n)
+      {
+        break;
+      }
+      if (c + 1 < n && h[c] < h[c + 1])
+      {
+        ++c;
+      }
+      if (!(p < h[c]))
+      {
+        break;
+      }
+      h[i] = h[c];
+      i = c;
+    }
+    h[i] = p;
+    this->Worst = Above(h.front().first);
+    return true;
+  }
+};
+
+// Every point within a squared radius, straight into the caller's vectors.
+struct WithinSet
+{
+  using DistanceType = double;
+  using IndexType = std::uint32_t;
+  double R2;
+  double Bound;
+  std::vector<int>& Ids;
+  std::vector<double>& D2;
+  void init() {}
+  size_t size() const { return this->Ids.size(); }
+  bool empty() const { return this->Ids.empty(); }
+  bool full() const { return true; }
+  void sort() {}
+  double worstDist() const { return this->Bound; }
+  bool addPoint(double d2, std::uint32_t id)
+  {
+    if (d2 <= this->R2)
+    {
+      this->Ids.push_back(static_cast<int>(id));
+      this->D2.push_back(d2);
+    }
+    return true;
+  }
+};
+} // namespace
+
 struct PointIndex::Tree
 {
-  pcl::KdTreeFLANN<pcl::PointXYZ> KdTree;
+  Cloud Points;
+  std::unique_ptr<KdTree> Index;
 };
 
 PointIndex::PointIndex(const double* xyz, long long n)
@@ -23,77 +150,23 @@ PointIndex::PointIndex(const double* xyz, long long n)
   , N(n)
   , Impl(new Tree)
 {
-  double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
-  for (long long i = 0; i < n; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      lo[c] = i ? std::min(lo[c], xyz[3 * i + c]) : xyz[c];
-      hi[c] = i ? std::max(hi[c], xyz[3 * i + c]) : xyz[c];
-    }
-  }
-  double diag = 0.0;
-  for (int c = 0; c < 3; ++c)
-  {
-    this->Centre[c] = 0.5 * (lo[c] + hi[c]);
-    diag += (hi[c] - lo[c]) * (hi[c] - lo[c]);
-  }
-  diag = std::sqrt(diag);
-  this->InvScale = diag > 0.0 ? 1.0 / diag : 1.0;
-  if (n == 0)
+  this->Impl->Points = Cloud{ xyz, static_cast<size_t>(std::max(0LL, n)) };
+  if (n <= 0)
   {
     return;
   }
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  cloud->resize(static_cast<size_t>(n));
-  for (long long i = 0; i < n; ++i)
-  {
-    auto& p = (*cloud)[static_cast<size_t>(i)];
-    p.x = static_cast<float>((xyz[3 * i] - this->Centre[0]) * this->InvScale);
-    p.y = static_cast<float>((xyz[3 * i + 1] - this->Centre[1]) * this->InvScale);
-    p.z = static_cast<float>((xyz[3 * i + 2] - this->Centre[2]) * this->InvScale);
-  }
-  // Radius results are sorted here, in double, and only when asked for;
-  // kNN results come sorted from FLANN's small-k result set either way.
-  this->Impl->KdTree.setSortedResults(false);
-  this->Impl->KdTree.setInputCloud(cloud);
+  // Leaves of 16 points; nanoflann 1.5 and later build on every core.
+#if NANOFLANN_VERSION < 0x150
+  const nanoflann::KDTreeSingleIndexAdaptorParams params(16);
+#else
+  const nanoflann::KDTreeSingleIndexAdaptorParams params(16,
+    nanoflann::KDTreeSingleIndexAdaptorFlags::None,
+    static_cast<unsigned int>(std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads())));
+#endif
+  this->Impl->Index = std::make_unique<KdTree>(3, this->Impl->Points, params);
 }
 
 PointIndex::~PointIndex() = default;
-
-void PointIndex::Finish(const double q[3], std::vector<int>& ids, std::vector<double>& d2) const
-{
-  // Distances in double from the original coordinates, then re-sorted by
-  // (distance, id): the float tree may order near-ties differently (and
-  // leaves radius results unsorted). Most kNN answers are in order already
-  // and are left as they are.
-  d2.resize(ids.size());
-  bool ordered = true;
-  for (size_t j = 0; j < ids.size(); ++j)
-  {
-    const double* p = this->Point(ids[j]);
-    const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
-    d2[j] = dx * dx + dy * dy + dz * dz;
-    ordered = ordered && (j == 0 || d2[j - 1] <= d2[j]);
-  }
-  if (ordered)
-  {
-    return;
-  }
-  thread_local std::vector<std::pair<double, int>> pairs;
-  pairs.resize(ids.size());
-  for (size_t j = 0; j < ids.size(); ++j)
-  {
-    pairs[j] = std::make_pair(d2[j], ids[j]);
-  }
-  // Ties (common on grids) by id, as FLANN's own sort ordered them.
-  std::sort(pairs.begin(), pairs.end());
-  for (size_t j = 0; j < pairs.size(); ++j)
-  {
-    d2[j] = pairs[j].first;
-    ids[j] = pairs[j].second;
-  }
-}
 
 void PointIndex::Nearest(const double q[3],
   int k,
@@ -107,17 +180,19 @@ void PointIndex::Nearest(const double q[3],
     return;
   }
   k = static_cast<int>(std::min<long long>(k, this->N));
-  pcl::PointXYZ p;
-  p.x = static_cast<float>((q[0] - this->Centre[0]) * this->InvScale);
-  p.y = static_cast<float>((q[1] - this->Centre[1]) * this->InvScale);
-  p.z = static_cast<float>((q[2] - this->Centre[2]) * this->InvScale);
-  thread_local pcl::Indices found;
-  thread_local std::vector<float> fd2;
-  found.resize(k);
-  fd2.resize(k);
-  const int got = this->Impl->KdTree.nearestKSearch(p, static_cast<unsigned int>(k), found, fd2);
-  ids.assign(found.begin(), found.begin() + std::max(got, 0));
-  this->Finish(q, ids, d2);
+  thread_local std::vector<std::pair<double, int>> heap;
+  heap.clear();
+  heap.reserve(static_cast<size_t>(k));
+  NearestSet found{ static_cast<size_t>(k), heap };
+  this->Impl->Index->findNeighbors(found, q, Unsorted);
+  std::sort(heap.begin(), heap.end());
+  ids.resize(heap.size());
+  d2.resize(heap.size());
+  for (size_t j = 0; j < heap.size(); ++j)
+  {
+    d2[j] = heap[j].first;
+    ids[j] = heap[j].second;
+  }
 }
 
 void PointIndex::Within(const double q[3],
@@ -132,43 +207,26 @@ void PointIndex::Within(const double q[3],
   {
     return;
   }
-  pcl::PointXYZ p;
-  p.x = static_cast<float>((q[0] - this->Centre[0]) * this->InvScale);
-  p.y = static_cast<float>((q[1] - this->Centre[1]) * this->InvScale);
-  p.z = static_cast<float>((q[2] - this->Centre[2]) * this->InvScale);
-  thread_local pcl::Indices found;
-  thread_local std::vector<float> fd2;
-  // A relative margin covers the float rounding of the scaled coordinates;
-  // the exact test is done in double below.
-  this->Impl->KdTree.radiusSearch(p, radius * this->InvScale * (1.0 + 1e-5) + 1e-6, found, fd2);
   const double r2 = radius * radius;
+  WithinSet found{ r2, Above(r2), ids, d2 };
+  this->Impl->Index->findNeighbors(found, q, Unsorted);
   if (!sorted)
   {
-    // Exact radius test in double, no ordering.
-    ids.clear();
-    d2.clear();
-    for (size_t j = 0; j < found.size(); ++j)
-    {
-      const double* x = this->Point(found[j]);
-      const double dx = x[0] - q[0], dy = x[1] - q[1], dz = x[2] - q[2];
-      const double e = dx * dx + dy * dy + dz * dz;
-      if (e <= r2)
-      {
-        ids.push_back(found[j]);
-        d2.push_back(e);
-      }
-    }
     return;
   }
-  ids.assign(found.begin(), found.end());
-  this->Finish(q, ids, d2);
-  size_t keep = 0;
-  while (keep < d2.size() && d2[keep] <= r2)
+  // By (distance, id): ties (common on grids) by id.
+  thread_local std::vector<std::pair<double, int>> pairs;
+  pairs.resize(ids.size());
+  for (size_t j = 0; j < ids.size(); ++j)
   {
-    ++keep;
+    pairs[j] = std::make_pair(d2[j], ids[j]);
   }
-  ids.resize(keep);
-  d2.resize(keep);
+  std::sort(pairs.begin(), pairs.end());
+  for (size_t j = 0; j < pairs.size(); ++j)
+  {
+    d2[j] = pairs[j].first;
+    ids[j] = pairs[j].second;
+  }
 }
 } // namespace pointsurfaces
 

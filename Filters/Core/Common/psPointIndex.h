@@ -2,14 +2,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file psPointIndex.h
- * @brief k-nearest-neighbour and radius queries on double-precision points, through PCL's kd-tree.
+ * @brief k-nearest-neighbour and radius queries on double-precision points, through nanoflann's kd-tree.
  *
- * PCL's KdTreeFLANN works on float coordinates: a scan placed at 1e7 keeps
- * only ~1 unit of precision there (pcl#2184, #2403). The index therefore
- * stores the points centred on their bounding-box centre and divided by its
- * diagonal, and recomputes every returned distance in double from the
- * caller's coordinates, which it does not copy (they must outlive the index).
- * Queries are const and may run from several threads at once.
+ * The tree reads the caller's coordinates in place (they must outlive the
+ * index) and measures in double, so a scan placed at 1e7 keeps its full
+ * precision; besides the coordinates it holds about 6 bytes a point (PCL's
+ * KdTreeFLANN, used before, held 16-byte float copies twice over, some 58
+ * bytes a point). Results are exact and deterministic: sorted by (squared
+ * distance, id), and ties at the k-th distance go to the lower ids.
+ * Queries are const and may run from several threads at once. Ids are
+ * ints: an index holds fewer than 2^31 points.
  */
 #ifndef psPointIndex_h
 #define psPointIndex_h
@@ -47,12 +49,8 @@ public:
     bool sorted = true) const;
 
 private:
-  void Finish(const double q[3], std::vector<int>& ids, std::vector<double>& d2) const;
-
   const double* XYZ;
   long long N;
-  double Centre[3];
-  double InvScale;
   struct Tree;
   std::unique_ptr<Tree> Impl;
 };

@@ -828,8 +828,107 @@ void TestSpatialOrder()
   Check(octants && first, "SpatialOrder follows the Z curve");
 }
 
+// The index against brute force: the k nearest and the points within a
+// radius, sorted by (distance, id), on a grid near 1e7 (ties everywhere,
+// points exactly on the radius) with duplicates, and the degenerate asks.
+void TestPointIndex()
+{
+  std::vector<double> x;
+  for (int z = 0; z < 6; ++z)
+    for (int y = 0; y < 6; ++y)
+      for (int k = 0; k < 6; ++k)
+        x.insert(x.end(), { 1e7 + 0.25 * k, -1e7 + 0.25 * y, 3.0 + 0.25 * z });
+  std::mt19937 random(4);
+  std::uniform_int_distribution<int> pick(0, 215);
+  for (int d = 0; d < 20; ++d)
+  {
+    const int j = pick(random);
+    x.insert(x.end(), { x[3 * j], x[3 * j + 1], x[3 * j + 2] });
+  }
+  const long long n = static_cast<long long>(x.size() / 3);
+  const PointIndex index(x.data(), n);
+  auto brute = [&](const double* q)
+  {
+    std::vector<std::pair<double, int>> all;
+    for (long long i = 0; i < n; ++i)
+    {
+      const double* p = &x[3 * i];
+      const double dx = p[0] - q[0], dy = p[1] - q[1], dz = p[2] - q[2];
+      all.emplace_back(dx * dx + dy * dy + dz * dz, static_cast<int>(i));
+    }
+    std::sort(all.begin(), all.end());
+    return all;
+  };
+  bool nearest = true, within = true, unsorted = true;
+  std::vector<int> ids;
+  std::vector<double> d2;
+  for (int t = 0; t < 40; ++t)
+  {
+    const int j = pick(random);
+    // On a point, or between points (at a half-step, on many ties).
+    double q[3] = { x[3 * j], x[3 * j + 1], x[3 * j + 2] };
+    if (t % 2)
+    {
+      q[0] += 0.125;
+      q[2] -= 0.125;
+    }
+    const auto all = brute(q);
+    for (int k : { 1, 7, 27, 50, 300 })
+    {
+      index.Nearest(q, k, ids, d2);
+      const size_t want = std::min<size_t>(static_cast<size_t>(k), all.size());
+      nearest = nearest && ids.size() == want && d2.size() == want;
+      for (size_t i = 0; nearest && i < want; ++i)
+      {
+        nearest = ids[i] == all[i].second && d2[i] == all[i].first;
+      }
+    }
+    for (double r : { 0.25, 0.5, std::sqrt(2.0) * 0.25, 0.6 })
+    {
+      index.Within(q, r, ids, d2);
+      size_t want = 0;
+      while (want < all.size() && all[want].first <= r * r)
+      {
+        ++want;
+      }
+      within = within && ids.size() == want;
+      for (size_t i = 0; within && i < want; ++i)
+      {
+        within = ids[i] == all[i].second && d2[i] == all[i].first;
+      }
+      index.Within(q, r, ids, d2, false);
+      std::vector<int> got(ids);
+      std::sort(got.begin(), got.end());
+      std::vector<int> expected;
+      for (size_t i = 0; i < want; ++i)
+      {
+        expected.push_back(all[i].second);
+      }
+      std::sort(expected.begin(), expected.end());
+      unsorted = unsorted && got == expected;
+    }
+  }
+  Check(nearest, "PointIndex::Nearest matches brute force, ties by id, near 1e7");
+  Check(within, "PointIndex::Within matches brute force, points on the radius included");
+  Check(unsorted, "PointIndex::Within unsorted finds the same points");
+  const double q[3] = { 1e7, -1e7, 3.0 };
+  index.Nearest(q, 0, ids, d2);
+  bool degenerate = ids.empty() && d2.empty();
+  index.Within(q, 0.0, ids, d2);
+  degenerate = degenerate && ids.empty();
+  index.Within(q, std::nan(""), ids, d2);
+  degenerate = degenerate && ids.empty();
+  const PointIndex empty(nullptr, 0);
+  empty.Nearest(q, 5, ids, d2);
+  degenerate = degenerate && ids.empty();
+  empty.Within(q, 1.0, ids, d2);
+  degenerate = degenerate && ids.empty() && empty.Size() == 0;
+  Check(degenerate, "PointIndex: k 0, radius 0 or NaN, and an empty index give nothing");
+}
+
 int TestSplatFit(int, char*[])
 {
+  TestPointIndex();
   TestSpatialOrder();
   TestParaboloidThroughKernel();
   TestConvergenceOrder();
