@@ -1,8 +1,8 @@
 # SPDX-FileCopyrightText: Copyright (c) PointSurfaces contributors
 # SPDX-License-Identifier: BSD-3-Clause
 """What the benchmark scripts share: their rows as CSV, to a file and to stdout,
---fitter-option NAME VALUE pairs, and the inputs they read (committed data, or
-full-size files in a --data folder)."""
+--fitter-option NAME VALUE pairs, the inputs they read (committed data, or
+full-size files in a --data folder), and a process's peak memory."""
 import csv
 import glob
 import os
@@ -90,3 +90,18 @@ def scatter_time_vs_rmse(rows, methods, png, title, ylabel, xlabel="frame time (
     fig.savefig(png, dpi=100)
     plt.close(fig)
     print("# wrote " + png)
+
+
+def peak_resident_gib():
+    """This process's peak resident set since it started its program (Linux's
+    VmHWM; getrusage's ru_maxrss would also count the parent's pages that a
+    child shares until exec), in GiB."""
+    try:
+        with open("/proc/self/status") as status:
+            for line in status:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024.0 / 1024.0
+    except OSError:
+        pass
+    import resource
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0 / 1024.0

@@ -54,7 +54,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_splat_quality as quality  # noqa: E402
-from bench_csv import TEST_DATA, write_rows  # noqa: E402
+from bench_csv import TEST_DATA, peak_resident_gib, write_rows  # noqa: E402
 from surface_sampling import sample_surface  # noqa: E402
 
 import pointsurfaces  # noqa: E402
@@ -151,21 +151,6 @@ def read_vtp(path):
     out = vtkPolyData()
     out.ShallowCopy(reader.GetOutput())
     return out
-
-
-def peak_resident_gib():
-    """This process's peak resident set since it started its program (Linux's
-    VmHWM; getrusage's ru_maxrss would also count the parent's pages that a
-    child shares until exec), in GiB."""
-    try:
-        with open("/proc/self/status") as status:
-            for line in status:
-                if line.startswith("VmHWM:"):
-                    return int(line.split()[1]) / 1024.0 / 1024.0
-    except OSError:
-        pass
-    import resource
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0 / 1024.0
 
 
 def fit_in_child(cloud_path, variant, folder):

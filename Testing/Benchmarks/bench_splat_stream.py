@@ -13,7 +13,7 @@ reads. For each N, N points are sampled uniformly by area on its triangles
 memory whole), moved by Gaussian noise of F times the bounding-box diagonal,
 and written as a binary PLY (float x, y, z) in --scratch; the PLY is
 deleted afterwards. Then, each in a child process of its own (its peak
-resident memory from wait4):
+resident memory, VmHWM, which the child reports):
 
 - in memory (N up to --memory-limit): vtkPLYScanReader, vtkAlgebraicSplatFitter
   at the defaults, the splats written with vtkSplatFileWriter;
@@ -52,7 +52,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_splat_quality as quality  # noqa: E402
-from bench_csv import TEST_DATA, write_rows  # noqa: E402
+from bench_csv import TEST_DATA, peak_resident_gib, write_rows  # noqa: E402
 from surface_sampling import sample_surface  # noqa: E402
 
 import pointsurfaces  # noqa: E402
@@ -122,24 +122,25 @@ def child(args):
         extra = dict(chunks=fitter.GetNumberOfChunks(), halo_points=fitter.GetNumberOfHaloPoints(),
                      largest_chunk=fitter.GetLargestChunk())
     total_s = time.perf_counter() - start
-    print(json.dumps(dict(fit_s=fit_s, total_s=total_s, **extra)))
+    print(json.dumps(dict(fit_s=fit_s, total_s=total_s, peak_gib=peak_resident_gib(), **extra)))
     return 0
 
 
 def run_child(args, method, ply, out, n):
-    """Runs one fit in a child process; its JSON, its peak resident memory (GB) and seconds."""
+    """Runs one fit in a child process; its JSON and its peak resident memory (GiB, which the
+    child reports: wait4's ru_maxrss would count the pages it shared with this process until
+    exec)."""
     command = [sys.executable, os.path.abspath(__file__), "--child", method, "--child-ply", ply,
                "--child-out", out, "--child-points", str(n), "--chunk-points", str(args.chunk_points)]
     if args.scratch:
         command += ["--scratch", args.scratch]
     if args.set:
         command += ["--set"] + args.set
-    process = subprocess.Popen(command, stdout=subprocess.PIPE, text=True)
-    output = process.stdout.read()
-    _, status, usage = os.wait4(process.pid, 0)
-    if status != 0:
-        raise RuntimeError("%s fit of %d points failed (status %d)" % (method, n, status))
-    return json.loads(output.strip().splitlines()[-1]), usage.ru_maxrss / 1024.0 / 1024.0
+    done = subprocess.run(command, stdout=subprocess.PIPE, text=True)
+    if done.returncode != 0:
+        raise RuntimeError("%s fit of %d points failed (status %d)" % (method, n, done.returncode))
+    result = json.loads(done.stdout.strip().splitlines()[-1])
+    return result, result["peak_gib"]
 
 
 def reader_for(path, budget):
