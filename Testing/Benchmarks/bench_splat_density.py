@@ -3,14 +3,16 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """Splats against the sampling and the noise of one surface: the density and noise sweeps.
 
-    bench_splat_density.py [MESH] [--points N ...] [--noise F ...] [--variants NAME ...]
-                           [--subdivide L] [--size PX] [--out DIR] [--smoke]
+    bench_splat_density.py [MESH] [--points N ...] [--noise F ...] [--noise-unit U]
+                           [--variants NAME ...] [--subdivide L] [--size PX] [--out DIR] [--smoke]
 
 MESH (default: Testing/Data/bunny.vtp) is any triangle mesh pointsurfaces.scanio
 reads. Each sample puts N points uniformly by area on its triangles
 (surface_sampling.py; N 0: the mesh's own vertices) and moves each by
 Gaussian noise of F times the mesh's bounding-box diagonal (noise along every
-axis). With --subdivide L the mesh is first Loop-subdivided L times, and
+axis), or with --noise-unit spacing F times the noise-free sample's mean
+spacing (the mean distance of a point to its 6 nearest, over 2 000 points),
+the unit of issue 31's noise sweep (0, 0.1, 0.3 and 1 spacing). With --subdivide L the mesh is first Loop-subdivided L times, and
 samples and reference share that smooth surface: sampled on the mesh's own
 flat triangles, a dense sample resolves the facets (dihedral angles of
 several degrees between flat faces that the reference shades smoothly),
@@ -32,10 +34,11 @@ The default list: default, scale4, scale8, noise, noise+scale4.
 Density independence is what the issue asks of the fitter: above the
 sampling that resolves the surface, the splat count should stop growing with
 N, at the same picture. Output in --out: splat_density.csv (one row per
-sample and variant: points, noise, variant, splats, splats per point, fit
-seconds, the fit's peak memory, masked SSIM, RMSE, IoU) and
-splat_density.png (splats, fit time, peak memory and SSIM against the
-points, one line per variant and noise). Each fit runs in a process of its
+sample and variant: points, noise and its unit, variant, splats, splats per
+point, the points no splat covers (vtkSplatErrorMetric), fit seconds, the
+fit's peak memory, masked SSIM, RMSE, IoU) and splat_density.png (splats,
+fit time, peak memory and SSIM against the points, one line per variant and
+noise; against the noise, one line per variant, when there is one N). Each fit runs in a process of its
 own that reads the sample from a temporary file, fits and exits; its peak
 memory (peak_gb, GiB) is that process's peak resident set (VmHWM): the
 interpreter and VTK (about 0.1 GiB), the points read and the fit. Timings are wall-clock
@@ -91,14 +94,37 @@ def settings_of(variant):
 VIEWS = [(0, 15), (120, -10), (240, 30)]
 
 
-def sample(mesh, n, noise, diagonal):
-    """A vtkPolyData of n points on the mesh (its vertices for n = 0), with noise."""
+def mean_spacing(xyz, probes=2000):
+    """The mean distance of a point to its 6 nearest others, over `probes` points."""
+    from vtkmodules.vtkCommonCore import vtkIdList
+    from vtkmodules.vtkCommonDataModel import vtkStaticPointLocator
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(xyz), deep=1))
+    data = vtkPolyData()
+    data.SetPoints(points)
+    locator = vtkStaticPointLocator()
+    locator.SetDataSet(data)
+    locator.BuildLocator()
+    ids = vtkIdList()
+    total, count = 0.0, 0
+    for i in np.random.default_rng(3).choice(len(xyz), size=min(probes, len(xyz)), replace=False):
+        locator.FindClosestNPoints(7, xyz[i], ids)
+        near = [ids.GetId(j) for j in range(ids.GetNumberOfIds()) if ids.GetId(j) != i][:6]
+        total += float(np.linalg.norm(xyz[near] - xyz[i], axis=1).sum())
+        count += len(near)
+    return total / max(count, 1)
+
+
+def sample(mesh, n, noise, diagonal, unit="diagonal"):
+    """A vtkPolyData of n points on the mesh (its vertices for n = 0), with noise of
+    `noise` times the diagonal or the noise-free sample's mean spacing (`unit`)."""
     if n == 0:
         xyz = vtk_to_numpy(mesh.GetPoints().GetData()).astype(np.float64)
     else:
         xyz = sample_surface(mesh, n)
     if noise > 0:
-        xyz = xyz + np.random.default_rng(2).normal(0.0, noise * diagonal, xyz.shape)
+        length = mean_spacing(xyz) if unit == "spacing" else diagonal
+        xyz = xyz + np.random.default_rng(2).normal(0.0, noise * length, xyz.shape)
     points = vtkPoints()
     points.SetData(numpy_to_vtk(np.ascontiguousarray(xyz), deep=1))
     cloud = vtkPolyData()
@@ -179,12 +205,18 @@ def plot(rows, path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, (left, middle, memory, right) = plt.subplots(1, 4, figsize=(18, 4))
+    # Against the noise when every row has one N, else against N.
+    by_noise = len({int(r["points"]) for r in rows}) == 1 and len({float(r["noise"]) for r in rows}) > 1
+    along = "noise" if by_noise else "points"
+
     def key_of(r):
-        return (r["variant"], float(r["noise"]), int(r.get("subdivisions", 0)))
-    for key in sorted({key_of(r) for r in rows}):
-        mine = sorted((r for r in rows if key_of(r) == key), key=lambda r: int(r["points"]))
-        xs = [int(r["points"]) for r in mine]
-        label = "%s, noise %g" % key[:2] + (", %d subdivisions" % key[2] if key[2] else "")
+        return (r["variant"], None if by_noise else float(r["noise"]), int(r.get("subdivisions", 0)),
+                r.get("noise_unit", "diagonal"))
+    for key in sorted({key_of(r) for r in rows}, key=str):
+        mine = sorted((r for r in rows if key_of(r) == key), key=lambda r: float(r[along]))
+        xs = [float(r[along]) for r in mine]
+        label = key[0] + ("" if by_noise else ", noise %g %s" % (key[1], key[3])) + \
+            (", %d subdivisions" % key[2] if key[2] else "")
         left.plot(xs, [int(r["splats"]) for r in mine], marker="o", label=label)
         middle.plot(xs, [float(r["fit_s"]) for r in mine], marker="o", label=label)
         if all(r.get("peak_gb") not in (None, "") for r in mine):
@@ -193,8 +225,12 @@ def plot(rows, path):
     for axis, title in ((left, "splats"), (middle, "fit time, s"),
                         (memory, "peak memory of the fit's process, GiB"),
                         (right, "masked SSIM against the mesh")):
-        axis.set_xscale("log")
-        axis.set_xlabel("points")
+        if by_noise:
+            axis.set_xscale("symlog", linthresh=0.1)
+            axis.set_xlabel("noise, %s" % rows[0].get("noise_unit", "diagonal") + "s")
+        else:
+            axis.set_xscale("log")
+            axis.set_xlabel("points")
         axis.set_title(title)
     left.set_yscale("log")
     middle.set_yscale("log")
@@ -208,6 +244,8 @@ def main():
     parser.add_argument("mesh", nargs="?", default=os.path.join(TEST_DATA, "bunny.vtp"))
     parser.add_argument("--points", type=float, nargs="+", default=[2e5, 1e6])
     parser.add_argument("--noise", type=float, nargs="+", default=[1e-4])
+    parser.add_argument("--noise-unit", choices=("diagonal", "spacing"), default="diagonal",
+                        help="--noise in bounding-box diagonals or in the sample's mean spacings")
     parser.add_argument("--variants", nargs="+", default=VARIANTS)
     parser.add_argument("--size", type=int, default=300, help="image side, pixels")
     parser.add_argument("--up", choices=("x", "y", "z"), help="up axis (default: z for Lucy and the horse)")
@@ -245,12 +283,21 @@ def main():
         for noise in args.noise:
             for n in [int(p) for p in args.points]:
                 rows += sweep_sample(args, stem, model, scene, folder,
-                                     sample(mesh, n, noise, diagonal), noise)
+                                     sample(mesh, n, noise, diagonal, args.noise_unit), noise)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     write_rows(os.path.join(args.out, "splat_density.csv"), rows)
     plot(rows, os.path.join(args.out, "splat_density.png"))
     return 0
+
+
+def uncovered(cloud, splats):
+    """The points of `cloud` that no splat covers."""
+    metric = pointsurfaces.vtkSplatErrorMetric()
+    metric.SetInputData(cloud)
+    metric.SetSplatData(splats)
+    metric.Update()
+    return int(metric.GetNumberOfUncoveredPoints())
 
 
 def sweep_sample(args, stem, model, scene, folder, cloud, noise):
@@ -262,9 +309,10 @@ def sweep_sample(args, stem, model, scene, folder, cloud, noise):
         splats, seconds, peak = fit_in_child(cloud_path, variant, folder)
         scores = quality.score_actor(scene, model, quality.splat_actor(splats), 0)
         rows.append(dict(
-            model=stem, subdivisions=args.subdivide, points=cloud.GetNumberOfPoints(), noise=noise, variant=variant,
-            splats=splats.GetNumberOfPoints(),
+            model=stem, subdivisions=args.subdivide, points=cloud.GetNumberOfPoints(), noise=noise,
+            noise_unit=args.noise_unit, variant=variant, splats=splats.GetNumberOfPoints(),
             splats_per_point=round(splats.GetNumberOfPoints() / cloud.GetNumberOfPoints(), 4),
+            uncovered=uncovered(cloud, splats),
             fit_s=round(seconds, 3), peak_gb=round(peak, 3),
             masked_ssim=round(float(np.mean([s["masked_ssim"] for s in scores])), 4),
             masked_rmse=round(float(np.mean([s["masked_rmse"] for s in scores])), 4),
