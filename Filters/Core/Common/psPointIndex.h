@@ -6,12 +6,13 @@
  *
  * The tree reads the caller's coordinates in place (they must outlive the
  * index) and measures in double, so a scan placed at 1e7 keeps its full
- * precision; besides the coordinates it holds about 6 bytes a point (PCL's
- * KdTreeFLANN, used before, held 16-byte float copies twice over, some 58
- * bytes a point). Results are exact and deterministic: sorted by (squared
- * distance, id), and ties at the k-th distance go to the lower ids.
- * Queries are const and may run from several threads at once. Ids are
- * ints: an index holds fewer than 2^31 points.
+ * precision; besides the coordinates it holds about 11 bytes a point, a
+ * 4-byte index map and the nodes of 16-point leaves (PCL's KdTreeFLANN,
+ * used before, kept float copies of the points three times over and two
+ * index maps, some 60 bytes a point). Results are exact and deterministic:
+ * sorted by (squared distance, id), and ties at the k-th distance go to the
+ * lower ids. Queries are const and may run from several threads at once.
+ * Ids are ints: an index holds fewer than 2^31 points.
  */
 #ifndef psPointIndex_h
 #define psPointIndex_h
