@@ -137,6 +137,22 @@ struct WithinSet
     return true;
   }
 };
+
+// `pairs` sorted by (squared distance, id), ties (common on grids) by id,
+// into `ids` and `d2`.
+void SortInto(std::vector<std::pair<double, int>>& pairs,
+  std::vector<int>& ids,
+  std::vector<double>& d2)
+{
+  std::sort(pairs.begin(), pairs.end());
+  ids.resize(pairs.size());
+  d2.resize(pairs.size());
+  for (size_t j = 0; j < pairs.size(); ++j)
+  {
+    d2[j] = pairs[j].first;
+    ids[j] = pairs[j].second;
+  }
+}
 } // namespace
 
 struct PointIndex::Tree
@@ -185,14 +201,7 @@ void PointIndex::Nearest(const double q[3],
   heap.reserve(static_cast<size_t>(k));
   NearestSet found{ static_cast<size_t>(k), heap };
   this->Impl->Index->findNeighbors(found, q, Unsorted);
-  std::sort(heap.begin(), heap.end());
-  ids.resize(heap.size());
-  d2.resize(heap.size());
-  for (size_t j = 0; j < heap.size(); ++j)
-  {
-    d2[j] = heap[j].first;
-    ids[j] = heap[j].second;
-  }
+  SortInto(heap, ids, d2);
 }
 
 void PointIndex::Within(const double q[3],
@@ -214,19 +223,13 @@ void PointIndex::Within(const double q[3],
   {
     return;
   }
-  // By (distance, id): ties (common on grids) by id.
   thread_local std::vector<std::pair<double, int>> pairs;
   pairs.resize(ids.size());
   for (size_t j = 0; j < ids.size(); ++j)
   {
     pairs[j] = std::make_pair(d2[j], ids[j]);
   }
-  std::sort(pairs.begin(), pairs.end());
-  for (size_t j = 0; j < pairs.size(); ++j)
-  {
-    d2[j] = pairs[j].first;
-    ids[j] = pairs[j].second;
-  }
+  SortInto(pairs, ids, d2);
 }
 } // namespace pointsurfaces
 
