@@ -2,10 +2,13 @@
 # SPDX-License-Identifier: BSD-3-Clause
 """What the benchmark scripts share: their rows as CSV, to a file and to stdout,
 --fitter-option NAME VALUE pairs, the inputs they read (committed data, or
-full-size files in a --data folder), and a process's peak memory."""
+full-size files in a --data folder), a process's peak memory, and the JSON a
+benchmark's child process prints."""
 import csv
 import glob
+import json
 import os
+import subprocess
 import sys
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
@@ -105,3 +108,12 @@ def peak_resident_gib():
         pass
     import resource
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0 / 1024.0
+
+
+def run_json_child(command, what):
+    """Runs `command` (a benchmark's child process, which prints its results as JSON on its last
+    line of output) and returns them; RuntimeError naming `what` when it fails."""
+    done = subprocess.run(command, stdout=subprocess.PIPE, text=True)
+    if done.returncode != 0:
+        raise RuntimeError("%s failed (status %d)" % (what, done.returncode))
+    return json.loads(done.stdout.strip().splitlines()[-1])

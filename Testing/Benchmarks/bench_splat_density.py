@@ -48,7 +48,6 @@ import argparse
 import json
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
 import time
@@ -57,7 +56,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_splat_quality as quality  # noqa: E402
-from bench_csv import TEST_DATA, peak_resident_gib, write_rows  # noqa: E402
+from bench_csv import TEST_DATA, peak_resident_gib, run_json_child, write_rows  # noqa: E402
 from surface_sampling import sample_surface  # noqa: E402
 
 import pointsurfaces  # noqa: E402
@@ -186,10 +185,7 @@ def fit_in_child(cloud_path, variant, folder):
     splat_path = os.path.join(folder, "splats.vtp")
     command = [sys.executable, os.path.abspath(__file__), "--child", cloud_path, splat_path,
                "--variants", variant]
-    done = subprocess.run(command, stdout=subprocess.PIPE, text=True)
-    if done.returncode != 0:
-        raise RuntimeError("the fit of %s (%s) failed (status %d)" % (cloud_path, variant, done.returncode))
-    result = json.loads(done.stdout.strip().splitlines()[-1])
+    result = run_json_child(command, "the fit of %s (%s)" % (cloud_path, variant))
     return read_vtp(splat_path), result["fit_s"], result["peak_gib"]
 
 

@@ -43,7 +43,6 @@ run, as ratios.
 import argparse
 import json
 import os
-import subprocess
 import sys
 import tempfile
 import time
@@ -52,7 +51,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_splat_quality as quality  # noqa: E402
-from bench_csv import TEST_DATA, peak_resident_gib, write_rows  # noqa: E402
+from bench_csv import TEST_DATA, peak_resident_gib, run_json_child, write_rows  # noqa: E402
 from surface_sampling import sample_surface  # noqa: E402
 
 import pointsurfaces  # noqa: E402
@@ -127,8 +126,8 @@ def child(args):
 
 
 def run_child(args, method, ply, out, n):
-    """Runs one fit in a child process; its JSON and its peak resident memory (GiB, which the
-    child reports: wait4's ru_maxrss would count the pages it shared with this process until
+    """Runs one fit in a child process; its JSON, with its peak resident memory (peak_gib, which
+    the child reports: wait4's ru_maxrss would count the pages it shared with this process until
     exec)."""
     command = [sys.executable, os.path.abspath(__file__), "--child", method, "--child-ply", ply,
                "--child-out", out, "--child-points", str(n), "--chunk-points", str(args.chunk_points)]
@@ -136,11 +135,7 @@ def run_child(args, method, ply, out, n):
         command += ["--scratch", args.scratch]
     if args.set:
         command += ["--set"] + args.set
-    done = subprocess.run(command, stdout=subprocess.PIPE, text=True)
-    if done.returncode != 0:
-        raise RuntimeError("%s fit of %d points failed (status %d)" % (method, n, done.returncode))
-    result = json.loads(done.stdout.strip().splitlines()[-1])
-    return result, result["peak_gib"]
+    return run_json_child(command, "%s fit of %d points" % (method, n))
 
 
 def reader_for(path, budget):
@@ -203,7 +198,7 @@ def plot(rows, path):
         scored = [r for r in mine if r["masked_ssim"] != ""]
         right.plot([r["points"] for r in scored], [r["masked_ssim"] for r in scored], marker="o",
                    label=method)
-    for axis, title in ((left, "fit (s)"), (mid, "peak resident memory (GB)"),
+    for axis, title in ((left, "fit (s)"), (mid, "peak resident memory (GiB)"),
                         (right, "masked SSIM against the mesh")):
         axis.set_xscale("log")
         axis.set_xlabel("points")
@@ -263,7 +258,7 @@ def main():
         methods = ["memory", "streamed"] if n <= args.memory_limit else ["streamed"]
         for method in methods:
             path = os.path.join(scratch, "%s-%d-%s.psplat" % (stem, n, method))
-            result, peak = run_child(args, method, ply, path, n)
+            result = run_child(args, method, ply, path, n)
             splats = reader_for(path, 1)
             splats.Update()
             count = splats.GetNumberOfSplats()
@@ -271,7 +266,7 @@ def main():
                                                      args.budget)
             row = dict(model=stem, points=n, noise=args.noise, method=method,
                        settings=" ".join(args.set) or "defaults", splats=count,
-                       fit_s=round(result["fit_s"], 2), peak_gb=round(peak, 3),
+                       fit_s=round(result["fit_s"], 2), peak_gb=round(result["peak_gib"], 3),
                        file_bytes_per_point=round(os.path.getsize(path) / n, 2),
                        chunks=result.get("chunks", ""), largest_chunk=result.get("largest_chunk", ""),
                        first_budget_mb=args.first_budget, budget_mb=args.budget,
