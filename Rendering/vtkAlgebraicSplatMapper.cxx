@@ -79,6 +79,7 @@ void vtkAlgebraicSplatMapper::ReleaseGraphicsResources(vtkWindow* win)
   this->Blend->ReleaseGraphicsResources(win);
   this->DrawOrderBO->ReleaseGraphicsResources();
   this->DrawOrderUploaded = false;
+  this->GeometrySources.clear(); // the vertex buffers go with the context
   this->Superclass::ReleaseGraphicsResources(win);
 }
 
@@ -352,9 +353,80 @@ bool vtkAlgebraicSplatMapper::ResetForInput(vtkPolyData* poly)
 }
 
 //------------------------------------------------------------------------------
+std::vector<const void*> vtkAlgebraicSplatMapper::GeometrySourcesOf(vtkPolyData* poly,
+  vtkMTimeType& newest)
+{
+  newest = 0;
+  if (!poly || !poly->GetPoints())
+  {
+    return {};
+  }
+  std::vector<const void*> sources{ poly, poly->GetPoints(), poly->GetFieldData() };
+  newest = std::max(poly->GetPoints()->GetMTime(), poly->GetFieldData()->GetMTime());
+  for (const char* name : { vtkSplatDataModel::CoefficientsName(),
+         vtkSplatDataModel::FeatureSizeName(),
+         vtkSplatDataModel::RadiusName(),
+         vtkSplatDataModel::NominalRadiusName(),
+         vtkSplatDataModel::LODName(),
+         vtkSplatDataModel::NormalName(),
+         vtkSplatDataModel::TangentName() })
+  {
+    vtkDataArray* array = poly->GetPointData()->GetArray(name);
+    sources.push_back(array);
+    newest = std::max(newest, array ? array->GetMTime() : 0);
+  }
+  return sources;
+}
+
+//------------------------------------------------------------------------------
+bool vtkAlgebraicSplatMapper::UploadColors(vtkRenderer* ren, vtkPolyData* poly)
+{
+  // The superclass asks for a rebuild whenever the mapper (colour array,
+  // lookup table, scalar range), the actor's property or the input changed.
+  // The geometry depends only on the input's points, splat arrays and field
+  // data: when none of them changed, only the colours can have.
+  vtkMTimeType newest = 0;
+  if (!poly || this->GeometrySources.empty() || this->Degree < 0 ||
+    GeometrySourcesOf(poly, newest) != this->GeometrySources ||
+    newest != this->GeometrySourcesTime ||
+    this->VBOs->GetNumberOfTuples("vertexMC") != poly->GetNumberOfPoints())
+  {
+    return false;
+  }
+  this->MapScalars(1.0);
+  vtkOpenGLVertexBufferObject* vbo = this->VBOs->GetVBO("scalarColor");
+  const bool colored = this->Colors && this->Colors->GetNumberOfTuples() > 0;
+  if (colored != (vbo != nullptr))
+  {
+    return false; // colours appear or go: other attributes, another shader
+  }
+  if (vbo)
+  {
+    if (this->Colors->GetNumberOfTuples() != poly->GetNumberOfPoints() ||
+      this->Colors->GetNumberOfComponents() != static_cast<int>(vbo->GetNumberOfComponents()))
+    {
+      return false;
+    }
+    vtkOpenGLRenderWindow* win = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+    if (win)
+    {
+      win->MakeCurrent();
+    }
+    vbo->UploadDataArray(this->Colors);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
 {
   vtkPolyData* poly = this->CurrentInput;
+  if (this->UploadColors(ren, poly))
+  {
+    this->VBOBuildTime.Modified();
+    return;
+  }
+  this->GeometrySources.clear();
   if (!this->ResetForInput(poly))
   {
     this->VBOBuildTime.Modified();
@@ -457,11 +529,21 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
     this->VBOs->CacheDataArray(
       names[k], k < this->Degree ? c[k].GetPointer() : nullptr, ren, VTK_FLOAT);
   }
-  this->VBOs->CacheDataArray("scalarColor", this->Colors, ren, VTK_UNSIGNED_CHAR);
+  // The colours' VBO is cached under the mapper's own key (see UploadColors).
+  const bool colored = this->Colors && this->Colors->GetNumberOfTuples() > 0;
+  if (colored)
+  {
+    this->ColorKey->ShallowCopy(this->Colors);
+    this->ColorKey->Modified();
+  }
+  this->VBOs->CacheDataArray(
+    "scalarColor", colored ? this->ColorKey.GetPointer() : nullptr, ren, VTK_UNSIGNED_CHAR);
   this->VBOs->BuildAllVBOs(ren);
   this->Primitives[PrimitiveTris].IBO->IndexCount = n;
   this->VisibilityBO.IBO->IndexCount = n;
   this->ReadOctree(poly);
+  this->GeometrySources = GeometrySourcesOf(poly, this->GeometrySourcesTime);
+  this->GeometryBuildTime.Modified();
   this->VBOBuildTime.Modified();
   (void)act;
 }

@@ -75,6 +75,7 @@
 
 class vtkAlgebraicSplatBlendHelper;
 class vtkOpenGLBufferObject;
+class vtkUnsignedCharArray;
 namespace pointsurfaces
 {
 struct LODOctree;
@@ -177,6 +178,17 @@ public:
    * origin, frame, sizes, colour and only the coefficients the degree needs.
    */
   int GetGPUBytesPerSplat();
+
+  /**
+   * When the splats' vertex buffers and LOD octree were last built from the
+   * input. A render rebuilds them only when the input's points, splat
+   * arrays or field data changed (or the graphics resources were released):
+   * a new colour array, new values in one, a lookup table, a scalar range or
+   * an actor property uploads the colours alone, or nothing when the splats
+   * take the actor's colour. So editing a colour map in ParaView costs one
+   * pass over the colours per render, not a rebuild of every splat's buffers.
+   */
+  vtkMTimeType GetGeometryBuildTime() const { return this->GeometryBuildTime.GetMTime(); }
 
   void ReleaseGraphicsResources(vtkWindow* win) override;
 
@@ -301,6 +313,21 @@ private:
   std::vector<unsigned int> DrawOrder;
   vtkNew<vtkOpenGLBufferObject> DrawOrderBO;
   bool DrawOrderUploaded = false;
+  // What the vertex buffers were built from: the input, its points and
+  // splat arrays (not its other arrays: a colour array that changes is
+  // uploaded alone) and their newest MTime, with the field data's (the LOD
+  // octree, the levels' s). Empty: none built.
+  std::vector<const void*> GeometrySources;
+  vtkMTimeType GeometrySourcesTime = 0;
+  vtkTimeStamp GeometryBuildTime;
+  static std::vector<const void*> GeometrySourcesOf(vtkPolyData* poly, vtkMTimeType& newest);
+  // The key of the colour VBO in the window's VBO cache: the mapper's own,
+  // so that the colours uploaded into it alone (UploadColors) never reach a
+  // VBO that another mapper shares through the cache.
+  vtkNew<vtkUnsignedCharArray> ColorKey;
+  // Only the colours changed since the last build: upload them (or nothing,
+  // without scalar colouring); false when the buffers must be rebuilt.
+  bool UploadColors(vtkRenderer* ren, vtkPolyData* poly);
 
   vtkAlgebraicSplatMapper(const vtkAlgebraicSplatMapper&) = delete;
   void operator=(const vtkAlgebraicSplatMapper&) = delete;
