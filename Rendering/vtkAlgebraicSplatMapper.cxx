@@ -362,7 +362,11 @@ std::vector<const void*> vtkAlgebraicSplatMapper::GeometrySourcesOf(vtkPolyData*
     return {};
   }
   std::vector<const void*> sources{ poly, poly->GetPoints(), poly->GetFieldData() };
-  newest = std::max(poly->GetPoints()->GetMTime(), poly->GetFieldData()->GetMTime());
+  // The poly data's own time (not its arrays'): Modified() on it, as after
+  // writing into its arrays without telling them, rebuilds everything.
+  newest = std::max({ poly->vtkObject::GetMTime(),
+    poly->GetPoints()->GetMTime(),
+    poly->GetFieldData()->GetMTime() });
   for (const char* name : { vtkSplatDataModel::CoefficientsName(),
          vtkSplatDataModel::FeatureSizeName(),
          vtkSplatDataModel::RadiusName(),

@@ -182,7 +182,8 @@ public:
   /**
    * When the splats' vertex buffers and LOD octree were last built from the
    * input. A render rebuilds them only when the input's points, splat
-   * arrays or field data changed (or the graphics resources were released):
+   * arrays or field data changed, or Modified() was called on the input
+   * itself (or the graphics resources were released):
    * a new colour array, new values in one, a lookup table, a scalar range or
    * an actor property uploads the colours alone, or nothing when the splats
    * take the actor's colour. So editing a colour map in ParaView costs one
@@ -316,7 +317,7 @@ private:
   // What the vertex buffers were built from: the input, its points and
   // splat arrays (not its other arrays: a colour array that changes is
   // uploaded alone) and their newest MTime, with the field data's (the LOD
-  // octree, the levels' s). Empty: none built.
+  // octree, the levels' s) and the input's own. Empty: none built.
   std::vector<const void*> GeometrySources;
   vtkMTimeType GeometrySourcesTime = 0;
   vtkTimeStamp GeometryBuildTime;

@@ -10,7 +10,8 @@
 // - scalar colouring off and on again (other attributes: a rebuild is
 //   allowed, the picture must still be right);
 // - new values written into the colour array (and Modified());
-// - the radii or the points modified: the geometry is built again.
+// - the radii, the points or the poly data itself modified: the geometry is
+//   built again.
 // Two mappers of the same input coloured directly by the same RGBA array
 // share the array (MapScalars passes it through): switching one of them to
 // another array must leave the other's pixels as they were.
@@ -244,18 +245,19 @@ int TestAlgebraicSplatMapperRecolor(int, char*[])
     },
     true);
 
-  // A splat array or the points modified: everything is built again.
+  // A splat array, the points or the poly data modified: everything is built again.
   for (vtkObject* changed :
     { static_cast<vtkObject*>(splats->GetPointData()->GetArray("SplatRadius")),
-      static_cast<vtkObject*>(splats->GetPoints()) })
+      static_cast<vtkObject*>(splats->GetPoints()),
+      static_cast<vtkObject*>(splats) })
   {
     const vtkMTimeType before = mapper->GetGeometryBuildTime();
     changed->Modified();
     window->Render();
     if (mapper->GetGeometryBuildTime() == before)
     {
-      std::cerr << "The " << (changed == splats->GetPoints() ? "points" : "radii")
-                << " were modified, but the vertex buffers were not built again\n";
+      std::cerr << "The " << changed->GetClassName()
+                << " was modified, but the vertex buffers were not built again\n";
       ++failures;
     }
   }
