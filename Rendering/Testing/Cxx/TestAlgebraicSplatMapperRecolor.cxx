@@ -154,6 +154,26 @@ int TestAlgebraicSplatMapperRecolor(int, char*[])
       a->GetProperty()->SetOpacity(1.0);
     };
   };
+  // Coloured directly by an RGBA array.
+  auto direct = [&](const char* name)
+  {
+    vtkLookupTable* lut = rainbow;
+    return [=, &byArray](vtkAlgebraicSplatMapper* m, vtkActor* a)
+    {
+      byArray(name, 0.0, 1.0, lut)(m, a);
+      m->SetColorModeToDirectScalars();
+    };
+  };
+  // The actor's colour and opacity, no scalar colouring.
+  auto solid = [](double r, double g, double b, double opacity)
+  {
+    return [=](vtkAlgebraicSplatMapper* m, vtkActor* a)
+    {
+      m->ScalarVisibilityOff();
+      a->GetProperty()->SetColor(r, g, b);
+      a->GetProperty()->SetOpacity(opacity);
+    };
+  };
   const Setup first = byArray("Height", -1.0, 1.0, rainbow);
   first(mapper, actor);
   window->Render();
@@ -196,39 +216,10 @@ int TestAlgebraicSplatMapperRecolor(int, char*[])
   check("another array", byArray("Across", -1.0, 1.0, rainbow), true);
   check("another range", byArray("Across", -0.5, 0.5, rainbow), true);
   check("another lookup table", byArray("Across", -0.5, 0.5, grey), true);
-  check(
-    "direct RGBA",
-    [&](vtkAlgebraicSplatMapper* m, vtkActor* a)
-    {
-      byArray("Warm", 0.0, 1.0, rainbow)(m, a);
-      m->SetColorModeToDirectScalars();
-    },
-    true);
-  check(
-    "scalars off",
-    [&](vtkAlgebraicSplatMapper* m, vtkActor* a)
-    {
-      m->ScalarVisibilityOff();
-      a->GetProperty()->SetColor(0.9, 0.6, 0.2);
-    },
-    false);
-  check(
-    "actor colour",
-    [&](vtkAlgebraicSplatMapper* m, vtkActor* a)
-    {
-      m->ScalarVisibilityOff();
-      a->GetProperty()->SetColor(0.2, 0.8, 0.4);
-    },
-    true);
-  check(
-    "actor opacity",
-    [&](vtkAlgebraicSplatMapper* m, vtkActor* a)
-    {
-      m->ScalarVisibilityOff();
-      a->GetProperty()->SetColor(0.2, 0.8, 0.4);
-      a->GetProperty()->SetOpacity(0.5);
-    },
-    true);
+  check("direct RGBA", direct("Warm"), true);
+  check("scalars off", solid(0.9, 0.6, 0.2, 1.0), false);
+  check("actor colour", solid(0.2, 0.8, 0.4, 1.0), true);
+  check("actor opacity", solid(0.2, 0.8, 0.4, 0.5), true);
   check("scalars on again", byArray("Height", -1.0, 1.0, rainbow), false);
   // New values in the colour array itself (a time step of a field over fixed
   // splats): the input's MTime moves, its geometry does not.
@@ -267,11 +258,7 @@ int TestAlgebraicSplatMapperRecolor(int, char*[])
   // pixels stay.
   vtkNew<vtkAlgebraicSplatMapper> left, right;
   vtkNew<vtkActor> leftActor, rightActor;
-  const Setup warmDirect = [&](vtkAlgebraicSplatMapper* m, vtkActor* a)
-  {
-    byArray("Warm", 0.0, 1.0, rainbow)(m, a);
-    m->SetColorModeToDirectScalars();
-  };
+  const Setup warmDirect = direct("Warm");
   for (auto pair : { std::make_pair(left.GetPointer(), leftActor.GetPointer()),
          std::make_pair(right.GetPointer(), rightActor.GetPointer()) })
   {
