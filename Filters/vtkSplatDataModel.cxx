@@ -3,6 +3,7 @@
 #include "vtkSplatDataModel.h"
 
 #include "psPolynomial.h"
+#include "psRealArrayView.h"
 
 #include "vtkCellArray.h"
 #include "vtkDataArray.h"
@@ -78,15 +79,18 @@ bool vtkSplatDataModel::ComputeSplatBounds(vtkPolyData* pd, double bounds[6])
   double hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   bool any = false;
   double c[15];
-  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
+  const vtkIdType count = pd->GetNumberOfPoints();
+  // (GetSplatDegree checked their shapes.)
+  const pointsurfaces::RealArrayView points(pd->GetPoints()->GetData(), count),
+    normals(normal, count), sizes(size, count), radii(radius, count), coefficients(coeffs, count);
+  for (vtkIdType i = 0; i < count; ++i)
   {
-    double o[3], n[3];
-    pd->GetPoint(i, o);
-    normal->GetTuple(i, n);
-    const double h = size->GetTuple1(i), r = radius->GetTuple1(i);
+    const double o[3] = { points(i, 0), points(i, 1), points(i, 2) };
+    const double n[3] = { normals(i, 0), normals(i, 1), normals(i, 2) };
+    const double h = sizes(i, 0), r = radii(i, 0);
     for (int k = 0; k < m; ++k)
     {
-      c[k] = coeffs->GetComponent(i, k);
+      c[k] = coefficients(i, k);
     }
     double glo, ghi;
     if (!(h > 0.0) || !(r > 0.0) || !std::isfinite(h * r) ||
@@ -234,6 +238,12 @@ vtkSplatDataModel::OctreeStatus vtkSplatDataModel::GetOctree(vtkPolyData* pd,
     return NoOctree;
   }
   const vtkIdType n = pd->GetNumberOfPoints();
+  const pointsurfaces::RealArrayView points(pd->GetPoints()->GetData(), n);
+  const pointsurfaces::RealArrayView level(lod, n);
+  if (!points.Present() || !level.Present())
+  {
+    return NoOctree;
+  }
   // The root's sphere must still hold every splat (a transform moves the
   // points and leaves the octree behind).
   {
@@ -242,8 +252,7 @@ vtkSplatDataModel::OctreeStatus vtkSplatDataModel::GetOctree(vtkPolyData* pd,
     const double r2 = root[3] * root[3] * (1.0 + 1e-6) + 1e-300;
     for (vtkIdType i = 0; i < n; ++i)
     {
-      double p[3];
-      pd->GetPoint(i, p);
+      const double p[3] = { points(i, 0), points(i, 1), points(i, 2) };
       if (vtkMath::Distance2BetweenPoints(p, root) > r2)
       {
         return MovedSplats;
@@ -274,8 +283,7 @@ vtkSplatDataModel::OctreeStatus vtkSplatDataModel::GetOctree(vtkPolyData* pd,
   }
   for (vtkIdType k = 0; k < n && valid; ++k)
   {
-    const double level = lod->GetTuple1(k);
-    valid = level >= 0 && level < levels;
+    valid = level(k, 0) >= 0 && level(k, 0) < levels;
   }
   if (!valid)
   {
@@ -323,11 +331,10 @@ vtkSplatDataModel::OctreeStatus vtkSplatDataModel::GetOctree(vtkPolyData* pd,
     const long long* leafEnds = &tree.LevelEnds[static_cast<size_t>(i) * levels];
     for (long long k = node.Begin; k < node.End; ++k)
     {
-      double p[3];
-      pd->GetPoint(k, p);
-      const int level = static_cast<int>(lod->GetTuple1(k));
-      const long long first = level > 0 ? leafEnds[level - 1] : node.Begin;
-      if (vtkMath::Distance2BetweenPoints(p, node.Sphere) > r2 || k < first || k >= leafEnds[level])
+      const double p[3] = { points(k, 0), points(k, 1), points(k, 2) };
+      const int l = static_cast<int>(level(k, 0));
+      const long long first = l > 0 ? leafEnds[l - 1] : node.Begin;
+      if (vtkMath::Distance2BetweenPoints(p, node.Sphere) > r2 || k < first || k >= leafEnds[l])
       {
         tree = pointsurfaces::Octree();
         return StaleIndex;

@@ -5,6 +5,7 @@
 #include "vtkAlgebraicSplatMapper.h"
 
 #include "psOctree.h" // For BuildOctree
+#include "psRealArrayView.h"
 #include "psShaderHooks.h"
 #include "psSplatLOD.h"
 #include "vtkAlgebraicSplatBlendHelper.h"
@@ -54,55 +55,6 @@
 #include <set>
 #include <string>
 #include <vector>
-
-namespace
-{
-// A real array read without a virtual call per value: its own float or
-// double values, or a double copy of any other kind. Rebuilding the vertex
-// buffers reads some 30 values a splat; read so instead of through
-// vtkDataArray's virtual accessors, a rebuild of 678 581 splats took 0.9
-// times as long (bench_splat_recolor.py's input event; the octree and the
-// upload are most of the rest).
-class RealView
-{
-public:
-  // Absent (Present() false) without the array, or with fewer than `tuples`.
-  RealView(vtkDataArray* array, vtkIdType tuples)
-  {
-    if (!array || array->GetNumberOfTuples() == 0 || array->GetNumberOfTuples() < tuples)
-    {
-      return;
-    }
-    this->Components = array->GetNumberOfComponents();
-    if (auto* f = vtkFloatArray::FastDownCast(array))
-    {
-      this->F = f->GetPointer(0);
-    }
-    else if (auto* d = vtkDoubleArray::FastDownCast(array))
-    {
-      this->D = d->GetPointer(0);
-    }
-    else
-    {
-      this->Copy = vtkSmartPointer<vtkDoubleArray>::New();
-      this->Copy->DeepCopy(array);
-      this->D = this->Copy->GetPointer(0);
-    }
-  }
-  bool Present() const { return this->F || this->D; }
-  double operator()(vtkIdType i, int c) const
-  {
-    const size_t k = static_cast<size_t>(i) * this->Components + c;
-    return this->F ? static_cast<double>(this->F[k]) : this->D[k];
-  }
-  int Components = 0;
-
-private:
-  const float* F = nullptr;
-  const double* D = nullptr;
-  vtkSmartPointer<vtkDoubleArray> Copy;
-};
-} // namespace
 
 vtkStandardNewMacro(vtkAlgebraicSplatMapper);
 
@@ -523,8 +475,8 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
   }
   const int m = coeffs->GetNumberOfComponents();
   // (vtkSplatDataModel::GetSplatDegree checked the first six's shapes.)
-  const RealView P(points, n), N(normals, n), T(tangents, n), H(size, n), R(radius, n),
-    C(coeffs, n), Nominal(nominal, n), Level(lod, n), Quality(quality, 1);
+  const pointsurfaces::RealArrayView P(points, n), N(normals, n), T(tangents, n), H(size, n),
+    R(radius, n), C(coeffs, n), Nominal(nominal, n), Level(lod, n), Quality(quality, 1);
   float* xyz = positions->GetPointer(0);
   float* hrs = sizes->GetPointer(0);
   float* cc[4] = {
@@ -630,12 +582,13 @@ void vtkAlgebraicSplatMapper::ReadOctree(vtkPolyData* poly)
   if (status == vtkSplatDataModel::ValidOctree)
   {
     // GetOctree checked every level against the octree's.
+    const pointsurfaces::RealArrayView r(radius, n), l(lod, n);
     radii.resize(n);
     levels.resize(n);
     for (vtkIdType k = 0; k < n; ++k)
     {
-      radii[k] = radius->GetComponent(k, 0);
-      levels[k] = static_cast<int>(lod->GetComponent(k, 0));
+      radii[k] = r(k, 0);
+      levels[k] = static_cast<int>(l(k, 0));
     }
   }
   else
