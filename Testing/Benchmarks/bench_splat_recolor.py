@@ -46,7 +46,7 @@ import pointsurfaces  # noqa: E402
 from vtkmodules.util.numpy_support import numpy_to_vtk  # noqa: E402
 from vtkmodules.vtkCommonCore import vtkLookupTable, vtkPoints  # noqa: E402
 from vtkmodules.vtkCommonDataModel import vtkPolyData  # noqa: E402
-from vtkmodules.vtkIOXML import vtkXMLPolyDataReader  # noqa: E402
+from vtkmodules.vtkIOXML import vtkXMLPolyDataReader, vtkXMLPolyDataWriter  # noqa: E402
 from vtkmodules.vtkRenderingCore import vtkActor  # noqa: E402
 from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLPointGaussianMapper  # noqa: E402
 
@@ -172,6 +172,9 @@ def main():
     parser.add_argument("--frames", type=int, default=7)
     parser.add_argument("--out", default="bench-results")
     parser.add_argument("--smoke", action="store_true", help="20 000 points, 3 frames")
+    parser.add_argument("--keep", action="store_true",
+                        help="write each splat set (arrays A and B) to splats_N.vtp in --out, "
+                             "for bench_paraview_recolor.py")
     args = parser.parse_args()
     if args.smoke:
         args.points, args.frames = [2e4], 3
@@ -181,6 +184,11 @@ def main():
     rows = []
     for n in args.points:
         splats = fitted_splats(mesh, int(n))
+        if args.keep:
+            writer = vtkXMLPolyDataWriter()
+            writer.SetFileName(os.path.join(args.out, "splats_%d.vtp" % int(n)))
+            writer.SetInputData(splats)
+            writer.Write()
         found = []
         for kind in ("algebraic splats", "vtkPointGaussianMapper"):
             found += measure(scene, kind, splats, args.frames)
