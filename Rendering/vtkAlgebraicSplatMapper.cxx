@@ -18,7 +18,6 @@
 #include "vtkActor.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
-#include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
 #include "vtkFloatArray.h"
 #include "vtkInformation.h"
