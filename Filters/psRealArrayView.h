@@ -57,7 +57,6 @@ public:
     const std::size_t k = static_cast<std::size_t>(i) * this->Components + c;
     return this->F ? static_cast<double>(this->F[k]) : this->D[k];
   }
-  int GetNumberOfComponents() const { return this->Components; }
 
 private:
   int Components = 0;
