@@ -424,14 +424,254 @@ bool vtkAlgebraicSplatMapper::UploadColors(vtkRenderer* ren, vtkPolyData* poly)
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+// The input's splats as the vertex buffers hold them, row by row: the
+// position less the shift, the normal and tangent, (h, R, R / s) and 16
+// coefficients. An invalid splat (a NaN or infinite value, a zero radius,
+// feature size, normal or tangent) and a row not in use get a zero radius,
+// which the geometry shader drops.
+class SplatRowWriter
+{
+public:
+  SplatRowWriter(vtkPolyData* poly, const double shift[3], const unsigned char* inUse)
+    : N(poly->GetNumberOfPoints())
+    , P(poly->GetPoints()->GetData(), N)
+    , Normal(poly->GetPointData()->GetArray(vtkSplatDataModel::NormalName()), N)
+    , Tangent(poly->GetPointData()->GetArray(vtkSplatDataModel::TangentName()), N)
+    , H(poly->GetPointData()->GetArray(vtkSplatDataModel::FeatureSizeName()), N)
+    , R(poly->GetPointData()->GetArray(vtkSplatDataModel::RadiusName()), N)
+    , C(poly->GetPointData()->GetArray(vtkSplatDataModel::CoefficientsName()), N)
+    , Nominal(poly->GetPointData()->GetArray(vtkSplatDataModel::NominalRadiusName()), N)
+    , Level(poly->GetPointData()->GetArray(vtkSplatDataModel::LODName()), N)
+    , Quality(poly->GetFieldData()->GetArray(vtkSplatDataModel::LODQualityName()), 1)
+    , InUse(inUse)
+  {
+    vtkDataArray* quality = poly->GetFieldData()->GetArray(vtkSplatDataModel::LODQualityName());
+    this->Levels = quality ? quality->GetNumberOfTuples() : 0;
+    vtkDataArray* coeffs = poly->GetPointData()->GetArray(vtkSplatDataModel::CoefficientsName());
+    this->M = coeffs ? coeffs->GetNumberOfComponents() : 0;
+    std::copy(shift, shift + 3, this->Shift);
+  }
+
+  enum Kind
+  {
+    Valid,
+    Invalid,
+    Unused
+  };
+
+  /**
+   * Row i into xyz[3], hrs[3] and cc[k][4] (the four coefficient vec4s), and
+   * the normal and tangent into nt[6] when it is given.
+   */
+  Kind Write(vtkIdType i, float* xyz, float* hrs, float* const cc[4], float* nt) const
+  {
+    if (this->InUse && !this->InUse[i])
+    {
+      std::fill_n(xyz, 3, 0.0f);
+      hrs[0] = 1.0f;
+      hrs[1] = hrs[2] = 0.0f;
+      for (int k = 0; k < 4; ++k)
+      {
+        std::fill_n(cc[k], 4, 0.0f);
+      }
+      if (nt)
+      {
+        std::fill_n(nt, 6, 0.0f);
+      }
+      return Unused;
+    }
+    const double nn[3] = { this->Normal(i, 0), this->Normal(i, 1), this->Normal(i, 2) };
+    const double t[3] = { this->Tangent(i, 0), this->Tangent(i, 1), this->Tangent(i, 2) };
+    const double h = this->H(i, 0), r = this->R(i, 0);
+    bool ok = h > 0.0 && r > 0.0 && std::isfinite(h) && std::isfinite(r) &&
+      vtkMath::Norm(nn) > 0.0 && vtkMath::Norm(t) > 0.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double p = this->P(i, k);
+      ok = ok && std::isfinite(p) && std::isfinite(nn[k]) && std::isfinite(t[k]);
+      xyz[k] = static_cast<float>(p - this->Shift[k]);
+      if (nt)
+      {
+        nt[k] = static_cast<float>(nn[k]);
+        nt[3 + k] = static_cast<float>(t[k]);
+      }
+    }
+    for (int k = 0; k < 16; ++k)
+    {
+      const double value = k < this->M ? this->C(i, k) : 0.0;
+      ok = ok && std::isfinite(value);
+      cc[k / 4][k % 4] = static_cast<float>(value);
+    }
+    const int level = this->Level.Present() ? static_cast<int>(this->Level(i, 0)) : 0;
+    const double s =
+      this->Quality.Present() && level >= 0 && level < this->Levels ? this->Quality(level, 0) : 1.0;
+    hrs[0] = ok ? static_cast<float>(h) : 1.0f;
+    hrs[1] = ok ? static_cast<float>(r) : 0.0f;
+    // LOD scales the unbounded disc with s; the bound still holds (see the VS).
+    const double scaled = this->Nominal.Present() ? std::max(r, this->Nominal(i, 0)) : r;
+    hrs[2] = ok && s > 0.0 ? static_cast<float>(scaled / s) : 0.0f;
+    return ok ? Valid : Invalid;
+  }
+
+private:
+  vtkIdType N;
+  pointsurfaces::RealArrayView P, Normal, Tangent, H, R, C, Nominal, Level, Quality;
+  const unsigned char* InUse;
+  vtkIdType Levels = 0;
+  int M = 0;
+  double Shift[3] = { 0.0, 0.0, 0.0 };
+};
+
+// Rows [begin, end) of `vbo` from `data` (tightly packed tuples of the VBO's
+// element size).
+void UploadVBORows(vtkOpenGLVertexBufferObject* vbo,
+  vtkIdType begin,
+  vtkIdType end,
+  const void* data)
+{
+  if (!vbo || end <= begin || !vbo->Bind())
+  {
+    return;
+  }
+  const size_t stride = vbo->GetStride();
+  glBufferSubData(GL_ARRAY_BUFFER,
+    static_cast<GLintptr>(stride * static_cast<size_t>(begin)),
+    static_cast<GLsizeiptr>(stride * static_cast<size_t>(end - begin)),
+    data);
+  vbo->Release();
+}
+} // namespace
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatMapper::ComputePositionShift(vtkPolyData* poly, double shift[3])
+{
+  double bounds[6];
+  poly->GetPoints()->GetBounds(bounds);
+  for (int k = 0; k < 3; ++k)
+  {
+    shift[k] = std::isfinite(bounds[2 * k] + bounds[2 * k + 1])
+      ? 0.5 * (bounds[2 * k] + bounds[2 * k + 1])
+      : 0.0;
+  }
+}
+
+//------------------------------------------------------------------------------
+bool vtkAlgebraicSplatMapper::UploadRows(vtkRenderer* ren, vtkPolyData* poly)
+{
+  const vtkIdType n = poly ? poly->GetNumberOfPoints() : 0;
+  vtkMTimeType newest = 0;
+  if (!this->RowUpdatePending || !poly || this->GeometrySources.empty() || this->Degree < 0 ||
+    GeometrySourcesOf(poly, newest) != this->GeometrySources ||
+    this->VBOs->GetNumberOfTuples("vertexMC") != n ||
+    static_cast<vtkIdType>(this->RowInvalid.size()) != n ||
+    vtkSplatDataModel::GetSplatDegree(poly) != this->Degree ||
+    (!this->RowsInUse.empty() && static_cast<vtkIdType>(this->RowsInUse.size()) != n))
+  {
+    return false;
+  }
+  this->MapScalars(1.0);
+  vtkOpenGLVertexBufferObject* colorVBO = this->VBOs->GetVBO("scalarColor");
+  const bool colored = this->Colors && this->Colors->GetNumberOfTuples() > 0;
+  if (colored != (colorVBO != nullptr) ||
+    (colored &&
+      (this->Colors->GetNumberOfTuples() != n ||
+        this->Colors->GetNumberOfComponents() !=
+          static_cast<int>(colorVBO->GetNumberOfComponents()))))
+  {
+    return false; // colours appear or go: other attributes, another shader
+  }
+  vtkOpenGLRenderWindow* win = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  if (win)
+  {
+    win->MakeCurrent();
+  }
+  const SplatRowWriter writer(
+    poly, this->Shift, this->RowsInUse.empty() ? nullptr : this->RowsInUse.data());
+  vtkOpenGLVertexBufferObject* positionVBO = this->VBOs->GetVBO("vertexMC");
+  vtkOpenGLVertexBufferObject* normalVBO = this->VBOs->GetVBO("splatNormalMC");
+  vtkOpenGLVertexBufferObject* tangentVBO = this->VBOs->GetVBO("splatTangentMC");
+  vtkOpenGLVertexBufferObject* sizeVBO = this->VBOs->GetVBO("splatSizeMC");
+  vtkOpenGLVertexBufferObject* coeffVBO[4] = { this->VBOs->GetVBO("splatC0"),
+    this->VBOs->GetVBO("splatC1"),
+    this->VBOs->GetVBO("splatC2"),
+    this->VBOs->GetVBO("splatC3") };
+  vtkIdType added = 0, rows = 0;
+  std::vector<float> xyz, normal, tangent, hrs, c[4], nt;
+  for (const auto& range : this->ChangedRows)
+  {
+    const vtkIdType begin = std::max<vtkIdType>(0, range.first);
+    const vtkIdType end = std::min(n, range.second);
+    if (end <= begin)
+    {
+      continue;
+    }
+    const size_t count = static_cast<size_t>(end - begin);
+    xyz.resize(3 * count);
+    normal.resize(3 * count);
+    tangent.resize(3 * count);
+    hrs.resize(3 * count);
+    nt.resize(6 * count);
+    for (auto& a : c)
+    {
+      a.resize(4 * count);
+    }
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      const size_t j = static_cast<size_t>(i - begin);
+      float* const cc[4] = { &c[0][4 * j], &c[1][4 * j], &c[2][4 * j], &c[3][4 * j] };
+      const SplatRowWriter::Kind kind = writer.Write(i, &xyz[3 * j], &hrs[3 * j], cc, &nt[6 * j]);
+      std::copy_n(&nt[6 * j], 3, &normal[3 * j]);
+      std::copy_n(&nt[6 * j + 3], 3, &tangent[3 * j]);
+      const unsigned char invalid = kind == SplatRowWriter::Invalid ? 1 : 0;
+      added += static_cast<vtkIdType>(invalid) - this->RowInvalid[i];
+      this->RowInvalid[i] = invalid;
+    }
+    UploadVBORows(positionVBO, begin, end, xyz.data());
+    UploadVBORows(normalVBO, begin, end, normal.data());
+    UploadVBORows(tangentVBO, begin, end, tangent.data());
+    UploadVBORows(sizeVBO, begin, end, hrs.data());
+    for (int k = 0; k < 4 && k < this->Degree; ++k)
+    {
+      UploadVBORows(coeffVBO[k], begin, end, c[k].data());
+    }
+    rows += end - begin;
+  }
+  if (colored)
+  {
+    // MapScalars maps every row (the colour array was modified with them).
+    colorVBO->UploadDataArray(this->Colors);
+  }
+  this->NumberOfInvalidSplats += added;
+  if (added > 0)
+  {
+    vtkWarningMacro(<< added
+                    << " more splats have a NaN or infinite value, or a zero radius, "
+                       "feature size, normal or tangent: they are not drawn ("
+                    << this->NumberOfInvalidSplats << " in all).");
+  }
+  this->ChangedRows.clear();
+  this->RowUpdatePending = false;
+  this->LastBuildRows = rows;
+  this->ReadOctree(poly);
+  this->GeometrySources = GeometrySourcesOf(poly, this->GeometrySourcesTime);
+  this->GeometryBuildTime.Modified();
+  return true;
+}
+
+//------------------------------------------------------------------------------
 void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act)
 {
   vtkPolyData* poly = this->CurrentInput;
-  if (this->UploadColors(ren, poly))
+  this->LastBuildRows = 0;
+  if (this->UploadColors(ren, poly) || this->UploadRows(ren, poly))
   {
     this->VBOBuildTime.Modified();
     return;
   }
+  this->ChangedRows.clear();
+  this->RowUpdatePending = false;
   this->GeometrySources.clear();
   if (!this->ResetForInput(poly))
   {
@@ -440,26 +680,12 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
   }
   const vtkIdType n = poly->GetNumberOfPoints();
   vtkPointData* pd = poly->GetPointData();
-  vtkDataArray* coeffs = pd->GetArray(vtkSplatDataModel::CoefficientsName());
-  vtkDataArray* size = pd->GetArray(vtkSplatDataModel::FeatureSizeName());
-  vtkDataArray* radius = pd->GetArray(vtkSplatDataModel::RadiusName());
-  vtkDataArray* nominal = pd->GetArray(vtkSplatDataModel::NominalRadiusName());
-  vtkDataArray* lod = pd->GetArray(vtkSplatDataModel::LODName());
-  vtkDataArray* quality = poly->GetFieldData()->GetArray(vtkSplatDataModel::LODQualityName());
   vtkDataArray* normals = pd->GetArray(vtkSplatDataModel::NormalName());
   vtkDataArray* tangents = pd->GetArray(vtkSplatDataModel::TangentName());
-  vtkDataArray* points = poly->GetPoints()->GetData();
   // Positions go to the GPU relative to the bounds' centre, in double first,
   // so that float keeps their precision at any offset (1e7 and beyond);
   // SetCameraShaderParameters adds the shift back into MCVCMatrix.
-  double bounds[6];
-  poly->GetPoints()->GetBounds(bounds);
-  for (int k = 0; k < 3; ++k)
-  {
-    this->Shift[k] = std::isfinite(bounds[2 * k] + bounds[2 * k + 1])
-      ? 0.5 * (bounds[2 * k] + bounds[2 * k + 1])
-      : 0.0;
-  }
+  this->ComputePositionShift(poly, this->Shift);
   vtkNew<vtkFloatArray> positions;
   positions->SetNumberOfComponents(3);
   positions->SetNumberOfTuples(n);
@@ -472,16 +698,16 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
     a->SetNumberOfComponents(4);
     a->SetNumberOfTuples(n);
   }
-  const int m = coeffs->GetNumberOfComponents();
   // (vtkSplatDataModel::GetSplatDegree checked the first six's shapes.)
-  const pointsurfaces::RealArrayView P(points, n), N(normals, n), T(tangents, n), H(size, n),
-    R(radius, n), C(coeffs, n), Nominal(nominal, n), Level(lod, n), Quality(quality, 1);
+  const bool rowsInUse = static_cast<vtkIdType>(this->RowsInUse.size()) == n;
+  const SplatRowWriter writer(poly, this->Shift, rowsInUse ? this->RowsInUse.data() : nullptr);
   float* xyz = positions->GetPointer(0);
   float* hrs = sizes->GetPointer(0);
   float* cc[4] = {
     c[0]->GetPointer(0), c[1]->GetPointer(0), c[2]->GetPointer(0), c[3]->GetPointer(0)
   };
-  const vtkIdType levels = quality ? quality->GetNumberOfTuples() : 0;
+  this->RowInvalid.assign(static_cast<size_t>(n), 0);
+  unsigned char* rowInvalid = this->RowInvalid.data();
   std::atomic<vtkIdType> invalid(0);
   vtkSMPTools::For(0,
     n,
@@ -490,33 +716,11 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
       vtkIdType bad = 0;
       for (vtkIdType i = begin; i < end; ++i)
       {
-        const double nn[3] = { N(i, 0), N(i, 1), N(i, 2) };
-        const double t[3] = { T(i, 0), T(i, 1), T(i, 2) };
-        const double h = H(i, 0), r = R(i, 0);
-        bool ok = h > 0.0 && r > 0.0 && std::isfinite(h) && std::isfinite(r) &&
-          vtkMath::Norm(nn) > 0.0 && vtkMath::Norm(t) > 0.0;
-        for (int k = 0; k < 3; ++k)
-        {
-          const double p = P(i, k);
-          ok = ok && std::isfinite(p) && std::isfinite(nn[k]) && std::isfinite(t[k]);
-          xyz[3 * i + k] = static_cast<float>(p - this->Shift[k]);
-        }
-        for (int k = 0; k < 16; ++k)
-        {
-          const double value = k < m ? C(i, k) : 0.0;
-          ok = ok && std::isfinite(value);
-          cc[k / 4][4 * i + k % 4] = static_cast<float>(value);
-        }
-        const int level = Level.Present() ? static_cast<int>(Level(i, 0)) : 0;
-        const double s =
-          Quality.Present() && level >= 0 && level < levels ? Quality(level, 0) : 1.0;
-        // An invalid splat gets a zero radius: the geometry shader drops it.
-        hrs[3 * i] = ok ? static_cast<float>(h) : 1.0f;
-        hrs[3 * i + 1] = ok ? static_cast<float>(r) : 0.0f;
-        // LOD scales the unbounded disc with s; the bound still holds (see the VS).
-        const double scaled = Nominal.Present() ? std::max(r, Nominal(i, 0)) : r;
-        hrs[3 * i + 2] = ok && s > 0.0 ? static_cast<float>(scaled / s) : 0.0f;
-        bad += ok ? 0 : 1;
+        float* const row[4] = { cc[0] + 4 * i, cc[1] + 4 * i, cc[2] + 4 * i, cc[3] + 4 * i };
+        const bool isInvalid =
+          writer.Write(i, xyz + 3 * i, hrs + 3 * i, row, nullptr) == SplatRowWriter::Invalid;
+        rowInvalid[i] = isInvalid ? 1 : 0;
+        bad += isInvalid ? 1 : 0;
       }
       invalid += bad;
     });
@@ -553,6 +757,7 @@ void vtkAlgebraicSplatMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor* act
   this->VBOs->BuildAllVBOs(ren);
   this->Primitives[PrimitiveTris].IBO->IndexCount = n;
   this->VisibilityBO.IBO->IndexCount = n;
+  this->LastBuildRows = n;
   this->ReadOctree(poly);
   this->GeometrySources = GeometrySourcesOf(poly, this->GeometrySourcesTime);
   this->GeometryBuildTime.Modified();
@@ -721,27 +926,59 @@ void vtkAlgebraicSplatMapper::DrawOctree(vtkRenderer* ren, vtkActor* act)
       return;
     }
   }
-  for (const pointsurfaces::DrawRange& range : pointsurfaces::SelectDrawRanges(*this->Nodes, view))
+  std::vector<pointsurfaces::DrawRange> ranges =
+    pointsurfaces::SelectDrawRanges(*this->Nodes, view);
+  if (indexed)
   {
-    program->SetUniformf("lodQuality", static_cast<float>(range.Quality));
-    const GLsizei count = static_cast<GLsizei>(range.End - range.Begin);
-    if (indexed)
+    for (const pointsurfaces::DrawRange& range : ranges)
     {
+      program->SetUniformf("lodQuality", static_cast<float>(range.Quality));
+      const GLsizei count = static_cast<GLsizei>(range.End - range.Begin);
       glDrawElements(GL_POINTS,
         count,
         GL_UNSIGNED_INT,
         reinterpret_cast<const void*>(static_cast<size_t>(range.Begin) * sizeof(unsigned int)));
+      this->NumberOfRenderedSplats += range.End - range.Begin;
     }
-    else
-    {
-      glDrawArrays(GL_POINTS, static_cast<GLint>(range.Begin), count);
-    }
-    this->NumberOfRenderedSplats += range.End - range.Begin;
-  }
-  if (indexed)
-  {
     this->DrawOrderBO->Release();
+    return;
   }
+  this->TranslateDrawRanges(ranges);
+  // One draw call per run of ranges drawn with the same s, in their order.
+  std::vector<GLint> firsts;
+  std::vector<GLsizei> counts;
+  for (size_t k = 0; k < ranges.size();)
+  {
+    const double quality = ranges[k].Quality;
+    firsts.clear();
+    counts.clear();
+    for (; k < ranges.size() && ranges[k].Quality == quality; ++k)
+    {
+      if (ranges[k].End > ranges[k].Begin)
+      {
+        firsts.push_back(static_cast<GLint>(ranges[k].Begin));
+        counts.push_back(static_cast<GLsizei>(ranges[k].End - ranges[k].Begin));
+        this->NumberOfRenderedSplats += ranges[k].End - ranges[k].Begin;
+      }
+    }
+    if (!firsts.empty())
+    {
+      program->SetUniformf("lodQuality", static_cast<float>(quality));
+      glMultiDrawArrays(
+        GL_POINTS, firsts.data(), counts.data(), static_cast<GLsizei>(firsts.size()));
+    }
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatMapper::TranslateDrawRanges(std::vector<pointsurfaces::DrawRange>&) {}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatMapper::SetLODNodes(std::unique_ptr<pointsurfaces::LODOctree> nodes)
+{
+  this->Nodes = std::move(nodes);
+  this->DrawOrder.clear();
+  this->DrawOrderUploaded = false;
 }
 
 //------------------------------------------------------------------------------

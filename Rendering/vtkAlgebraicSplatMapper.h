@@ -68,16 +68,18 @@
 #include "vtkNew.h"                       // For the blend helper
 #include "vtkOpenGLPolyDataMapper.h"
 
-#include <map>    // For the built variants
-#include <memory> // For the octree
-#include <string> // For the missing hooks message
-#include <vector> // For the draw order
+#include <map>     // For the built variants
+#include <memory>  // For the octree
+#include <string>  // For the missing hooks message
+#include <utility> // For the changed rows
+#include <vector>  // For the draw order
 
 class vtkAlgebraicSplatBlendHelper;
 class vtkOpenGLBufferObject;
 class vtkUnsignedCharArray;
 namespace pointsurfaces
 {
+struct DrawRange;
 struct LODOctree;
 struct LODView;
 }
@@ -235,6 +237,19 @@ protected:
   virtual void ReadOctree(vtkPolyData* poly);
   /** Those nodes (null when none), for a subclass's ReadOctree to adjust. */
   pointsurfaces::LODOctree* GetLODNodes() { return this->Nodes.get(); }
+  /**
+   * For a subclass's ReadOctree that makes the nodes itself: draw `nodes`
+   * (null: every splat), whose ranges index the input's rows, or a row
+   * space of the subclass's own that TranslateDrawRanges maps to rows.
+   */
+  void SetLODNodes(std::unique_ptr<pointsurfaces::LODOctree> nodes);
+  /**
+   * The ranges the octree selected for a view, made rows of the vertex
+   * buffers: a subclass whose nodes index rows of its own (a range may
+   * become several, each keeping its Level and Quality) replaces them.
+   * Default: none, the ranges are rows.
+   */
+  virtual void TranslateDrawRanges(std::vector<pointsurfaces::DrawRange>& ranges);
   /** Whether those nodes are the input's octree (false: the mapper built its own). */
   bool LODNodesFromInput() const { return this->Nodes && this->DrawOrder.empty(); }
   /**
@@ -242,6 +257,35 @@ protected:
    * `act`'s matrix, Culling and LODPixelError.
    */
   void MakeLODView(vtkRenderer* ren, vtkActor* act, pointsurfaces::LODView& view);
+  /**
+   * Where the buffers go relative to (subtracted on the GPU so that float
+   * keeps the positions' precision). Default: the centre of the points'
+   * bounds.
+   */
+  virtual void ComputePositionShift(vtkPolyData* poly, double shift[3]);
+
+  ///@{
+  /**
+   * For a subclass that keeps its input as rows it rewrites in place
+   * (vtkStreamingSplatMapper: its pages come and go):
+   *
+   * - RowsInUse: per row, 0 where the row holds no splat: it is drawn as
+   *   nothing and not counted as invalid. Empty (the default): every row
+   *   holds one.
+   * - RowUpdatePending with ChangedRows: only the rows [first, second) of
+   *   ChangedRows were rewritten (or left) since the last build. When the
+   *   input's arrays are the same objects, of the same length, the next
+   *   build converts and uploads those rows alone (and the colours, which
+   *   MapScalars maps whole), then calls ReadOctree; otherwise it builds
+   *   everything. The build consumes both.
+   * - LastBuildRows: the rows the last build converted and uploaded.
+   */
+  std::vector<unsigned char> RowsInUse;
+  std::vector<std::pair<vtkIdType, vtkIdType>> ChangedRows;
+  bool RowUpdatePending = false;
+  vtkIdType LastBuildRows = 0;
+  ///@}
+
   /** Is this the light's view of a vtkShadowMapBakerPass (drawn opaque, in one pass)? */
   static bool IsShadowMapBake(vtkActor* act);
   void DrawSplats(vtkRenderer* ren, vtkActor* act, bool useOctree);
@@ -329,6 +373,11 @@ private:
   // Only the colours changed since the last build: upload them (or nothing,
   // without scalar colouring); false when the buffers must be rebuilt.
   bool UploadColors(vtkRenderer* ren, vtkPolyData* poly);
+  // Only ChangedRows changed (RowUpdatePending): convert and upload them;
+  // false when the buffers must be rebuilt.
+  bool UploadRows(vtkRenderer* ren, vtkPolyData* poly);
+  // Per row of the buffers: 1 where the splat is invalid (NaN, a zero radius...).
+  std::vector<unsigned char> RowInvalid;
 
   vtkAlgebraicSplatMapper(const vtkAlgebraicSplatMapper&) = delete;
   void operator=(const vtkAlgebraicSplatMapper&) = delete;

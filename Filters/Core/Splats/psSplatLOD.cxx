@@ -133,6 +133,7 @@ std::vector<DrawRange> SelectDrawRanges(const LODOctree& lod, const LODView& vie
       range.End = end;
       range.Level = level;
       range.Quality = lod.LevelQuality[level];
+      range.Node = id;
       ranges.push_back(range);
     }
   }

@@ -65,13 +65,14 @@ struct LODView
   double PixelError = 0.0;     ///< 0: every level
 };
 
-/** Splats [Begin, End) of the sorted set, drawn with the s of `Level`. */
+/** Splats [Begin, End) of the sorted set, drawn with the s of `Level`: levels 0 .. Level of leaf `Node`. */
 struct DrawRange
 {
   long long Begin = 0;
   long long End = 0;
   int Level = 0;
   double Quality = 1.0;
+  int Node = -1;
 };
 
 /**

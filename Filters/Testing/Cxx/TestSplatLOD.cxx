@@ -123,6 +123,9 @@ void TestEverySplatOnce(const Set& set)
   for (const DrawRange& r : ranges)
   {
     Check(r.Level == set.Tree.Tree.Levels - 1 && r.Quality == 1.0, "no LOD: the finest level");
+    const bool leaf = r.Node >= 0 && r.Node < static_cast<int>(set.Tree.Tree.Nodes.size()) &&
+      set.Tree.Tree.Nodes[r.Node].ChildCount == 0 && set.Tree.Tree.Nodes[r.Node].Begin == r.Begin;
+    Check(leaf, "a range names the leaf it starts");
     for (long long k = r.Begin; k < r.End; ++k)
     {
       ++drawn[k];
