@@ -49,11 +49,25 @@
  * without thread safety (Debian's serial one is thread-safe) another reader
  * must not run while pages load.
  *
- * GPU memory holds at most MemoryBudget MB of splat buffers; host memory
- * holds the resident pages twice (the page cache and the mapper's input),
- * in float, about 2 x 94 bytes a cubic splat. Each time pages arrive, the
- * resident set is gathered and uploaded again whole: its cost grows with
- * the budget, not with the file.
+ * Pages arriving cost what they hold, not what is resident
+ * (IncrementalUpload, the default): the splat buffers are rows of a fixed
+ * size (psSplatArena.h), each (page, level) block that arrives is written
+ * into free rows and uploaded alone (glBufferSubData), and the rows of what
+ * the cache evicts are freed and drawn as nothing; each page's levels are
+ * then drawn from their rows (one glMultiDrawArrays per run of ranges of
+ * one level). Only the colours, when the splats are coloured by an array,
+ * are mapped and uploaded whole on each arrival (4 bytes a row). The
+ * buffers are made anew (every row uploaded) only when the resident set
+ * outgrows them, the budget drops below them, or the file changes; their
+ * rows are sized for what the view wants plus a quarter, within the budget.
+ * Off, each arrival gathers the resident set and uploads it whole (the
+ * former method, kept to compare against); its cost then grows with the
+ * budget.
+ *
+ * GPU memory holds at most MemoryBudget MB of splat buffers
+ * (GetNumberOfAllocatedSplats() rows of GetBytesPerSplat() bytes); host
+ * memory holds the resident pages twice (the page cache and the mapper's
+ * rows), in float, about 2 x 94 bytes a cubic splat.
  */
 #ifndef vtkStreamingSplatMapper_h
 #define vtkStreamingSplatMapper_h
@@ -91,6 +105,17 @@ public:
   vtkSetMacro(Asynchronous, bool);
   vtkGetMacro(Asynchronous, bool);
   vtkBooleanMacro(Asynchronous, bool);
+  ///@}
+
+  ///@{
+  /**
+   * Upload only the pages that arrive, into free rows of the buffers
+   * (default), or gather and upload every resident page on each arrival
+   * (off: the method before, kept to compare against).
+   */
+  vtkSetMacro(IncrementalUpload, bool);
+  vtkGetMacro(IncrementalUpload, bool);
+  vtkBooleanMacro(IncrementalUpload, bool);
   ///@}
 
   ///@{
@@ -146,6 +171,20 @@ public:
   /** Bytes of GPU buffers a splat of the open file takes (the budget's unit). */
   double GetBytesPerSplat();
 
+  /** Rows of splat buffers on the GPU (resident splats and free rows). */
+  vtkIdType GetNumberOfAllocatedSplats();
+
+  ///@{
+  /**
+   * After a render: the seconds it spent bringing the pages that arrived
+   * into the buffers (writing or gathering them, converting and uploading,
+   * on the render's thread), and the splats whose rows it converted and
+   * uploaded; 0 when nothing arrived.
+   */
+  double GetUploadSeconds();
+  vtkIdType GetNumberOfUploadedSplats();
+  ///@}
+
   /** The file's bounds (discs included), whatever is loaded. */
   double* GetBounds() override;
   using vtkAlgebraicSplatMapper::GetBounds;
@@ -165,6 +204,12 @@ protected:
    * earlier, closer view left in memory.
    */
   void ReadOctree(vtkPolyData* poly) override;
+  /** With IncrementalUpload: a page's range of file rows becomes the rows its levels hold. */
+  void TranslateDrawRanges(std::vector<pointsurfaces::DrawRange>& ranges) override;
+  /** With IncrementalUpload: the file's centre (free rows hold no position). */
+  void ComputePositionShift(vtkPolyData* poly, double shift[3]) override;
+  /** The superclass's, timed (GetUploadSeconds). */
+  void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
   /** Open FileName when it is new or changed (one error when it cannot be); false when not open. */
   bool OpenFile();
   /** Render's work: choose, request and draw the pages of this view. */
@@ -175,6 +220,7 @@ protected:
   std::string FileName;
   double MemoryBudget = 512.0;
   bool Asynchronous = true;
+  bool IncrementalUpload = true;
   bool RenderWhileLoading = true;
   int LoadingRenderInterval = 100;
   double RenderWait = 0.0;

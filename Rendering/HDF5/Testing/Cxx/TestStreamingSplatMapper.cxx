@@ -17,6 +17,9 @@
 // - a close view within a budget of a third of the file: only pages in
 //   view are loaded, and the picture is the whole file's; with shadows, the
 //   light's view loads nothing of its own;
+// - IncrementalUpload along an orbit within that budget: the same splats
+//   and picture as gathering the resident set on each arrival, in the
+//   budget's rows, uploading what arrives; picking picks rows in use only;
 // - the bounds are the file's before anything is drawn;
 // - a budget smaller than one page (a warning, nothing drawn), a truncated
 //   file (one error naming it) and no FileName (one error): no crash.
@@ -26,9 +29,14 @@
 #include "vtkActor.h"
 #include "vtkAlgebraicSplatMapper.h"
 #include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkHardwareSelector.h"
 #include "vtkLight.h"
+#include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindowInteractor.h"
+#include "vtkSelection.h"
+#include "vtkSelectionNode.h"
 #include "vtkSplatDataModel.h"
 #include "vtkSplatFileReader.h"
 #include "vtkStreamingSplatMapper.h"
@@ -136,6 +144,20 @@ vtkSmartPointer<vtkStreamingSplatMapper> Streaming(const std::string& path,
   ColourBy(mapper);
   return mapper;
 }
+
+// The streaming mapper, with which of its rows hold a splat in view.
+class RowProbe : public vtkStreamingSplatMapper
+{
+public:
+  static RowProbe* New();
+  vtkTypeMacro(RowProbe, vtkStreamingSplatMapper);
+  bool InUse(vtkIdType row) const
+  {
+    return row >= 0 && row < static_cast<vtkIdType>(this->RowsInUse.size()) &&
+      this->RowsInUse[row] != 0;
+  }
+};
+vtkStandardNewMacro(RowProbe);
 
 struct Messages
 {
@@ -402,6 +424,82 @@ int TestStreamingSplatMapper(int, char*[])
     const std::vector<unsigned char> shadowed = scene.Pixels();
     Check(mapper->GetNumberOfResidentSplats() == resident && Covered(shadowed) > 0,
       "with shadows, the pages of the camera's view only");
+  }
+
+  // IncrementalUpload along an orbit, close to the sphere within a third of
+  // the file, so that pages come and go: the same pages, splats and picture
+  // as gathering and uploading the resident set on each arrival, in no more
+  // rows than the budget holds, uploading less; hardware picking (which
+  // draws every row) picks only rows that hold a resident splat.
+  for (const double pixelError : { 0.0, 8.0 })
+  {
+    auto probe = Streaming(path, 0.0, false);
+    Scene s(probe, 1.0);
+    s.Pixels();
+    const double perSplat = probe->GetBytesPerSplat();
+    const double budget = total * perSplat / 3.0 / 1e6;
+    vtkNew<RowProbe> incremental;
+    incremental->SetFileName(path.c_str());
+    incremental->SetMemoryBudget(budget);
+    incremental->AsynchronousOff();
+    incremental->SetLODPixelError(pixelError);
+    ColourBy(incremental);
+    auto gathered = Streaming(path, budget, false);
+    gathered->IncrementalUploadOff();
+    gathered->SetLODPixelError(pixelError);
+    Scene a(incremental, 2.5), b(gathered, 2.5);
+    long long uploaded = 0, uploadedGathered = 0, arrivals = 0, partial = 0;
+    double worst = 0.0;
+    bool same = true, withinBudget = true;
+    for (int step = 0; step < 12; ++step)
+    {
+      for (Scene* scene : { &a, &b })
+      {
+        scene->Renderer->GetActiveCamera()->Azimuth(30.0);
+        scene->Renderer->GetActiveCamera()->Elevation(step % 2 ? 15.0 : -15.0);
+        scene->Renderer->GetActiveCamera()->OrthogonalizeViewUp();
+      }
+      const std::vector<unsigned char> pa = a.Pixels(), pb = b.Pixels();
+      worst = std::max(worst, Differ(pa, pb));
+      same = same &&
+        incremental->GetNumberOfResidentSplats() == gathered->GetNumberOfResidentSplats() &&
+        incremental->GetNumberOfRenderedSplats() == gathered->GetNumberOfRenderedSplats();
+      withinBudget =
+        withinBudget && incremental->GetNumberOfAllocatedSplats() * perSplat <= budget * 1e6 + 1;
+      const vtkIdType up = incremental->GetNumberOfUploadedSplats();
+      uploaded += up;
+      uploadedGathered += gathered->GetNumberOfUploadedSplats();
+      arrivals += gathered->GetNumberOfUploadedSplats() > 0 ? 1 : 0;
+      partial += up > 0 && up < incremental->GetNumberOfResidentSplats() ? 1 : 0;
+    }
+    std::cout << "orbit within " << budget << " MB, PixelError " << pixelError << ": "
+              << incremental->GetNumberOfResidentSplats() << " resident in "
+              << incremental->GetNumberOfAllocatedSplats() << " rows; uploaded " << uploaded
+              << " splats against " << uploadedGathered << " gathered, " << partial << " of "
+              << arrivals << " arrivals uploaded less than the resident set; pictures differ at "
+              << 100 * worst << " % of the pixels at most\n";
+    Check(same && worst < 0.0005,
+      "incremental uploads: the same splats and picture as gathering the resident set");
+    Check(withinBudget, "incremental uploads: no more rows than the budget holds");
+    Check(arrivals >= 3 && partial >= arrivals / 2 && uploaded < uploadedGathered,
+      "incremental uploads: arrivals upload what arrives, not the resident set");
+
+    vtkNew<vtkHardwareSelector> selector;
+    selector->SetRenderer(a.Renderer);
+    selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_POINTS);
+    selector->SetArea(0, 0, Size - 1, Size - 1);
+    vtkSmartPointer<vtkSelection> selection;
+    selection.TakeReference(selector->Select());
+    vtkDataArray* ids = selection && selection->GetNumberOfNodes() == 1
+      ? vtkDataArray::SafeDownCast(selection->GetNode(0)->GetSelectionList())
+      : nullptr;
+    vtkIdType picked = ids ? ids->GetNumberOfTuples() : 0, free = 0;
+    for (vtkIdType k = 0; k < picked; ++k)
+    {
+      free += incremental->InUse(static_cast<vtkIdType>(ids->GetTuple1(k))) ? 0 : 1;
+    }
+    std::cout << "  picking: " << picked << " splats picked, " << free << " from free rows\n";
+    Check(picked > 0 && free == 0, "picking the incremental rows picks resident splats only");
   }
 
   // A budget below one page: a warning, nothing drawn.
