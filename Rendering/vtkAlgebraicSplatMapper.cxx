@@ -597,8 +597,10 @@ bool vtkAlgebraicSplatMapper::UploadRows(vtkRenderer* ren, vtkPolyData* poly)
     this->VBOs->GetVBO("splatC1"),
     this->VBOs->GetVBO("splatC2"),
     this->VBOs->GetVBO("splatC3") };
-  vtkIdType added = 0, rows = 0;
-  std::vector<float> xyz, normal, tangent, hrs, c[4], nt;
+  // The changed rows as disjoint runs: rows freed and written again in one
+  // update are converted once.
+  std::vector<std::pair<vtkIdType, vtkIdType>> runs;
+  std::sort(this->ChangedRows.begin(), this->ChangedRows.end());
   for (const auto& range : this->ChangedRows)
   {
     const vtkIdType begin = std::max<vtkIdType>(0, range.first);
@@ -607,27 +609,69 @@ bool vtkAlgebraicSplatMapper::UploadRows(vtkRenderer* ren, vtkPolyData* poly)
     {
       continue;
     }
+    if (!runs.empty() && begin <= runs.back().second)
+    {
+      runs.back().second = std::max(runs.back().second, end);
+    }
+    else
+    {
+      runs.emplace_back(begin, end);
+    }
+  }
+  vtkIdType added = 0, rows = 0;
+  std::vector<float> xyz, normal, tangent, hrs, c[4];
+  for (const auto& run : runs)
+  {
+    const vtkIdType begin = run.first, end = run.second;
     const size_t count = static_cast<size_t>(end - begin);
+    if (!this->RowsInUse.empty() &&
+      std::none_of(this->RowsInUse.begin() + begin,
+        this->RowsInUse.begin() + end,
+        [](unsigned char used) { return used != 0; }))
+    {
+      // Rows freed: a zero radius is all the geometry shader needs to drop them.
+      hrs.assign(3 * count, 0.0f);
+      for (size_t j = 0; j < count; ++j)
+      {
+        hrs[3 * j] = 1.0f;
+      }
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        added -= this->RowInvalid[i];
+        this->RowInvalid[i] = 0;
+      }
+      UploadVBORows(sizeVBO, begin, end, hrs.data());
+      continue;
+    }
     xyz.resize(3 * count);
     normal.resize(3 * count);
     tangent.resize(3 * count);
     hrs.resize(3 * count);
-    nt.resize(6 * count);
     for (auto& a : c)
     {
       a.resize(4 * count);
     }
-    for (vtkIdType i = begin; i < end; ++i)
-    {
-      const size_t j = static_cast<size_t>(i - begin);
-      float* const cc[4] = { &c[0][4 * j], &c[1][4 * j], &c[2][4 * j], &c[3][4 * j] };
-      const SplatRowWriter::Kind kind = writer.Write(i, &xyz[3 * j], &hrs[3 * j], cc, &nt[6 * j]);
-      std::copy_n(&nt[6 * j], 3, &normal[3 * j]);
-      std::copy_n(&nt[6 * j + 3], 3, &tangent[3 * j]);
-      const unsigned char invalid = kind == SplatRowWriter::Invalid ? 1 : 0;
-      added += static_cast<vtkIdType>(invalid) - this->RowInvalid[i];
-      this->RowInvalid[i] = invalid;
-    }
+    std::atomic<vtkIdType> delta(0);
+    vtkSMPTools::For(begin,
+      end,
+      [&](vtkIdType first, vtkIdType last)
+      {
+        vtkIdType local = 0;
+        float nt[6];
+        for (vtkIdType i = first; i < last; ++i)
+        {
+          const size_t j = static_cast<size_t>(i - begin);
+          float* const cc[4] = { &c[0][4 * j], &c[1][4 * j], &c[2][4 * j], &c[3][4 * j] };
+          const SplatRowWriter::Kind kind = writer.Write(i, &xyz[3 * j], &hrs[3 * j], cc, nt);
+          std::copy_n(nt, 3, &normal[3 * j]);
+          std::copy_n(nt + 3, 3, &tangent[3 * j]);
+          const unsigned char invalid = kind == SplatRowWriter::Invalid ? 1 : 0;
+          local += static_cast<vtkIdType>(invalid) - this->RowInvalid[i];
+          this->RowInvalid[i] = invalid;
+        }
+        delta += local;
+      });
+    added += delta;
     UploadVBORows(positionVBO, begin, end, xyz.data());
     UploadVBORows(normalVBO, begin, end, normal.data());
     UploadVBORows(tangentVBO, begin, end, tangent.data());
