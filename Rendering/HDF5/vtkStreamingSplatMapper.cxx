@@ -38,11 +38,11 @@ namespace
 {
 // GPU bytes a splat of `degree` takes before the first upload measures it:
 // position, normal, tangent and sizes (3 floats each), the coefficients in
-// vec4s, a colour.
-double EstimatedGPUBytes(int degree)
+// vec4s, and a colour when the splats are coloured by an array.
+double EstimatedGPUBytes(int degree, bool colored)
 {
   const int m = pointsurfaces::MonomialCount(degree);
-  return 4.0 * (3 + 3 + 3 + 3) + 16.0 * ((m + 3) / 4) + 4.0;
+  return 4.0 * (3 + 3 + 3 + 3) + 16.0 * ((m + 3) / 4) + (colored ? 4.0 : 0.0);
 }
 
 // Tuples [from, from + count) of `values` (`comps` values each) into `to` at tuple `at`.
@@ -503,7 +503,11 @@ double vtkStreamingSplatMapper::GetBytesPerSplat()
   {
     return P->MeasuredBytes;
   }
-  return EstimatedGPUBytes(P->Cache && P->Cache->IsOpen() ? P->Cache->Info().Degree : 4);
+  const bool open = P->Cache && P->Cache->IsOpen();
+  // Colours need an array to colour by: the file's attributes.
+  const bool colored =
+    this->GetScalarVisibility() && (!open || !P->Cache->Info().AttributeNames.empty());
+  return EstimatedGPUBytes(open ? P->Cache->Info().Degree : 4, colored);
 }
 
 bool vtkStreamingSplatMapper::GetLoading()
