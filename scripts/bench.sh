@@ -98,6 +98,8 @@ render bunny_1M --points 1000000
 "${egl[@]}" /usr/bin/python3 "$bench/bench_splat_quality.py" "${data_args[@]}" --out "$out"
 # What a change of colouring costs the splat mapper, against vtkPointGaussianMapper.
 "${egl[@]}" /usr/bin/python3 "$bench/bench_splat_recolor.py" --out "$out"
+# What pages arriving cost the streaming mapper: uploading them alone, or the resident set.
+"${egl[@]}" /usr/bin/python3 "$bench/bench_splat_page_upload.py" --out "$out"
 "${egl[@]}" "$build/bin/BenchComputeTiles" | tee "$out/compute_tiles.csv"
 /usr/bin/python3 "$bench/plot_csv.py" "$out/compute_tiles.csv" "$out/compute_tiles.png" \
   n gpu_ms cpu_ms --logx --logy

@@ -50,8 +50,9 @@ from bench_csv import TEST_DATA, write_rows  # noqa: E402
 import pointsurfaces  # noqa: E402
 
 
-def make_file(mesh, n, path):
-    """n noisy points on `mesh`, fitted in memory with three levels, as a splat file."""
+def make_file(mesh, n, path, page_size=None):
+    """n noisy points on `mesh`, fitted in memory with three levels, as a splat file
+    (pages of `page_size` splats; None: the writer's default)."""
     b = mesh.GetBounds()
     diagonal = ((b[1] - b[0]) ** 2 + (b[3] - b[2]) ** 2 + (b[5] - b[4]) ** 2) ** 0.5
     ply = path + ".ply"
@@ -64,6 +65,8 @@ def make_file(mesh, n, path):
     writer = pointsurfaces.vtkSplatFileWriter()
     writer.SetInputConnection(fitter.GetOutputPort())
     writer.SetFileName(path)
+    if page_size:
+        writer.SetPageSize(page_size)
     writer.Write()
     os.remove(ply)
 
