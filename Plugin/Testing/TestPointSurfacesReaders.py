@@ -13,7 +13,9 @@ as Metaballs with the defaults (pvbatch).
   `sphere.psplat`, a splat file the Streaming Splat Fitter writes here,
   which shows as Streaming Splats (the file drawn as the view needs it,
   however little the reader loaded) matching the whole file drawn as
-  Algebraic Splats, within a GPU budget, and asynchronously;
+  Algebraic Splats, within a GPU budget, and asynchronously; and, polled
+  as ParaView's GUI polls a live source, renders that never wait for pages
+  and sharpen poll by poll without the reader reading again;
 - a .vdb on which OpenVDB aborts reads as empty (in the reader's child
   process) and the session goes on;
 - each reader's output, shown as Metaballs with no property touched (the
@@ -389,6 +391,52 @@ if splat_file is not None:
               "Asynchronous: the %d splats the close view wants are in memory after %d renders "
               "(%d in all)" % (wanted, renders, resident))
     Hide(splat_file, view)
+
+    # ParaView's GUI on a server: no Qt interactor renders again there while
+    # pages load, so the GUI polls the reader as a live source (its
+    # GetNeedsUpdate, every 100 ms), marks it modified and renders while it
+    # says true; the first poll also makes the server's renders stop waiting
+    # for pages. Emulated here as pqLiveSourceBehavior does it, on a file
+    # opened afresh; the process stays polled after this (the last check).
+    if not mpi:
+        live_file = OpenDataFile(splat_path)
+        live_display = Show(live_file, view)
+        live_display.SplatStreamingBatchWait = 60  # a server's default
+        live = live_file.GetClientSideObject()
+
+        def loading():
+            live_display.UpdatePropertyInformation()
+            return live_display.GetPropertyValue("SplatStreamingLoading")
+
+        live_file.SMProxy.InvokeCommand("PollAsGUI")  # the GUI's first poll (GetNeedsUpdate)
+        output_time = live.GetOutputDataObject(0).GetMTime()
+        view.CameraPosition = [1.8, -2.4, 1.6]
+        start = time.perf_counter()
+        Render(view)
+        first_ms = 1000 * (time.perf_counter() - start)
+        live_display.UpdatePropertyInformation()
+        first = live_display.GetPropertyValue("SplatStreamingResidentSplats")
+        first_loading = loading()
+        polls = 0
+        while loading() and polls < 200:  # GetNeedsUpdate's answer: pages loading or not drawn
+            live_file.SMProxy.InvokeCommand("PollAsGUI")
+            live_file.SMProxy.MarkModified(live_file.SMProxy)
+            Render(view)
+            polls += 1
+            time.sleep(0.02)
+        live_display.UpdatePropertyInformation()
+        resident = live_display.GetPropertyValue("SplatStreamingResidentSplats")
+        wanted = live_display.GetPropertyValue("SplatStreamingWantedSplats")
+        check(first_loading and first < wanted,
+              "polled by a GUI, the first render returns before its pages are read (%.0f ms, "
+              "%d of %d splats drawn)" % (first_ms, first, wanted))
+        check(0 < polls < 200 and resident == wanted == written and not loading(),
+              "the GUI's polls render until every page is drawn: %d polls that said true, %d of "
+              "%d splats" % (polls, resident, written))
+        check(live.GetOutputDataObject(0).GetMTime() == output_time,
+              "the polls render again without the reader reading again")
+        Hide(live_file, view)
+        Delete(live_file)
     Delete(splat_file)
 
 if RANK == 0:

@@ -27,6 +27,15 @@ vtkStandardNewMacro(vtkSplatFileDelegatingMapper);
 
 namespace
 {
+// The mappers of this process, for PollLoading (ParaView calls both on its
+// main thread), and whether a GUI polls it.
+std::set<vtkSplatFileDelegatingMapper*>& Mappers()
+{
+  static std::set<vtkSplatFileDelegatingMapper*> mappers;
+  return mappers;
+}
+bool PolledByGUI = false;
+
 // What the reader's field arrays say of `data` (of its first leaf that has
 // each), and what `data` is (all its leaves): its points, their bounds and
 // the names of its point arrays; found in one walk.
@@ -162,11 +171,33 @@ bool vtkSplatFileDelegatingMapper::SplatFileBoundsOf(vtkDataObject* data, double
 vtkSplatFileDelegatingMapper::vtkSplatFileDelegatingMapper()
   : Stream(vtkStreamingSplatMapper::New())
 {
+  Mappers().insert(this);
 }
 
 vtkSplatFileDelegatingMapper::~vtkSplatFileDelegatingMapper()
 {
+  Mappers().erase(this);
   this->Stream->Delete();
+}
+
+//------------------------------------------------------------------------------
+bool vtkSplatFileDelegatingMapper::PollLoading()
+{
+  PolledByGUI = true;
+  for (vtkSplatFileDelegatingMapper* mapper : Mappers())
+  {
+    if (mapper->DrawsFile && !mapper->FileDrawn.empty() && !mapper->RendersItself &&
+      mapper->Stream->GetLoading())
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool vtkSplatFileDelegatingMapper::IsPolledByGUI()
+{
+  return PolledByGUI;
 }
 
 //------------------------------------------------------------------------------
@@ -206,12 +237,14 @@ void vtkSplatFileDelegatingMapper::Render(vtkRenderer* ren, vtkActor* act)
   {
     return;
   }
-  // The GUI's interactor (Qt's) renders again on the stream's timer;
-  // elsewhere an interactor may exist (pvbatch) but no event loop runs it.
+  // The GUI's interactor (Qt's) renders again on the stream's timer; on a
+  // server, the GUI renders again while PollLoading says so. Elsewhere an
+  // interactor may exist (pvbatch) but no event loop runs it.
   vtkRenderWindow* window = ren->GetRenderWindow();
   vtkRenderWindowInteractor* interactor = window ? window->GetInteractor() : nullptr;
-  const bool gui = interactor && interactor->GetInitialized() && interactor->IsA("QVTKInteractor");
-  this->Stream->SetRenderWait(gui ? 0.0 : this->BatchWait);
+  this->RendersItself =
+    interactor && interactor->GetInitialized() && interactor->IsA("QVTKInteractor");
+  this->Stream->SetRenderWait(this->RendersItself || PolledByGUI ? 0.0 : this->BatchWait);
   this->Stream->vtkMapper::ShallowCopy(this);
   this->Stream->Render(ren, act);
 }

@@ -68,14 +68,31 @@ public:
 
   ///@{
   /**
-   * Outside the GUI (no Qt interactor on the render window: pvbatch,
-   * pvpython, a render server), where nothing renders again while pages
-   * load, the stream's RenderWait: the most seconds a render waits for its
-   * view's pages. Default 60. In the GUI renders never wait.
+   * Outside the GUI (no Qt interactor on the render window, and no GUI
+   * polling this process: pvbatch, pvpython, a server of a Python client),
+   * where nothing renders again while pages load, the stream's RenderWait:
+   * the most seconds a render waits for its view's pages. Default 60. In
+   * the GUI renders never wait.
    */
   vtkSetClampMacro(BatchWait, double, 0.0, 1e6);
   vtkGetMacro(BatchWait, double);
   ///@}
+
+  /**
+   * ParaView's GUI polls the splat file's reader (a live source:
+   * vtkPVSplatFileReader::GetNeedsUpdate) and renders again while this says
+   * true: on a server (client-server) no Qt interactor renders the view
+   * again while pages load, so this is how its picture sharpens. True when
+   * a mapper of this process draws a file whose pages are being read, or
+   * arrived after its last render, and no interactor of its own renders it
+   * again. The first call also marks this process as driven by a GUI:
+   * from then on its renders never wait for pages (BatchWait), so
+   * interaction never waits on the disk.
+   */
+  static bool PollLoading();
+
+  /** Whether a GUI polls this process (PollLoading was called). */
+  static bool IsPolledByGUI();
 
   /** After a render or GetBounds: the file drawn, or empty when the data was. */
   const std::string& GetFileDrawn() { return this->FileDrawn; }
@@ -100,6 +117,7 @@ protected:
   bool DrawsFile = true;
   double BatchWait = 60.0;
   std::string FileDrawn;
+  bool RendersItself = false; // a Qt interactor renders it again while pages load
   vtkMTimeType ChosenFor = 0; // the input's MTime FileDrawn was chosen for
   bool ChosenStreaming = false;
 
