@@ -415,7 +415,11 @@ SplatBound DiscBound::Finish(double r,
       }
       if (rho)
       {
-        rho->push_back(m.Rho);
+        // A point farther off the patch than the disc is wide (a tolerance
+        // above the radius: noise scales, wide discs cut short) is within
+        // the tolerance but not on the disc as a renderer or an error
+        // metric sees it: no claim may count on it (infinitely far).
+        rho->push_back(m.E <= r ? m.Rho : std::numeric_limits<double>::infinity());
       }
     }
   }

@@ -90,7 +90,11 @@ struct SplatBound
  * `points` are the `n` candidate points (xyz triples), which must include
  * every point within sqrt(2) max(radius, 3 spacings) of the splat's origin.
  * On return `covered` (when given) holds the indices into `points` of the
- * points the splat covers and `rho` their in-plane distances. `normals`,
+ * points the splat covers and `rho` their in-plane distances, infinite for
+ * a covered point that lies farther off the patch than the final radius
+ * (a tolerance above it): within the tolerance, but off the disc as a
+ * renderer or vtkSplatErrorMetric sees it, so that no claim counts on it.
+ * `normals`,
  * when given, are the points' normals (n triples, either sign, any length;
  * a zero normal is unknown and passes).
  */

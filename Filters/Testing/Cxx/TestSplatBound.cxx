@@ -427,6 +427,54 @@ void TestStrayPointAcrossBorder()
     "counted for every direction, the stray points hid the border (the case is a real one)");
 }
 
+// A tolerance above the disc's radius (the NOISE unit on a disc cut short):
+// a sheet z = 0 (grid spacing 1) with one point 1.4 above it, 1 from the
+// centre, under a tolerance of 2 and a nominal radius of 1.2. The point is
+// within the tolerance, so it is covered (and counts in MaxDeviation), but
+// it lies farther off the patch than the disc is wide: a renderer and
+// vtkSplatErrorMetric see it off the disc, so its distance for claims is
+// infinite (a splat once claimed such a point, which then had no splat).
+void TestFartherOffThanWide()
+{
+  std::vector<double> pts;
+  for (int j = -6; j <= 6; ++j)
+  {
+    for (int i = -6; i <= 6; ++i)
+    {
+      pts.insert(pts.end(), { double(i), double(j), 0.0 });
+    }
+  }
+  pts.insert(pts.end(), { 1.0, 0.0, 1.4 });
+  const int n = static_cast<int>(pts.size() / 3);
+  const Splat splat = FlatSplat(0.0);
+  BoundParameters bp;
+  bp.Spacing = 1.0;
+  bp.Tolerance = 2.0;
+  std::vector<int> covered;
+  std::vector<double> rho;
+  const SplatBound b = BoundSplat(splat, 1.2, pts.data(), n, bp, &covered, &rho);
+  bool lifted = false, onSheet = true;
+  for (size_t k = 0; k < covered.size(); ++k)
+  {
+    if (covered[k] == n - 1)
+    {
+      lifted = std::isinf(rho[k]);
+    }
+    else
+    {
+      onSheet = onSheet && rho[k] <= b.Radius;
+    }
+  }
+  std::printf("a point 1.4 off a disc of radius %.2f, within a tolerance of 2: covered %d, "
+              "deviation %.2f\n",
+    b.Radius,
+    lifted ? 1 : 0,
+    b.MaxDeviation);
+  Check(b.Radius < 1.4 && lifted && std::abs(b.MaxDeviation - 1.4) < 1e-12,
+    "a point farther off the patch than the radius is covered but never claimed");
+  Check(onSheet && covered.size() > 4, "the sheet's points keep their in-plane distances");
+}
+
 // The lip of a deep fold: a sheet z = 0 for x <= 0 (grid spacing 1) whose
 // surface dives at x = 0 into a fold 3 wide and 8 deep. A splat half a
 // spacing from the lip must stop at it: a disc that reaches past the lip
@@ -672,6 +720,7 @@ int TestSplatBound(int, char*[])
 {
   TestSubsampledWideFits();
   TestFoldLip();
+  TestFartherOffThanWide();
   TestStrayPointAcrossBorder();
   TestNormalAngle();
   std::mt19937 gen(7);
