@@ -48,32 +48,30 @@ bool SplatArena::Allocate(long long n, std::vector<RowExtent>& out)
   }
   if (best != this->Free.end())
   {
-    const RowExtent taken{ best->first, best->first + n };
-    const long long end = best->second;
-    this->Free.erase(best);
-    if (taken.End < end)
-    {
-      this->Free[taken.End] = end;
-    }
-    out.push_back(taken);
+    out.push_back(this->Take(best, n));
     return true;
   }
   // None does: free extents from the lowest row up.
   while (n > 0)
   {
-    auto it = this->Free.begin();
-    const long long take = std::min(n, it->second - it->first);
-    const RowExtent taken{ it->first, it->first + take };
-    const long long end = it->second;
-    this->Free.erase(it);
-    if (taken.End < end)
-    {
-      this->Free[taken.End] = end;
-    }
-    out.push_back(taken);
-    n -= take;
+    out.push_back(this->Take(this->Free.begin(), n));
+    n -= out.back().Size();
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+RowExtent SplatArena::Take(std::map<long long, long long>::iterator extent, long long n)
+{
+  const RowExtent taken{ extent->first,
+    extent->first + std::min(n, extent->second - extent->first) };
+  const long long end = extent->second;
+  this->Free.erase(extent);
+  if (taken.End < end)
+  {
+    this->Free[taken.End] = end;
+  }
+  return taken;
 }
 
 //------------------------------------------------------------------------------

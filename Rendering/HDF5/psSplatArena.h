@@ -61,6 +61,9 @@ public:
   std::vector<RowExtent> FreeExtents() const;
 
 private:
+  /** The first n rows of free `extent` (all of it when it holds no more), taken. */
+  RowExtent Take(std::map<long long, long long>::iterator extent, long long n);
+
   std::map<long long, long long> Free; // first row -> end
   long long Rows = 0;
   long long Available = 0;

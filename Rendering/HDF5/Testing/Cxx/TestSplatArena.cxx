@@ -7,29 +7,19 @@
 // - released rows merge with free neighbours, and Grow adds rows;
 // - a random run of allocations and releases against a map of the rows:
 //   no row handed out twice, none lost.
+#include "psIOTestSupport.h"
 #include "psSplatArena.h"
 
 #include <cstdlib>
-#include <iostream>
 #include <random>
-#include <string>
 #include <vector>
 
 using pointsurfaces::RowExtent;
 using pointsurfaces::SplatArena;
+using namespace pointsurfaces_test;
 
 namespace
 {
-int Failures = 0;
-void Check(bool ok, const std::string& what)
-{
-  if (!ok)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
-
 long long Rows(const std::vector<RowExtent>& extents)
 {
   long long n = 0;
