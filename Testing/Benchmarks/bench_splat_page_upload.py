@@ -38,7 +38,6 @@ modes within one run, as ratios.
 import argparse
 import os
 import sys
-import tempfile
 import time
 
 import numpy as np
@@ -132,17 +131,8 @@ def main():
     up = args.up or quality.UP_AXIS.get(stem.split("_")[0], "y")
     scene = quality.Scene((args.size, args.size))
     model = dict(name=stem, cameras=scene.cameras(mesh, up, stream.VIEWS[:1]))
-    scratch = None
-    path = args.file
-    if not path:
-        scratch = tempfile.mkdtemp(prefix="bench-splat-page-upload-")
-        path = os.path.join(scratch, "%s-%d.psplat" % (stem, int(args.points)))
-        paging.make_file(mesh, int(args.points), path, args.page_size)
-    info = pointsurfaces.vtkSplatFileReader()
-    info.SetFileName(path)
-    info.SetMemoryBudget(1e-6)
-    info.GlobalWarningDisplayOff()  # the tiny budget's warning: only the header is wanted
-    info.Update()
+    path, scratch = paging.splat_file(args, mesh, stem, "bench-splat-page-upload-", args.page_size)
+    info = paging.file_header(path)
     rows, summary = [], []
     for budget in args.budgets:
         medians = {}
@@ -170,9 +160,7 @@ def main():
     write_rows(os.path.join(args.out, "splat_page_upload.csv"), rows)
     write_rows(os.path.join(args.out, "splat_page_upload_summary.csv"), summary)
     plot(rows, os.path.join(args.out, "splat_page_upload.png"))
-    if scratch:
-        os.remove(path)
-        os.rmdir(scratch)
+    paging.remove_made(path, scratch)
     return 0
 
 

@@ -71,6 +71,34 @@ def make_file(mesh, n, path, page_size=None):
     os.remove(ply)
 
 
+def splat_file(args, mesh, stem, prefix, page_size=None):
+    """args.file, or a file of args.points points on `mesh` made here (make_file) in a new
+    temporary folder: (path, that folder or None)."""
+    if args.file:
+        return args.file, None
+    scratch = tempfile.mkdtemp(prefix=prefix)
+    path = os.path.join(scratch, "%s-%d.psplat" % (stem, int(args.points)))
+    make_file(mesh, int(args.points), path, page_size)
+    return path, scratch
+
+
+def remove_made(path, scratch):
+    """Delete what splat_file made (nothing when it was given a file)."""
+    if scratch:
+        os.remove(path)
+        os.rmdir(scratch)
+
+
+def file_header(path):
+    """vtkSplatFileReader on `path`, updated within a budget that holds no page: its header."""
+    info = pointsurfaces.vtkSplatFileReader()
+    info.SetFileName(path)
+    info.SetMemoryBudget(1e-6)
+    info.GlobalWarningDisplayOff()  # the tiny budget's warning: only the header is wanted
+    info.Update()
+    return info
+
+
 def streaming(scene, model, path, budget, frames):
     """vtkStreamingSplatMapper: first picture, whole view, and the orbit without waiting."""
     mapper = pointsurfaces.vtkStreamingSplatMapper()
@@ -154,17 +182,8 @@ def main():
     up = args.up or quality.UP_AXIS.get(stem.split("_")[0], "y")
     scene = quality.Scene((args.size, args.size))
     model = dict(name=stem, cameras=scene.cameras(mesh, up, stream.VIEWS[:1]))
-    scratch = None
-    path = args.file
-    if not path:
-        scratch = tempfile.mkdtemp(prefix="bench-splat-paging-")
-        path = os.path.join(scratch, "%s-%d.psplat" % (stem, int(args.points)))
-        make_file(mesh, int(args.points), path)
-    info = pointsurfaces.vtkSplatFileReader()
-    info.SetFileName(path)
-    info.SetMemoryBudget(1e-6)
-    info.GlobalWarningDisplayOff()  # the tiny budget's warning: only the header is wanted
-    info.Update()
+    path, scratch = splat_file(args, mesh, stem, "bench-splat-paging-")
+    info = file_header(path)
     rows, series = [], []
     for budget in args.budgets:
         # The reader's budget counts its output's bytes (double arrays), the
@@ -181,9 +200,7 @@ def main():
             print("# %s" % rows[-1], flush=True)
     write_rows(os.path.join(args.out, "splat_paging.csv"), rows)
     plot(series, os.path.join(args.out, "splat_paging.png"))
-    if scratch:
-        os.remove(path)
-        os.rmdir(scratch)
+    remove_made(path, scratch)
     return 0
 
 
