@@ -195,11 +195,6 @@ bool vtkSplatFileDelegatingMapper::PollLoading()
   return false;
 }
 
-bool vtkSplatFileDelegatingMapper::IsPolledByGUI()
-{
-  return PolledByGUI;
-}
-
 //------------------------------------------------------------------------------
 const std::string& vtkSplatFileDelegatingMapper::ChooseFile()
 {

@@ -91,9 +91,6 @@ public:
    */
   static bool PollLoading();
 
-  /** Whether a GUI polls this process (PollLoading was called). */
-  static bool IsPolledByGUI();
-
   /** After a render or GetBounds: the file drawn, or empty when the data was. */
   const std::string& GetFileDrawn() { return this->FileDrawn; }
 
