@@ -71,8 +71,8 @@ VARIANTS = ["default", "scale4", "scale8", "noise", "noise+scale4"]
 def settings_of(variant):
     """The fitter settings a variant names: words joined by '+', each one of
     default, noise (ToleranceUnit NOISE), absolute (ToleranceUnit ABSOLUTE),
-    scaleN (MaximumFeatureScale N), tolX (MaximumDeviation X) or featureX
-    (FeatureNoiseFactor X)."""
+    scaleN (MaximumFeatureScale N), tolX (MaximumDeviation X), featureX
+    (FeatureNoiseFactor X) or Name=X (any setting, e.g. NormalAngle=15)."""
     settings = {}
     for word in variant.split("+"):
         if word == "default":
@@ -87,6 +87,9 @@ def settings_of(variant):
             settings["MaximumDeviation"] = float(word[3:])
         elif word.startswith("feature"):
             settings["FeatureNoiseFactor"] = float(word[7:])
+        elif "=" in word:
+            name, value = word.split("=", 1)
+            settings[name] = int(value) if value.lstrip("-").isdigit() else float(value)
         else:
             raise ValueError("unknown variant word %r in %r" % (word, variant))
     return settings
