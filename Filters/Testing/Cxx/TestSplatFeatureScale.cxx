@@ -12,6 +12,9 @@
 // - FeatureNoiseFactor: on a noisy sphere sampled four times as densely the
 //   splat count grows less than without it, covers every point, and stays
 //   within the bound;
+// - at the defaults, a sphere with noise of about a spacing (far above the
+//   half-spacing bound) leaves no point off every disc: a splat whose own
+//   point lies farther off its patch than its cut disc is wide reaches to it;
 // - MaximumFeatureScale 4 on a smooth sphere gives fewer, wider splats that
 //   still cover every point and lie within the bound, and the same splats
 //   with 1 and 2 threads (its wider slabs keep the parallel selection
@@ -293,6 +296,36 @@ void TestFeatureScale()
   }
   Check(same, "feature scale 4: the same splats with 1 and 2 threads");
 }
+// At the defaults (a bound of half a spacing) on spheres with noise of 0.75
+// to 1.5 spacings: no point lies off every disc, and the splats' reported
+// deviation holds every point of their discs.
+void TestNoiseAboveTheBound()
+{
+  long long uncovered = 0;
+  for (int n : { 20000, 40000 })
+  {
+    const double spacing = std::sqrt(4.0 * 3.14159265358979323846 / n);
+    for (double sigma : { 0.75, 1.0, 1.5 })
+    {
+      vtkSmartPointer<vtkPolyData> sphere = Sphere(n, 1.0, sigma * spacing);
+      vtkNew<vtkAlgebraicSplatFitter> fitter;
+      fitter->SetInputData(sphere);
+      fitter->Update();
+      vtkNew<vtkSplatErrorMetric> metric;
+      metric->SetInputData(sphere);
+      metric->SetSplatConnection(fitter->GetOutputPort());
+      metric->Update();
+      std::cout << n << " points, noise " << sigma << " spacings: "
+                << fitter->GetOutput()->GetNumberOfPoints() << " splats, uncovered "
+                << metric->GetNumberOfUncoveredPoints() << "\n";
+      uncovered += metric->GetNumberOfUncoveredPoints();
+      Check(metric->GetNumberOfUncoveredPoints() == 0,
+        "noise of " + std::to_string(sigma) + " spacings at " + std::to_string(n) +
+          " points: every point on a disc");
+    }
+  }
+  std::cout << "uncovered in all: " << uncovered << "\n";
+}
 } // namespace
 
 int TestSplatFeatureScale(int, char*[])
@@ -302,5 +335,6 @@ int TestSplatFeatureScale(int, char*[])
   TestFeatureNoiseFactor();
   TestToleranceUnits();
   TestFeatureScale();
+  TestNoiseAboveTheBound();
   return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
