@@ -108,8 +108,11 @@ bool SameSurface(const Splat& narrow,
 // the two measures by which a renderer and vtkSplatErrorMetric put p on
 // the disc or off it (see psSplatError.cxx). `height`, when given: p's
 // deviation along the splat's axis, as the bound measures it.
-void DiscDistances(
-  const Splat& s, const double p[3], double& off, double& inPlane, double* height = nullptr)
+void DiscDistances(const Splat& s,
+  const double p[3],
+  double& off,
+  double& inPlane,
+  double* height = nullptr)
 {
   const LocalFrame& f = s.Frame;
   double uvh[3];

@@ -315,9 +315,9 @@ void TestNoiseAboveTheBound()
       metric->SetInputData(sphere);
       metric->SetSplatConnection(fitter->GetOutputPort());
       metric->Update();
-      std::cout << n << " points, noise " << sigma << " spacings: "
-                << fitter->GetOutput()->GetNumberOfPoints() << " splats, uncovered "
-                << metric->GetNumberOfUncoveredPoints() << "\n";
+      std::cout << n << " points, noise " << sigma
+                << " spacings: " << fitter->GetOutput()->GetNumberOfPoints()
+                << " splats, uncovered " << metric->GetNumberOfUncoveredPoints() << "\n";
       uncovered += metric->GetNumberOfUncoveredPoints();
       Check(metric->GetNumberOfUncoveredPoints() == 0,
         "noise of " + std::to_string(sigma) + " spacings at " + std::to_string(n) +
