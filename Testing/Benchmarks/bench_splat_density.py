@@ -4,7 +4,8 @@
 """Splats against the sampling and the noise of one surface: the density and noise sweeps.
 
     bench_splat_density.py [MESH] [--points N ...] [--noise F ...] [--noise-unit U]
-                           [--variants NAME ...] [--subdivide L] [--size PX] [--out DIR] [--smoke]
+                           [--variants NAME ...] [--subdivide L] [--size PX] [--out DIR]
+                           [--pictures DIR] [--smoke]
 
 MESH (default: Testing/Data/bunny.vtp) is any triangle mesh pointsurfaces.scanio
 reads. Each sample puts N points uniformly by area on its triangles
@@ -28,6 +29,7 @@ Variants (fitter settings on top of the defaults):
 - absolute: ToleranceUnit ABSOLUTE (the bound in world units);
 - tolX: MaximumDeviation X (in the tolerance's unit);
 - featureX: FeatureNoiseFactor X (0: the first fit at the k-nearest h);
+- Name=X: any setting of vtkAlgebraicSplatFitter, e.g. MaximumNormalAngle=10;
 - words joined by '+' combine, e.g. noise+scale16.
 The default list: default, scale4, scale8, noise, noise+scale4.
 
@@ -42,7 +44,9 @@ noise; against the noise, one line per variant, when there is one N). Each fit r
 own that reads the sample from a temporary file, fits and exits; its peak
 memory (peak_gb, GiB) is that process's peak resident set (VmHWM): the
 interpreter and VTK (about 0.1 GiB), the points read and the fit. Timings are wall-clock
-on whatever this runs on: compare them only within one run.
+on whatever this runs on: compare them only within one run. With --pictures DIR
+each fit's views are also written there as MODEL_POINTS_NOISE_VARIANT_viewK.png
+(mesh | splats | difference, as bench_splat_quality.py writes them).
 """
 import argparse
 import json
@@ -252,6 +256,8 @@ def main():
                         help="Loop-subdivide the mesh L times first: samples and reference then "
                              "share a smooth surface instead of the mesh's flat facets")
     parser.add_argument("--out", default="bench-results")
+    parser.add_argument("--pictures", metavar="DIR",
+                        help="also write each fit's views (mesh | splats | difference) into DIR")
     parser.add_argument("--smoke", action="store_true", help="20 000 points, two variants, 96 pixels")
     parser.add_argument("--child", nargs=2, metavar=("CLOUD", "SPLATS"), help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -276,6 +282,8 @@ def main():
     cameras = scene.cameras(mesh, up, VIEWS)
     model = dict(name=stem, cameras=cameras, views=VIEWS,
                  references=[scene.image(c) for c in cameras])
+    if args.pictures:
+        os.makedirs(args.pictures, exist_ok=True)
     rows = []
     folder = tempfile.mkdtemp(prefix="bench_splat_density_")
     try:
@@ -306,7 +314,9 @@ def sweep_sample(args, stem, model, scene, folder, cloud, noise):
     write_vtp(cloud, cloud_path)
     for variant in args.variants:
         splats, seconds, peak = fit_in_child(cloud_path, variant, folder)
-        scores = quality.score_actor(scene, model, quality.splat_actor(splats), 0)
+        scores = quality.score_actor(
+            scene, model, quality.splat_actor(splats), 0, images_out=args.pictures,
+            tag="%d_%g_%s" % (cloud.GetNumberOfPoints(), noise, variant.replace("=", "")))
         rows.append(dict(
             model=stem, subdivisions=args.subdivide, points=cloud.GetNumberOfPoints(), noise=noise,
             noise_unit=args.noise_unit, variant=variant, splats=splats.GetNumberOfPoints(),
