@@ -245,6 +245,27 @@ FitStatus FitReferencePlane(const double* points,
   return FitStatus::Ok;
 }
 
+double PatchOffset(const LocalFrame& f,
+  const double* c,
+  int degree,
+  const double p[3],
+  double& inPlane2,
+  double* height)
+{
+  const double h = f.Scale;
+  double uvh[3];
+  ToLocal(f, p, uvh);
+  inPlane2 = (uvh[0] * uvh[0] + uvh[1] * uvh[1]) * h * h;
+  double gu, gv;
+  const double g = EvaluateWithGradient(c, degree, uvh[0], uvh[1], gu, gv);
+  if (height)
+  {
+    *height = (uvh[2] - g) * h;
+  }
+  return (uvh[2] - g) * h / std::sqrt(1.0 + gu * gu + gv * gv);
+}
+
+//------------------------------------------------------------------------------
 PolynomialFit FitPolynomial(const double* points,
   const double* w,
   int n,

@@ -99,6 +99,23 @@ inline void ToLocal(const LocalFrame& f, const double p[3], double uvh[3])
   uvh[2] = (d[0] * f.Normal[0] + d[1] * f.Normal[1] + d[2] * f.Normal[2]) * inv;
 }
 
+/**
+ * p against the patch of degree `degree` (coefficients `c`) over frame `f`:
+ * the signed distance of p off the patch along the patch's normal, to first
+ * order, (height - g(u, v)) h / sqrt(1 + |grad g|^2), in world units.
+ * `inPlane2` receives p's squared distance from the origin in the frame's
+ * plane, (u^2 + v^2) h^2, and `height` (when given) p's signed deviation
+ * along the frame's normal, (height - g(u, v)) h. These put p on a splat's
+ * disc or off it for vtkSplatErrorMetric and the renderers (|offset| and
+ * the in-plane distance within the radius).
+ */
+POINTSURFACESFILTERS_EXPORT double PatchOffset(const LocalFrame& f,
+  const double* c,
+  int degree,
+  const double p[3],
+  double& inPlane2,
+  double* height = nullptr);
+
 /** The Gaussian weight exp(-d^2 / h^2) of [Bolla 2010]. */
 inline double GaussianWeight(double distanceSquared, double hSquared)
 {

@@ -107,30 +107,6 @@ bool SameSurface(const Splat& narrow,
   return true;
 }
 
-// The distance of p off `s`'s patch along the patch's normal (world
-// units) and its distance from the splat's centre in the splat's plane:
-// the two measures by which a renderer and vtkSplatErrorMetric put p on
-// the disc or off it (see psSplatError.cxx). `height`, when given: p's
-// deviation along the splat's axis, as the bound measures it.
-void DiscDistances(const Splat& s,
-  const double p[3],
-  double& off,
-  double& inPlane,
-  double* height = nullptr)
-{
-  const LocalFrame& f = s.Frame;
-  double uvh[3];
-  ToLocal(f, p, uvh);
-  double du = 0.0, dv = 0.0;
-  const double g = EvaluateWithGradient(s.Fit.Coefficients, s.Fit.Degree, uvh[0], uvh[1], du, dv);
-  off = std::abs(uvh[2] - g) * f.Scale / std::sqrt(1.0 + du * du + dv * dv);
-  if (height)
-  {
-    *height = std::abs(uvh[2] - g) * f.Scale;
-  }
-  inPlane = std::sqrt(uvh[0] * uvh[0] + uvh[1] * uvh[1]) * f.Scale;
-}
-
 struct Position
 {
   double Q[3];
@@ -1179,10 +1155,11 @@ void SplatBuild::HoldSource(BuiltSplat& b) const
   {
     return;
   }
-  const double* p = index.Point(b.Source);
-  double off = 0.0, inPlane = 0.0;
-  DiscDistances(b.Fitted, p, off, inPlane);
-  const double reach = (1.0 + 1e-6) * std::max(off, inPlane);
+  const Splat& sp = b.Fitted;
+  double inPlane2 = 0.0;
+  const double off = std::abs(
+    PatchOffset(sp.Frame, sp.Fit.Coefficients, sp.Fit.Degree, index.Point(b.Source), inPlane2));
+  const double reach = (1.0 + 1e-6) * std::max(off, std::sqrt(inPlane2));
   if (!(reach > b.Radius) || reach > b.NominalRadius)
   {
     return;
@@ -1190,15 +1167,17 @@ void SplatBuild::HoldSource(BuiltSplat& b) const
   b.Radius = reach;
   // The bound's deviation is over the points it covers, those within the
   // tolerance (the source, farther off, is not one of them).
-  const double tolerance = b.Tolerance * b.Fitted.Spacing;
+  const double tolerance = b.Tolerance * sp.Spacing;
   thread_local std::vector<int> ids;
   thread_local std::vector<double> d2;
-  index.Within(b.Fitted.Frame.Origin, std::sqrt(2.0) * reach, ids, d2, false);
+  index.Within(sp.Frame.Origin, std::sqrt(2.0) * reach, ids, d2, false);
   for (int id : ids)
   {
     double height = 0.0;
-    DiscDistances(b.Fitted, index.Point(id), off, inPlane, &height);
-    if (inPlane <= reach && off <= reach && (!bounded || height <= tolerance))
+    const double e = std::abs(PatchOffset(
+      sp.Frame, sp.Fit.Coefficients, sp.Fit.Degree, index.Point(id), inPlane2, &height));
+    height = std::abs(height);
+    if (inPlane2 <= reach * reach && e <= reach && (!bounded || height <= tolerance))
     {
       b.MaxDeviation = std::max(b.MaxDeviation, height);
     }

@@ -32,14 +32,7 @@ double PatchDistance(const SplatArrays& s, long long j, const double p[3], doubl
   frame.Bitangent[1] = n[2] * t[0] - n[0] * t[2];
   frame.Bitangent[2] = n[0] * t[1] - n[1] * t[0];
   frame.Scale = s.Scale[j];
-  const double h = frame.Scale;
-  double uvh[3];
-  ToLocal(frame, p, uvh);
-  inPlane2 = (uvh[0] * uvh[0] + uvh[1] * uvh[1]) * h * h;
-  double gu, gv;
-  const double g = EvaluateWithGradient(
-    s.Coefficients + MonomialCount(s.Degree) * j, s.Degree, uvh[0], uvh[1], gu, gv);
-  return (uvh[2] - g) * h / std::sqrt(1.0 + gu * gu + gv * gv);
+  return PatchOffset(frame, s.Coefficients + MonomialCount(s.Degree) * j, s.Degree, p, inPlane2);
 }
 } // namespace
 
