@@ -5,7 +5,7 @@
  * @brief   Fits splats to a point set larger than memory, piece by piece, into a multi-resolution splat file.
  *
  * vtkAlgebraicSplatFitter holds every point and its fits at once (about
- * 380 bytes a point at the defaults). This filter takes the same
+ * 330 bytes a point at the defaults). This filter takes the same
  * parameters (it is one), but asks its input for NumberOfPieces pieces, one
  * after another, and never holds more than one chunk of the points:
  * pointsurfaces::SplatStream (psSplatStream.h) spills the pieces to

@@ -4,9 +4,9 @@
  * @file psSplatStream.h
  * @brief The splat fit of a point set larger than memory, chunk by chunk, on plain arrays.
  *
- * BuildSplats holds every point, its index and its fits at once: about 380
+ * BuildSplats holds every point, its index and its fits at once: about 330
  * bytes a point at the defaults, so a 100M-point lidar survey needs some
- * 38 GB. SplatStream holds one chunk at a time:
+ * 33 GB. SplatStream holds one chunk at a time:
  *
  * 1. AddPoints() takes the points in batches of any size (a reader's
  *    pieces, a file read in blocks) and spills them to a scratch file,
@@ -42,7 +42,7 @@
  *    the final orientation applied, and the origins, radii and levels of
  *    all of them (Sketch) stay in memory for a file writer's octree.
  *
- * Memory: the largest chunk with its halo (BuildSplats's ~380 bytes a
+ * Memory: the largest chunk with its halo (BuildSplats's ~330 bytes a
  * point), one byte a point of claims, and 52 bytes a splat of sketch.
  * Disk: 24 + 4 (c + 3) bytes a point twice (spill and chunks, c attribute
  * components, normals as 3 floats when given) and about 280 + 4 c bytes a
