@@ -236,6 +236,7 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->NumberOfInvalidPoints = this->NumberOfDegenerateSplats = this->NumberOfMergedPoints = 0;
   this->NumberOfReducedDegreeSplats = 0;
+  this->SetResolvedTolerance(pointsurfaces::ToleranceUnit::Spacing, pointsurfaces::SampleNoise());
   const vtkIdType nIn = input ? input->GetNumberOfPoints() : 0;
   if (!this->FitsInMemory(nIn))
   {
@@ -305,6 +306,7 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
       abort = this->GetAbortExecute() != 0;
     },
     &abort);
+  this->SetResolvedTolerance(built.Tolerance, built.Noise);
   const bool oriented = inNormals != nullptr || (this->OrientNormals && !abort.load());
   if (!inNormals && oriented)
   {
@@ -350,7 +352,30 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   AddCount(fd, "SplatDegeneratePositions", this->NumberOfDegenerateSplats);
   AddCount(fd, "SplatReducedDegree", this->NumberOfReducedDegreeSplats);
   AddCount(fd, vtkSplatDataModel::NormalsOrientedName(), oriented ? 1 : 0);
+  AddCount(fd, "SplatToleranceUnit", this->ResolvedToleranceUnit);
+  vtkNew<vtkDoubleArray> noise;
+  noise->SetName("SplatSampleNoise");
+  noise->SetNumberOfComponents(2);
+  noise->SetComponentName(0, "Growth");
+  noise->SetComponentName(1, "ResidualOverSpacing");
+  noise->InsertNextTuple2(this->SampleNoiseGrowth, this->SampleNoiseLevel);
+  fd->AddArray(noise);
   return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkAlgebraicSplatFitter::SetResolvedTolerance(pointsurfaces::ToleranceUnit unit,
+  const pointsurfaces::SampleNoise& noise)
+{
+  this->ResolvedToleranceUnit = static_cast<int>(unit);
+  this->SampleNoiseGrowth = noise.Growth;
+  this->SampleNoiseLevel = noise.NoiseOverSpacing;
+  if (noise.Probes > 0)
+  {
+    vtkDebugMacro(<< "ToleranceUnit AUTOMATIC: residual growth " << noise.Growth << ", "
+                  << noise.NoiseOverSpacing << " spacings over " << noise.Probes
+                  << " probes: " << (noise.Noisy ? "NOISE with wide splats" : "SPACING"));
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -469,11 +494,11 @@ void vtkAlgebraicSplatFitter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RadiusScale: " << this->RadiusScale << "\n";
   os << indent << "RandomSeed: " << this->RandomSeed << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " KiB\n";
-  os << indent << "ToleranceUnit: "
-     << (this->ToleranceUnit == SPACING    ? "SPACING"
-            : this->ToleranceUnit == NOISE ? "NOISE"
-                                           : "ABSOLUTE")
-     << "\n";
+  const char* units[] = { "SPACING", "NOISE", "ABSOLUTE", "AUTOMATIC" };
+  os << indent << "ToleranceUnit: " << units[this->ToleranceUnit] << "\n";
+  os << indent << "ResolvedToleranceUnit: " << units[this->ResolvedToleranceUnit] << "\n";
+  os << indent << "SampleNoiseGrowth: " << this->SampleNoiseGrowth << "\n";
+  os << indent << "SampleNoiseLevel: " << this->SampleNoiseLevel << "\n";
   os << indent << "NoiseFactor: " << this->NoiseFactor << "\n";
   os << indent << "FeatureNoiseFactor: " << this->FeatureNoiseFactor << "\n";
   os << indent << "MaximumFeatureScale: " << this->MaximumFeatureScale << "\n";

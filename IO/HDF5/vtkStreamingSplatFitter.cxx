@@ -385,6 +385,7 @@ bool vtkStreamingSplatFitter::Finish(vtkPolyData* output)
   this->NumberOfChunks = static_cast<vtkIdType>(stats.Chunks);
   this->NumberOfHaloPoints = static_cast<vtkIdType>(stats.HaloPoints);
   this->LargestChunk = static_cast<vtkIdType>(stats.LargestChunk);
+  this->SetResolvedTolerance(stats.Tolerance, stats.Noise);
   if (stats.Dropped > 0)
   {
     vtkWarningMacro(<< "Dropped " << stats.Dropped << " of " << P->Points

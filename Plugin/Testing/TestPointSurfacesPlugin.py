@@ -124,6 +124,11 @@ splats.ColorArrayName = ['POINTS', '']
 splats.DiffuseColor = [0.9, 0.85, 0.75]
 count = fitter.GetDataInformation().GetNumberOfPoints()
 check(5450 < count < 6050, "the Bunny fits to %d cubic splats (5 831 outside ParaView)" % count)
+# The default unit measures the scan's noise: the Bunny's vertices are clean.
+unit = fitter.GetFieldDataInformation().GetArray("SplatToleranceUnit")
+check(fitter.ToleranceUnit == "Automatic" and unit is not None and unit.GetRange(0) == (0.0, 0.0),
+      "ToleranceUnit Automatic by default, resolved to Spacing on the Bunny (field data %s)"
+      % (unit.GetRange(0) if unit else None,))
 bounds = scan.GetDataInformation().GetBounds()
 size = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4])
 cone = Cone(Center=[0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),

@@ -306,7 +306,8 @@ public:
     const BuildParameters& params,
     const std::function<void(double)>& progress,
     const std::atomic<bool>* abort,
-    ChunkContext* chunk);
+    ChunkContext* chunk,
+    std::unique_ptr<PointIndex> given = nullptr);
 
   BuildResult Run();
 
@@ -459,7 +460,8 @@ private:
   std::vector<Subsample> subsamples;
   // The index of every point, built beside the subsamples' (a 10M-point
   // index takes seconds on one core).
-  std::unique_ptr<PointIndex> BuildIndexes();
+  // The index of every point (`given`'s when there is one) and the subsamples'.
+  std::unique_ptr<PointIndex> BuildIndexes(std::unique_ptr<PointIndex> given);
   std::unique_ptr<PointIndex> indexStorage;
   const PointIndex& index;
   SplatFitParameters fit;
@@ -484,7 +486,8 @@ SplatBuild::SplatBuild(const double* xyz_,
   const BuildParameters& params_,
   const std::function<void(double)>& progress,
   const std::atomic<bool>* abort,
-  ChunkContext* chunk_)
+  ChunkContext* chunk_,
+  std::unique_ptr<PointIndex> given)
   : xyz(xyz_)
   , n(n_)
   , normals(normals_)
@@ -492,7 +495,7 @@ SplatBuild::SplatBuild(const double* xyz_,
   , Progress(progress)
   , Abort(abort)
   , Chunk(chunk_)
-  , indexStorage(this->BuildIndexes())
+  , indexStorage(this->BuildIndexes(std::move(given)))
   , index(*indexStorage)
   , fit(params_.Fit)
   , chosenOf(static_cast<size_t>(n_))
@@ -519,7 +522,7 @@ SplatBuild::SplatBuild(const double* xyz_,
 }
 
 //------------------------------------------------------------------------------
-std::unique_ptr<PointIndex> SplatBuild::BuildIndexes()
+std::unique_ptr<PointIndex> SplatBuild::BuildIndexes(std::unique_ptr<PointIndex> given)
 {
   // Subsamples serve the wide fits of bounded Quality selection only. The
   // widest gather asks max(NumberOfNeighbors, FeatureSizeNeighbors + 1) m^2
@@ -583,7 +586,7 @@ std::unique_ptr<PointIndex> SplatBuild::BuildIndexes()
       {
         if (k == 0)
         {
-          whole = std::make_unique<PointIndex>(xyz, n);
+          whole = given ? std::move(given) : std::make_unique<PointIndex>(xyz, n);
         }
         else
         {
@@ -1599,8 +1602,48 @@ BuildResult BuildSplats(const double* xyz,
   {
     return BuildResult();
   }
-  SplatBuild build(xyz, n, normals, params, progress, abort, chunk);
-  return build.Run();
+  if (params.Tolerance != ToleranceUnit::Automatic)
+  {
+    SplatBuild build(xyz, n, normals, params, progress, abort, chunk);
+    BuildResult result = build.Run();
+    result.Tolerance = params.Tolerance;
+    return result;
+  }
+  // The sample's noise decides, measured with the index the build keeps.
+  auto index = std::make_unique<PointIndex>(xyz, n);
+  const SampleNoise noise = MeasureSampleNoise(xyz, n, *index);
+  const BuildParameters resolved = ResolveTolerance(params, noise);
+  SplatBuild build(xyz, n, normals, resolved, progress, abort, chunk, std::move(index));
+  BuildResult result = build.Run();
+  result.Tolerance = resolved.Tolerance;
+  result.Noise = noise;
+  return result;
+}
+
+//------------------------------------------------------------------------------
+BuildParameters ResolveTolerance(const BuildParameters& params, const SampleNoise& noise)
+{
+  BuildParameters resolved = params;
+  if (params.Tolerance != ToleranceUnit::Automatic)
+  {
+    return resolved;
+  }
+  if (noise.Noisy)
+  {
+    resolved.Tolerance = ToleranceUnit::Noise;
+    // A scale the caller chose stays; one scale (the default) widens.
+    resolved.MaximumFeatureScale =
+      params.MaximumFeatureScale >= 2.0 ? params.MaximumFeatureScale : AutomaticFeatureScale;
+    // The noise sets the bound; the spacing only floors it, lower than in
+    // Noise, so that the world bound is the same at any sampling denser
+    // than the noise.
+    resolved.Fit.MaximumDeviation *= AutomaticNoiseFloor;
+  }
+  else
+  {
+    resolved.Tolerance = ToleranceUnit::Spacing;
+  }
+  return resolved;
 }
 
 } // namespace pointsurfaces

@@ -897,6 +897,17 @@ bool SplatStream::Impl::FitChunk(size_t c,
     return false;
   }
   const long long own = points.Size();
+  // ToleranceUnit::Automatic: the first chunk's own points decide for every chunk.
+  if (this->Params.Build.Tolerance == ToleranceUnit::Automatic)
+  {
+    if (own >= 3)
+    {
+      PointIndex index(points.XYZ.data(), own);
+      this->Stats.Noise = MeasureSampleNoise(points.XYZ.data(), own, index);
+    }
+    this->Params.Build = ResolveTolerance(this->Params.Build, this->Stats.Noise);
+  }
+  this->Stats.Tolerance = this->Params.Build.Tolerance;
   const double w = this->HaloWidth(points);
   double box[6];
   for (int k = 0; k < 3; ++k)

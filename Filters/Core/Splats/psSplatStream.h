@@ -103,6 +103,10 @@ struct StreamStatistics
   long long Parts = 0;        ///< oriented parts after joining across chunks
   long long FlippedParts = 0; ///< of them, turned over by the final pass
   double ScratchBytes = 0.0;  ///< bytes written to scratch files
+  /** The unit of the bound (ToleranceUnit::Automatic resolved on the first chunk). */
+  ToleranceUnit Tolerance = ToleranceUnit::Spacing;
+  /** ToleranceUnit::Automatic: the first chunk's noise, which decided it. */
+  SampleNoise Noise;
 };
 
 class POINTSURFACESFILTERS_EXPORT SplatStream

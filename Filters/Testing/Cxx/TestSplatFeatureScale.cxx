@@ -18,12 +18,23 @@
 // - MaximumFeatureScale 4 on a smooth sphere gives fewer, wider splats that
 //   still cover every point and lie within the bound, and the same splats
 //   with 1 and 2 threads (its wider slabs keep the parallel selection
-//   race-free).
+//   race-free);
+// - MeasureSampleNoise (psSampleNoise.h) tells noisy spheres (noise of 0.1
+//   to 1 spacing, also 1e7 from the origin) from clean ones, smooth or
+//   bumpy, and from a clean plane; too few points measure nothing;
+// - ToleranceUnit AUTOMATIC (the default) fits a noisy sphere as NOISE with
+//   MaximumFeatureScale 16 and MaximumDeviation halved (at most 15 % of its
+//   points as splats, none
+//   uncovered, reported in the field data) and a clean one as SPACING,
+//   splat for splat.
 #include "psIOTestSupport.h"
 #include "psLocalFit.h"
+#include "psPointIndex.h"
+#include "psSampleNoise.h"
 #include "psSplatFit.h"
 #include "vtkAlgebraicSplatFitter.h"
 #include "vtkDataArray.h"
+#include "vtkFieldData.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
@@ -296,7 +307,7 @@ void TestFeatureScale()
   }
   Check(same, "feature scale 4: the same splats with 1 and 2 threads");
 }
-// At the defaults (a bound of half a spacing) on spheres with noise of 0.75
+// With the bound at half a spacing (SPACING) on spheres with noise of 0.75
 // to 1.5 spacings: no point lies off every disc, and the splats' reported
 // deviation holds every point of their discs.
 void TestNoiseAboveTheBound()
@@ -310,6 +321,8 @@ void TestNoiseAboveTheBound()
       vtkSmartPointer<vtkPolyData> sphere = Sphere(n, 1.0, sigma * spacing);
       vtkNew<vtkAlgebraicSplatFitter> fitter;
       fitter->SetInputData(sphere);
+      // The bound in spacings, far under this noise (AUTOMATIC would widen it).
+      fitter->SetToleranceUnit(vtkAlgebraicSplatFitter::SPACING);
       fitter->Update();
       vtkNew<vtkSplatErrorMetric> metric;
       metric->SetInputData(sphere);
@@ -326,6 +339,137 @@ void TestNoiseAboveTheBound()
   }
   std::cout << "uncovered in all: " << uncovered << "\n";
 }
+
+// The points of `pd` as xyz doubles, moved by `offset` along every axis.
+std::vector<double> Coordinates(vtkPolyData* pd, double offset = 0.0)
+{
+  std::vector<double> xyz(3 * static_cast<size_t>(pd->GetNumberOfPoints()));
+  for (vtkIdType i = 0; i < pd->GetNumberOfPoints(); ++i)
+  {
+    pd->GetPoint(i, &xyz[3 * static_cast<size_t>(i)]);
+    for (int c = 0; c < 3; ++c)
+    {
+      xyz[3 * static_cast<size_t>(i) + c] += offset;
+    }
+  }
+  return xyz;
+}
+
+pointsurfaces::SampleNoise Measure(const std::vector<double>& xyz)
+{
+  const long long n = static_cast<long long>(xyz.size() / 3);
+  pointsurfaces::PointIndex index(xyz.data(), n);
+  return pointsurfaces::MeasureSampleNoise(xyz.data(), n, index);
+}
+
+void TestSampleNoise()
+{
+  const int n = 20000;
+  const double spacing = std::sqrt(4.0 * 3.14159265358979323846 / n);
+  struct Case
+  {
+    const char* Name;
+    double Sigma; // spacings
+    double Bumps;
+    double Offset;
+    bool Noisy;
+  };
+  const Case cases[] = { { "clean sphere", 0.0, 0.0, 0.0, false },
+    { "clean bumpy sphere", 0.0, 0.05, 0.0, false },
+    { "sphere, noise 0.1 spacing", 0.1, 0.0, 0.0, true },
+    { "sphere, noise 0.3 spacing", 0.3, 0.0, 0.0, true },
+    { "sphere, noise 1 spacing", 1.0, 0.0, 0.0, true },
+    { "bumpy sphere, noise 0.3 spacing", 0.3, 0.05, 0.0, true },
+    { "sphere, noise 0.3 spacing, at 1e7", 0.3, 0.0, 1e7, true },
+    { "clean sphere at 1e7", 0.0, 0.0, 1e7, false } };
+  for (const Case& c : cases)
+  {
+    vtkSmartPointer<vtkPolyData> sphere = Sphere(n, 1.0, c.Sigma * spacing, c.Bumps);
+    const pointsurfaces::SampleNoise noise = Measure(Coordinates(sphere, c.Offset));
+    std::cout << c.Name << ": growth " << noise.Growth << ", residual " << noise.NoiseOverSpacing
+              << " spacings, " << noise.Probes << " probes\n";
+    Check(noise.Probes > 1000, std::string(c.Name) + ": every probe measured");
+    Check(noise.Noisy == c.Noisy, std::string(c.Name) + (c.Noisy ? ": noisy" : ": clean"));
+  }
+  // A clean plane (residual 0 at both scales) and too few points: clean.
+  std::vector<double> plane;
+  for (int i = 0; i < 100; ++i)
+  {
+    for (int j = 0; j < 100; ++j)
+    {
+      plane.insert(plane.end(), { i * 0.01, j * 0.01 + 0.003 * (i % 3), 0.0 });
+    }
+  }
+  Check(!Measure(plane).Noisy, "a clean plane is clean");
+  std::vector<double> few(plane.begin(), plane.begin() + 3 * 50);
+  const pointsurfaces::SampleNoise none = Measure(few);
+  Check(none.Probes == 0 && !none.Noisy, "50 points: nothing measured, clean");
+}
+
+void TestAutomaticTolerance()
+{
+  const int n = 20000;
+  const double spacing = std::sqrt(4.0 * 3.14159265358979323846 / n);
+  // Noisy: AUTOMATIC (the default) is NOISE with splats up to 16 times as wide.
+  vtkSmartPointer<vtkPolyData> noisy = Sphere(n, 1.0, 0.3 * spacing);
+  vtkNew<vtkAlgebraicSplatFitter> automatic;
+  Check(automatic->GetToleranceUnit() == vtkAlgebraicSplatFitter::AUTOMATIC,
+    "AUTOMATIC is the default unit");
+  automatic->SetInputData(noisy);
+  automatic->Update();
+  vtkNew<vtkAlgebraicSplatFitter> wide;
+  wide->SetInputData(noisy);
+  wide->SetToleranceUnit(vtkAlgebraicSplatFitter::NOISE);
+  wide->SetMaximumFeatureScale(16.0);
+  wide->SetMaximumDeviation(0.25);
+  wide->Update();
+  vtkNew<vtkAlgebraicSplatFitter> spacingUnit;
+  spacingUnit->SetInputData(noisy);
+  spacingUnit->SetToleranceUnit(vtkAlgebraicSplatFitter::SPACING);
+  spacingUnit->Update();
+  vtkNew<vtkSplatErrorMetric> metric;
+  metric->SetInputData(noisy);
+  metric->SetSplatConnection(automatic->GetOutputPort());
+  metric->Update();
+  const vtkIdType count = automatic->GetOutput()->GetNumberOfPoints();
+  std::cout << "AUTOMATIC on a noisy sphere: " << count << " splats (SPACING "
+            << spacingUnit->GetOutput()->GetNumberOfPoints() << "), growth "
+            << automatic->GetSampleNoiseGrowth() << ", uncovered "
+            << metric->GetNumberOfUncoveredPoints() << "\n";
+  Check(automatic->GetResolvedToleranceUnit() == vtkAlgebraicSplatFitter::NOISE,
+    "AUTOMATIC on a noisy sphere: NOISE");
+  Check(count == wide->GetOutput()->GetNumberOfPoints(),
+    "AUTOMATIC on a noisy sphere: the splats of NOISE with MaximumFeatureScale 16 and half the "
+    "bound's floor");
+  Check(count > 0 && count <= 0.15 * n, "AUTOMATIC on a noisy sphere: at most 15 % of the points");
+  Check(metric->GetNumberOfUncoveredPoints() == 0, "AUTOMATIC on a noisy sphere: no hole");
+  vtkFieldData* fd = automatic->GetOutput()->GetFieldData();
+  vtkDataArray* unit = fd->GetArray("SplatToleranceUnit");
+  vtkDataArray* measured = fd->GetArray("SplatSampleNoise");
+  Check(unit && unit->GetComponent(0, 0) == vtkAlgebraicSplatFitter::NOISE && measured &&
+      measured->GetNumberOfComponents() == 2 &&
+      measured->GetComponent(0, 0) == automatic->GetSampleNoiseGrowth(),
+    "AUTOMATIC: the field data say what was chosen and why");
+
+  // Clean: the same splats as SPACING.
+  vtkSmartPointer<vtkPolyData> clean = Sphere(n, 1.0, 0.0, 0.05);
+  automatic->SetInputData(clean);
+  automatic->Update();
+  spacingUnit->SetInputData(clean);
+  spacingUnit->Update();
+  vtkPolyData* a = automatic->GetOutput();
+  vtkPolyData* b = spacingUnit->GetOutput();
+  bool same = automatic->GetResolvedToleranceUnit() == vtkAlgebraicSplatFitter::SPACING &&
+    a->GetNumberOfPoints() == b->GetNumberOfPoints();
+  for (vtkIdType i = 0; same && i < a->GetNumberOfPoints(); ++i)
+  {
+    double p[3], q[3];
+    a->GetPoint(i, p);
+    b->GetPoint(i, q);
+    same = p[0] == q[0] && p[1] == q[1] && p[2] == q[2];
+  }
+  Check(same, "AUTOMATIC on a clean bumpy sphere: SPACING, splat for splat");
+}
 } // namespace
 
 int TestSplatFeatureScale(int, char*[])
@@ -336,5 +480,7 @@ int TestSplatFeatureScale(int, char*[])
   TestToleranceUnits();
   TestFeatureScale();
   TestNoiseAboveTheBound();
+  TestSampleNoise();
+  TestAutomaticTolerance();
   return Failures ? EXIT_FAILURE : EXIT_SUCCESS;
 }
