@@ -5,7 +5,7 @@
 
     bench_splat_density.py [MESH] [--points N ...] [--noise F ...] [--noise-unit U]
                            [--variants NAME ...] [--subdivide L] [--size PX] [--out DIR]
-                           [--pictures DIR] [--smoke]
+                           [--scan FILE] [--views AZ,EL ...] [--pictures DIR] [--smoke]
 
 MESH (default: Testing/Data/bunny.vtp) is any triangle mesh pointsurfaces.scanio
 reads. Each sample puts N points uniformly by area on its triangles
@@ -13,7 +13,12 @@ reads. Each sample puts N points uniformly by area on its triangles
 Gaussian noise of F times the mesh's bounding-box diagonal (noise along every
 axis), or with --noise-unit spacing F times the noise-free sample's mean
 spacing (the mean distance of a point to its 6 nearest, over 2 000 points),
-the unit of issue 31's noise sweep (0, 0.1, 0.3 and 1 spacing). With --subdivide L the mesh is first Loop-subdivided L times, and
+the unit of issue 31's noise sweep (0, 0.1, 0.3 and 1 spacing). With
+--scan FILE the points are that scan's instead (any file scanio reads, e.g.
+a raw range scan of the mesh's object, in the mesh's frame), fitted as they
+are and scored against MESH; --views picks the views (azimuth,elevation in
+degrees, azimuth 0 to 360; default 0,15 120,-10 240,30), e.g. the scanner's side of a
+one-sided scan. With --subdivide L the mesh is first Loop-subdivided L times, and
 samples and reference share that smooth surface: sampled on the mesh's own
 flat triangles, a dense sample resolves the facets (dihedral angles of
 several degrees between flat faces that the reference shades smoothly),
@@ -23,7 +28,10 @@ three views (masked SSIM, masked RMSE, coverage IoU, as there).
 
 Variants (fitter settings on top of the defaults):
 
-- default: the defaults (bound 0.5 local spacings);
+- default: the defaults (bound 0.5 local spacings, ToleranceUnit AUTOMATIC:
+  NOISE with MaximumFeatureScale 16 on a noisy sample, SPACING on others);
+- spacing: ToleranceUnit SPACING (the defaults before 2026-12-07, and the
+  unit every variant below without noise or absolute had until then);
 - scaleN: MaximumFeatureScale N (adaptive feature size), e.g. scale4;
 - noise: ToleranceUnit NOISE (the bound at least 3 noise scales);
 - absolute: ToleranceUnit ABSOLUTE (the bound in world units);
@@ -37,7 +45,8 @@ Density independence is what the issue asks of the fitter: above the
 sampling that resolves the surface, the splat count should stop growing with
 N, at the same picture. Output in --out: splat_density.csv (one row per
 sample and variant: points, noise and its unit, variant, splats, splats per
-point, the points no splat covers (vtkSplatErrorMetric), fit seconds, the
+point, the unit the bound was measured in (ToleranceUnit AUTOMATIC
+resolved), the points no splat covers (vtkSplatErrorMetric), fit seconds, the
 fit's peak memory, masked SSIM, RMSE, IoU) and splat_density.png (splats,
 fit time, peak memory and SSIM against the points, one line per variant and
 noise; against the noise, one line per variant, when there is one N). Each fit runs in a process of its
@@ -74,14 +83,17 @@ VARIANTS = ["default", "scale4", "scale8", "noise", "noise+scale4"]
 
 def settings_of(variant):
     """The fitter settings a variant names: words joined by '+', each one of
-    default, noise (ToleranceUnit NOISE), absolute (ToleranceUnit ABSOLUTE),
+    default, spacing (ToleranceUnit SPACING), noise (ToleranceUnit NOISE),
+    absolute (ToleranceUnit ABSOLUTE),
     scaleN (MaximumFeatureScale N), tolX (MaximumDeviation X), featureX
     (FeatureNoiseFactor X) or Name=X (any setting, e.g. NormalAngle=15)."""
     settings = {}
     for word in variant.split("+"):
         if word == "default":
             continue
-        if word == "noise":
+        if word == "spacing":
+            settings["ToleranceUnit"] = 0
+        elif word == "noise":
             settings["ToleranceUnit"] = 1
         elif word == "absolute":
             settings["ToleranceUnit"] = 2
@@ -196,6 +208,12 @@ def fit_in_child(cloud_path, variant, folder):
     return read_vtp(splat_path), result["fit_s"], result["peak_gib"]
 
 
+def resolved_unit(splats):
+    """The unit the fit's bound was measured in (ToleranceUnit AUTOMATIC resolved)."""
+    unit = splats.GetFieldData().GetArray("SplatToleranceUnit")
+    return ("spacing", "noise", "absolute")[int(unit.GetTuple1(0))] if unit else ""
+
+
 def child(cloud_path, splat_path, variant):
     splats, seconds = fit(read_vtp(cloud_path), settings_of(variant))
     write_vtp(splats, splat_path)
@@ -258,6 +276,11 @@ def main():
     parser.add_argument("--out", default="bench-results")
     parser.add_argument("--pictures", metavar="DIR",
                         help="also write each fit's views (mesh | splats | difference) into DIR")
+    parser.add_argument("--scan", metavar="FILE",
+                        help="fit this scan's points (in MESH's frame) instead of samples of MESH")
+    parser.add_argument("--views", nargs="+", metavar="AZ,EL",
+                        help="views as azimuth,elevation degrees, azimuth 0 to 360 (default %s)"
+                             % " ".join("%d,%d" % v for v in VIEWS))
     parser.add_argument("--smoke", action="store_true", help="20 000 points, two variants, 96 pixels")
     parser.add_argument("--child", nargs=2, metavar=("CLOUD", "SPLATS"), help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -279,14 +302,23 @@ def main():
     stem = os.path.basename(args.mesh).split(".")[0]
     up = args.up or quality.UP_AXIS.get(stem.split("_")[0], "y")
     scene = quality.Scene((args.size, args.size))
-    cameras = scene.cameras(mesh, up, VIEWS)
-    model = dict(name=stem, cameras=cameras, views=VIEWS,
+    views = [tuple(float(x) for x in v.split(",")) for v in args.views] if args.views else VIEWS
+    cameras = scene.cameras(mesh, up, views)
+    model = dict(name=stem, cameras=cameras, views=views,
                  references=[scene.image(c) for c in cameras])
     if args.pictures:
         os.makedirs(args.pictures, exist_ok=True)
     rows = []
     folder = tempfile.mkdtemp(prefix="bench_splat_density_")
     try:
+        if args.scan:
+            from pointsurfaces.scanio import read_scan
+            cloud = vtkPolyData()
+            cloud.SetPoints(read_scan(args.scan).GetPoints())
+            stem = os.path.basename(args.scan).split(".")[0]
+            args.noise_unit = "scan"
+            rows += sweep_sample(args, stem, model, scene, folder, cloud, 0.0)
+            args.noise = []
         for noise in args.noise:
             for n in [int(p) for p in args.points]:
                 rows += sweep_sample(args, stem, model, scene, folder,
@@ -321,6 +353,7 @@ def sweep_sample(args, stem, model, scene, folder, cloud, noise):
             model=stem, subdivisions=args.subdivide, points=cloud.GetNumberOfPoints(), noise=noise,
             noise_unit=args.noise_unit, variant=variant, splats=splats.GetNumberOfPoints(),
             splats_per_point=round(splats.GetNumberOfPoints() / cloud.GetNumberOfPoints(), 4),
+            unit=resolved_unit(splats),
             uncovered=uncovered(cloud, splats),
             fit_s=round(seconds, 3), peak_gb=round(peak, 3),
             masked_ssim=round(float(np.mean([s["masked_ssim"] for s in scores])), 4),

@@ -120,7 +120,8 @@ def fit(pd, **settings):
     return {"splats": fitter.GetOutput().GetNumberOfPoints(), "seconds": seconds,
             "rms_rel": metric.GetRMSDistance() / diagonal,
             "max_rel": metric.GetMaximumDistance() / diagonal,
-            "uncovered": metric.GetNumberOfUncoveredPoints()}
+            "uncovered": metric.GetNumberOfUncoveredPoints(),
+            "unit": ("spacing", "noise", "absolute")[fitter.GetResolvedToleranceUnit()]}
 
 
 def write(rows, out, name):
@@ -149,12 +150,17 @@ def counts(args):
     for path, pd in loaded(scans):
         model = os.path.basename(path).split(".")[0].split("_")[0]
         # Table 4.7 is the unbounded fit (THESIS_FIT); the default,
-        # error-bounded fit is listed beside it.
-        for order, name, bound in ((0, "random", 0.0), (2, "front", 0.0),
-                                   (0, "random, bounded", 0.5)):
-            r = fit(pd, SelectionOrder=order, **(THESIS_FIT if bound == 0.0 else {}))
+        # error-bounded fit is listed beside it, and that fit with its bound
+        # in spacings whatever the sample's noise (ToleranceUnit SPACING, the
+        # default before ToleranceUnit AUTOMATIC).
+        for order, name, bound, unit in ((0, "random", 0.0, {}), (2, "front", 0.0, {}),
+                                         (0, "random, bounded", 0.5, {}),
+                                         (0, "random, bounded", 0.5, {"ToleranceUnit": 0})):
+            r = fit(pd, SelectionOrder=order, **(THESIS_FIT if bound == 0.0 else unit))
             rows.append({"model": model, "points": pd.GetNumberOfPoints(), "order": name,
                          "maximum_deviation": bound,
+                         "tolerance_unit": (("automatic: " if not unit else "") + r["unit"]
+                                            if bound > 0.0 else ""),
                          "splats": r["splats"],
                          "percent": round(100.0 * r["splats"] / pd.GetNumberOfPoints(), 2),
                          "thesis": THESIS.get(model, ""), "seconds": round(r["seconds"], 4),
