@@ -236,7 +236,9 @@ int vtkAlgebraicSplatFitter::RequestData(vtkInformation*,
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   this->NumberOfInvalidPoints = this->NumberOfDegenerateSplats = this->NumberOfMergedPoints = 0;
   this->NumberOfReducedDegreeSplats = 0;
-  this->SetResolvedTolerance(pointsurfaces::ToleranceUnit::Spacing, pointsurfaces::SampleNoise());
+  this->SetResolvedTolerance(static_cast<pointsurfaces::ToleranceUnit>(
+                               this->ToleranceUnit == AUTOMATIC ? SPACING : this->ToleranceUnit),
+    pointsurfaces::SampleNoise());
   const vtkIdType nIn = input ? input->GetNumberOfPoints() : 0;
   if (!this->FitsInMemory(nIn))
   {

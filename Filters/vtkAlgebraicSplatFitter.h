@@ -295,9 +295,9 @@ public:
    *   noise); SPACING on any other. The fit measures
    *   the points' residual about their local quadrics at about a thousand
    *   probes, on their 16 and on their 64 nearest points: noise leaves the
-   *   same residual at both (a ratio of 1.06 to 1.36 on the scans and
+   *   same residual at both (a ratio of 0.98 to 1.46 on the noisy scans and
    *   resamples measured), relief the quadrics cannot follow a growing one
-   *   (1.57 and up on the clean ones, sparse or dense); a ratio under 1.5
+   *   (2.7 and up on the clean ones, sparse or dense); a ratio under 1.5
    *   with a residual of at least 0.05 spacings is noise (psSampleNoise.h).
    *   GetResolvedToleranceUnit() and the field data SplatToleranceUnit and
    *   SplatSampleNoise (the ratio, the residual in spacings) tell what was

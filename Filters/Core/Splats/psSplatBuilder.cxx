@@ -459,8 +459,8 @@ private:
   };
   std::vector<Subsample> subsamples;
   // The index of every point, built beside the subsamples' (a 10M-point
-  // index takes seconds on one core).
-  // The index of every point (`given`'s when there is one) and the subsamples'.
+  // index takes seconds on one core), or `given` (ToleranceUnit::Automatic
+  // builds it first, to measure the sample's noise).
   std::unique_ptr<PointIndex> BuildIndexes(std::unique_ptr<PointIndex> given);
   std::unique_ptr<PointIndex> indexStorage;
   const PointIndex& index;
