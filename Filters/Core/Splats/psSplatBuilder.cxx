@@ -1602,16 +1602,15 @@ BuildResult BuildSplats(const double* xyz,
   {
     return BuildResult();
   }
-  if (params.Tolerance != ToleranceUnit::Automatic)
+  // ToleranceUnit::Automatic: the sample's noise decides, measured with
+  // the index the build then keeps.
+  std::unique_ptr<PointIndex> index;
+  SampleNoise noise;
+  if (params.Tolerance == ToleranceUnit::Automatic)
   {
-    SplatBuild build(xyz, n, normals, params, progress, abort, chunk);
-    BuildResult result = build.Run();
-    result.Tolerance = params.Tolerance;
-    return result;
+    index = std::make_unique<PointIndex>(xyz, n);
+    noise = MeasureSampleNoise(xyz, n, *index);
   }
-  // The sample's noise decides, measured with the index the build keeps.
-  auto index = std::make_unique<PointIndex>(xyz, n);
-  const SampleNoise noise = MeasureSampleNoise(xyz, n, *index);
   const BuildParameters resolved = ResolveTolerance(params, noise);
   SplatBuild build(xyz, n, normals, resolved, progress, abort, chunk, std::move(index));
   BuildResult result = build.Run();
