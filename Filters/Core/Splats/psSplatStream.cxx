@@ -226,7 +226,8 @@ struct SplatStream::Impl
   bool FitChunk(size_t c,
     const std::function<void(double)>& progress,
     const std::atomic<bool>* abort);
-  double HaloWidth(const PointBatch& own) const;
+  // `index`: that of `own`'s points.
+  double HaloWidth(const PointBatch& own, const PointIndex& index) const;
   void Orient(size_t c,
     const double box[6],
     std::vector<BuiltSplat>& splats,
@@ -634,7 +635,7 @@ bool SplatStream::Impl::ReadChunk(size_t c, const double* keep, PointBatch& into
 }
 
 //------------------------------------------------------------------------------
-double SplatStream::Impl::HaloWidth(const PointBatch& own) const
+double SplatStream::Impl::HaloWidth(const PointBatch& own, const PointIndex& index) const
 {
   // The radius of the widest fit neighbourhood among a sample of the
   // chunk's points, grown by the widest disc: a splat reaches no farther
@@ -659,7 +660,6 @@ double SplatStream::Impl::HaloWidth(const PointBatch& own) const
       (box[3] - box[2]) * (box[3] - box[2]) + (box[5] - box[4]) * (box[5] - box[4]));
     return n > 1 ? 4.0 * d : 0.0;
   }
-  PointIndex index(own.XYZ.data(), n);
   std::vector<int> ids;
   std::vector<double> d2;
   double widest = 0.0;
@@ -897,18 +897,19 @@ bool SplatStream::Impl::FitChunk(size_t c,
     return false;
   }
   const long long own = points.Size();
-  // ToleranceUnit::Automatic: the first chunk's own points decide for every chunk.
-  if (this->Params.Build.Tolerance == ToleranceUnit::Automatic)
+  double w = 0.0;
   {
-    if (own >= 3)
+    // The own points' index, before the halo's points move them.
+    const PointIndex index(points.XYZ.data(), own);
+    // ToleranceUnit::Automatic: the first chunk's own points decide for every chunk.
+    if (this->Params.Build.Tolerance == ToleranceUnit::Automatic)
     {
-      PointIndex index(points.XYZ.data(), own);
       this->Stats.Noise = MeasureSampleNoise(points.XYZ.data(), own, index);
+      this->Params.Build = ResolveTolerance(this->Params.Build, this->Stats.Noise);
     }
-    this->Params.Build = ResolveTolerance(this->Params.Build, this->Stats.Noise);
+    this->Stats.Tolerance = this->Params.Build.Tolerance;
+    w = this->HaloWidth(points, index);
   }
-  this->Stats.Tolerance = this->Params.Build.Tolerance;
-  const double w = this->HaloWidth(points);
   double box[6];
   for (int k = 0; k < 3; ++k)
   {
