@@ -14,6 +14,8 @@ import sys
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 TEST_DATA = os.path.join(ROOT, "Testing", "Data")  # small inputs a clean clone has
 IO_DATA = os.path.join(ROOT, "IO", "Testing", "Data")
+# vtkAlgebraicSplatFitter's ToleranceUnit values by index, as the CSVs name them.
+TOLERANCE_UNITS = ("spacing", "noise", "absolute", "automatic")
 
 
 def find_input(folder, name, what):

@@ -69,7 +69,8 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_splat_quality as quality  # noqa: E402
-from bench_csv import TEST_DATA, peak_resident_gib, run_json_child, write_rows  # noqa: E402
+from bench_csv import (TEST_DATA, TOLERANCE_UNITS, peak_resident_gib, run_json_child,  # noqa: E402
+                       write_rows)
 from surface_sampling import sample_surface  # noqa: E402
 
 import pointsurfaces  # noqa: E402
@@ -211,7 +212,7 @@ def fit_in_child(cloud_path, variant, folder):
 def resolved_unit(splats):
     """The unit the fit's bound was measured in (ToleranceUnit AUTOMATIC resolved)."""
     unit = splats.GetFieldData().GetArray("SplatToleranceUnit")
-    return ("spacing", "noise", "absolute")[int(unit.GetTuple1(0))] if unit else ""
+    return TOLERANCE_UNITS[int(unit.GetTuple1(0))] if unit else ""
 
 
 def child(cloud_path, splat_path, variant):
@@ -318,11 +319,11 @@ def main():
             stem = os.path.basename(args.scan).split(".")[0]
             args.noise_unit = "scan"
             rows += sweep_sample(args, stem, model, scene, folder, cloud, 0.0)
-            args.noise = []
-        for noise in args.noise:
-            for n in [int(p) for p in args.points]:
-                rows += sweep_sample(args, stem, model, scene, folder,
-                                     sample(mesh, n, noise, diagonal, args.noise_unit), noise)
+        else:
+            for noise in args.noise:
+                for n in [int(p) for p in args.points]:
+                    rows += sweep_sample(args, stem, model, scene, folder,
+                                         sample(mesh, n, noise, diagonal, args.noise_unit), noise)
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     write_rows(os.path.join(args.out, "splat_density.csv"), rows)

@@ -54,7 +54,7 @@ from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
 from pointsurfaces.scanio import ScanReadError, read_scan
 
 import bench_csv
-from bench_csv import TEST_DATA, find_input, skip, skip_unreadable
+from bench_csv import TEST_DATA, TOLERANCE_UNITS, find_input, skip, skip_unreadable
 from surface_sampling import sample_surface
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -121,7 +121,7 @@ def fit(pd, **settings):
             "rms_rel": metric.GetRMSDistance() / diagonal,
             "max_rel": metric.GetMaximumDistance() / diagonal,
             "uncovered": metric.GetNumberOfUncoveredPoints(),
-            "unit": ("spacing", "noise", "absolute")[fitter.GetResolvedToleranceUnit()]}
+            "unit": TOLERANCE_UNITS[fitter.GetResolvedToleranceUnit()]}
 
 
 def write(rows, out, name):
