@@ -147,6 +147,14 @@ void Claim(const CoverFunction& cover,
   }
 }
 
+// Front growth queues at most this many of a chosen point's free
+// neighbours, those nearest the hexagonal ring. A widened splat's
+// neighbourhood holds thousands of points on a dense sample, and queueing
+// them all made the Front selection 1.26 times the Random one's fit time
+// on Lucy resampled with noise to 4M points (1.05 times with the cap and
+// the neighbours left unsorted).
+constexpr size_t FrontCandidates = 64;
+
 // The sequential selection over `seeds`; with `slabOf`, only points of slab
 // `slab` are chosen and claims reach slabs slab .. slab + claimRight.
 void SelectSlab(const PointIndex& index,
@@ -165,6 +173,7 @@ void SelectSlab(const PointIndex& index,
   std::priority_queue<Candidate, std::vector<Candidate>, std::greater<Candidate>> queue;
   std::vector<int> ids;
   std::vector<double> d2;
+  std::vector<Candidate> ring;
   auto choose = [&](long long i)
   {
     LocalFrame frame;
@@ -183,9 +192,11 @@ void SelectSlab(const PointIndex& index,
     }
     // Front growth: candidates around chosen points, best first where their
     // in-plane distance is closest to sqrt(3) s h, the spacing of a
-    // hexagonal covering by discs of radius s h.
+    // hexagonal covering by discs of radius s h; of each chosen point's
+    // free neighbours only the FrontCandidates nearest that ring are queued.
     const double r = s * frame.Scale;
-    index.Within(c, 2.0 * r, ids, d2);
+    index.Within(c, 2.0 * r, ids, d2, false);
+    ring.clear();
     for (size_t j = 0; j < ids.size(); ++j)
     {
       if (state[ids[j]] != PointState::Free || (slabOf && slabOf[ids[j]] != slab))
@@ -196,7 +207,16 @@ void SelectSlab(const PointIndex& index,
       const double height = (p[0] - c[0]) * frame.Normal[0] + (p[1] - c[1]) * frame.Normal[1] +
         (p[2] - c[2]) * frame.Normal[2];
       const double inPlane = std::sqrt(std::max(0.0, d2[j] - height * height));
-      queue.emplace(std::abs(inPlane - std::sqrt(3.0) * r) / r, ids[j]);
+      ring.emplace_back(std::abs(inPlane - std::sqrt(3.0) * r) / r, ids[j]);
+    }
+    if (ring.size() > FrontCandidates)
+    {
+      std::nth_element(ring.begin(), ring.begin() + FrontCandidates, ring.end());
+      ring.resize(FrontCandidates);
+    }
+    for (const Candidate& candidate : ring)
+    {
+      queue.push(candidate);
     }
   };
   for (long long seed : seeds)
