@@ -20,9 +20,10 @@
  * - `Quality` ([Bolla 2010] 3.3.1): a chosen point claims the points within
  *   s·h_i of it in its parametric domain; `Random` order is that of [Bolla 2010],
  *   `Front` grows fronts at the spacing of a hexagonal covering and yields
- *   4 to 8 % fewer splats on clean samples (about as many on noisy ones). The work runs in parallel over slabs of the
- *   bounding box; the result is deterministic for a given RandomSeed and
- *   does not depend on the number of threads.
+ *   4 to 8 % fewer splats on clean samples (about as many on noisy ones).
+ *   The work runs in parallel over slabs of the bounding box; the result is
+ *   deterministic for a given RandomSeed and does not depend on the number
+ *   of threads.
  * - `FixedCount` ([Bolla 2010] 3.3.2): m points seeded from the input, moved
  *   to convergence by LOP (Lipman et al. 2007) or its density-weighted WLOP
  *   (Huang et al. 2009), then fitted.
